@@ -6,6 +6,7 @@
 #define LANTERN_SHARED_LANG_H
 
 #ifdef __cplusplus
+#include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/packing.hpp>
@@ -44,6 +45,7 @@ using glm::normalize;
 using glm::packHalf2x16;
 using glm::uintBitsToFloat;
 using glm::unpackHalf2x16;
+using std::pow;
 inline bool isnan(float x) { return x != x; }
 inline bool isinf(float x) { return x == x && (x - x) != 0.0f; }
 }  // namespace lantern::gpu
