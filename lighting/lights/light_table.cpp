@@ -1,0 +1,53 @@
+#include "lighting/lights/light_table.h"
+
+#include <fmt/format.h>
+
+#include <unordered_map>
+
+#include "engine/core/error.h"
+
+namespace lantern::lighting {
+
+bool LightTable::update(std::span<const LightEmitter> emitters) {
+  // Index the previous frame's ids, then map each current emitter to its previous slot.
+  std::unordered_map<std::uint64_t, std::uint32_t> previous;
+  previous.reserve(ids_.size());
+  for (std::uint32_t i = 0; i < ids_.size(); ++i) previous.emplace(ids_[i], i);
+
+  std::vector<std::uint64_t> ids(emitters.size());
+  std::vector<gpu::GpuLight> lights(emitters.size());
+  std::vector<float> powers(emitters.size());
+  std::vector<std::uint32_t> cur_to_prev(emitters.size(), gpu::kInvalidLight);
+  std::vector<std::uint32_t> prev_to_cur(ids_.size(), gpu::kInvalidLight);
+  std::unordered_map<std::uint64_t, std::uint32_t> seen;
+  seen.reserve(emitters.size());
+  for (std::uint32_t i = 0; i < emitters.size(); ++i) {
+    const LightEmitter& e = emitters[i];
+    if (!seen.emplace(e.stable_id, i).second)
+      throw InputError(fmt::format("light table: stable id {:#x} appears twice (lights {} and {})",
+                                   e.stable_id, seen[e.stable_id], i));
+    ids[i] = e.stable_id;
+    lights[i] = e.light;
+    powers[i] = e.power;
+    if (auto it = previous.find(e.stable_id); it != previous.end()) {
+      cur_to_prev[i] = it->second;
+      prev_to_cur[it->second] = i;
+    }
+  }
+
+  const bool power_changed = powers != powers_;
+  ids_ = std::move(ids);
+  lights_ = std::move(lights);
+  powers_ = std::move(powers);
+  cur_to_prev_ = std::move(cur_to_prev);
+  prev_to_cur_ = std::move(prev_to_cur);
+  if (!power_changed) return false;
+
+  double total = 0.0;
+  for (float p : powers_) total += p;
+  alias_ = total > 0.0 ? AliasTable(powers_) : AliasTable();
+  ++alias_rebuilds_;
+  return true;
+}
+
+}  // namespace lantern::lighting
