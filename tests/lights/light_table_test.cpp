@@ -38,8 +38,11 @@ TEST(LightTable, RemapFollowsStableIdsThroughRemovalAndAddition) {
   EXPECT_EQ(p2c[3], 0u);             // id 13
   ASSERT_EQ(c2p.size(), 4u);
   EXPECT_EQ(c2p[1], kInvalidLight);  // id 14 is new
-  for (std::uint32_t cur = 0; cur < c2p.size(); ++cur)
-    if (c2p[cur] != kInvalidLight) EXPECT_EQ(p2c[c2p[cur]], cur);
+  for (std::uint32_t cur = 0; cur < c2p.size(); ++cur) {
+    if (c2p[cur] != kInvalidLight) {
+      EXPECT_EQ(p2c[c2p[cur]], cur);
+    }
+  }
   EXPECT_EQ(table.lights()[2].p0.x, 10.0f);
 
   // All lights removed: every previous light maps to nothing, sampling has no power.
