@@ -23,7 +23,7 @@ struct FrameConstants {
   uvec4 counts;            // x: lights; y: instances; z: emissive triangles; w: 1 after a camera cut
   vec4 environment;        // rgb: uniform sky radiance scale; w: exposure
 };
-LANTERN_STATIC_SIZE(FrameConstants, 4 * 64 + 4 * 16 + 16);
+LANTERN_STATIC_SIZE(FrameConstants, 3 * 64 + 5 * 16);
 
 struct GpuVertex {
   vec4 position_u;  // xyz object-space position; w: texture u
