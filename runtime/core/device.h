@@ -1,0 +1,147 @@
+// runtime::Device: the one object that owns the Vulkan instance, validation messenger, chosen
+// physical device, logical device, graphics+compute queue, command pool, memory allocator and
+// on-disk pipeline cache.
+//
+// Usage:
+//   runtime::Device device({.selector = "auto"});          // logs the chosen device
+//   runtime::Buffer out(device, {.size = n * 4, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+//                                .memory = runtime::MemoryUsage::Readback, .name = "out"});
+//   runtime::ShaderLibrary shaders;                        // compiled SPIR-V under LANTERN_SHADER_DIR
+//   runtime::ComputePipeline fill(device, shaders.load("tests/fill.comp"), {.name = "test.fill"});
+//   runtime::GpuTimer timer(device, 16);
+//   device.submit_and_wait([&](VkCommandBuffer cmd) {
+//     timer.reset(cmd);
+//     auto scope = timer.scope(cmd, "test.fill");        // timestamps + debug label
+//     fill.bind(cmd, runtime::Bindings(fill).buffer("result", out));  // bind BY NAME
+//     fill.dispatch_threads(cmd, n);
+//   });
+//   auto values = runtime::read_buffer<std::uint32_t>(device, out);
+//   assert(device.validation_errors() == 0);
+// Errors: bad selectors throw lantern::InputError; Vulkan failures throw lantern::RuntimeError
+// via VK_CHECK. The device must outlive every resource made from it.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "runtime/core/debug_names.h"
+#include "runtime/core/device_features.h"
+#include "runtime/core/device_info.h"
+
+namespace lantern::runtime {
+
+class Instance;
+class MemoryAllocator;
+class PipelineCache;
+
+struct DeviceOptions {
+  std::string selector = "auto";  // auto|cpu|gpu|INDEX (the --device flag)
+  bool validation = false;        // also on with LANTERN_VALIDATION=1 and in debug builds
+  bool sync_validation = false;   // also on with LANTERN_SYNC_VALIDATION=1; implies validation
+  // Where the pipeline cache lives; empty = $XDG_CACHE_HOME/lantern or ~/.cache/lantern.
+  // Set LANTERN_CACHE_DIR to override it from the environment.
+  std::filesystem::path cache_dir;
+  bool persist_pipeline_cache = true;  // load at creation, save at destruction
+};
+
+// Device-level entry points that are extensions (or core only in 1.3), loaded once.
+struct DeviceFunctions {
+  PFN_vkCmdPushDescriptorSetKHR cmd_push_descriptor_set = nullptr;
+  PFN_vkCmdPipelineBarrier2KHR cmd_pipeline_barrier2 = nullptr;
+  PFN_vkCmdBeginRenderingKHR cmd_begin_rendering = nullptr;  // null without dynamic rendering
+  PFN_vkCmdEndRenderingKHR cmd_end_rendering = nullptr;
+  PFN_vkSetDebugUtilsObjectNameEXT set_object_name = nullptr;  // null without debug utils
+  PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label = nullptr;
+  PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label = nullptr;
+};
+
+class Device {
+ public:
+  // Lists every physical device (index = --device INDEX) without creating a logical device.
+  static std::vector<DeviceInfo> enumerate();
+
+  explicit Device(const DeviceOptions& options = {});
+  ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  VkDevice handle() const { return device_; }
+  VkPhysicalDevice physical_device() const { return physical_; }
+  VkInstance instance() const;
+  VkQueue queue() const { return queue_; }
+  std::uint32_t queue_family() const { return queue_family_; }
+  const DeviceInfo& info() const { return info_; }
+  const DeviceCaps& caps() const { return caps_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_properties_; }
+  const DeviceFunctions& fn() const { return fn_; }
+  MemoryAllocator& memory() { return *memory_; }
+  const MemoryAllocator& memory() const { return *memory_; }
+  VkPipelineCache pipeline_cache() const;
+  PipelineCache& pipeline_cache_store() { return *pipeline_cache_; }
+
+  // Validation: enabled() is false when requested but the layer is missing (tests must fail then).
+  bool validation_enabled() const;
+  bool sync_validation_enabled() const;
+  std::uint32_t validation_errors() const;
+  std::uint32_t validation_warnings() const;
+  std::uint32_t performance_warnings() const;
+
+  // Debug names (no-ops without VK_EXT_debug_utils).
+  template <class Handle>
+  void set_name(Handle handle, std::string_view name) const {
+    set_object_name(ObjectTypeOf<Handle>::value, reinterpret_cast<std::uint64_t>(handle), name);
+  }
+  void set_object_name(VkObjectType type, std::uint64_t handle, std::string_view name) const;
+  // Command-buffer labels (no-ops without VK_EXT_debug_utils); see also CommandLabel.
+  void begin_label(VkCommandBuffer cmd, std::string_view name) const;
+  void end_label(VkCommandBuffer cmd) const;
+
+  // Records `record` into a fresh primary command buffer, submits it and waits for completion.
+  void submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
+  void wait_idle() const;
+  // Writes the pipeline cache to disk now (also done on destruction when persist is on).
+  void save_pipeline_cache();
+
+ private:
+  std::unique_ptr<Instance> instance_;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  std::uint32_t queue_family_ = 0;
+  VkCommandPool command_pool_ = VK_NULL_HANDLE;
+  VkFence submit_fence_ = VK_NULL_HANDLE;
+  DeviceInfo info_;
+  DeviceCaps caps_;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_properties_{};
+  DeviceFunctions fn_;
+  std::unique_ptr<MemoryAllocator> memory_;
+  std::unique_ptr<PipelineCache> pipeline_cache_;
+  bool persist_pipeline_cache_ = true;
+};
+
+// RAII command-buffer label: `CommandLabel label(device, cmd, "restir.initial");`
+class CommandLabel {
+ public:
+  CommandLabel(const Device& device, VkCommandBuffer cmd, std::string_view name)
+      : device_(device), cmd_(cmd) {
+    device_.begin_label(cmd_, name);
+  }
+  ~CommandLabel() { device_.end_label(cmd_); }
+  CommandLabel(const CommandLabel&) = delete;
+  CommandLabel& operator=(const CommandLabel&) = delete;
+
+ private:
+  const Device& device_;
+  VkCommandBuffer cmd_;
+};
+
+}  // namespace lantern::runtime
