@@ -1,0 +1,36 @@
+#version 460
+// Layout probe: includes every shared header (so each is compiled as GLSL at build time) and
+// declares a std430 buffer of every shared struct. tests/layout/ reads the SPIR-V offsets and
+// array strides glslang emits and compares them with C++ offsetof/sizeof.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared/alias_table.h"
+#include "shared/brdf.h"
+#include "shared/color.h"
+#include "shared/common_math.h"
+#include "shared/lang.h"
+#include "shared/lights.h"
+#include "shared/reservoir.h"
+#include "shared/reservoir_mis.h"
+#include "shared/reservoir_pack.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+#include "shared/tonemap.h"
+
+layout(local_size_x = 1) in;
+
+// One buffer per struct; the struct name is the SPIR-V OpName the test looks up.
+layout(std430, binding = 0) buffer AliasEntryProbe { AliasEntry alias_entries[]; };
+layout(std430, binding = 1) buffer GpuLightProbe { GpuLight gpu_lights[]; };
+layout(std430, binding = 2) buffer LightSampleProbe { LightSample light_samples[]; };
+layout(std430, binding = 3) buffer ReservoirProbe { Reservoir reservoirs[]; };
+layout(std430, binding = 4) buffer PackedReservoirProbe { PackedReservoir packed_reservoirs[]; };
+
+void main() {
+  // Touch every buffer so no declaration is optimised away.
+  alias_entries[0] = alias_entries[1];
+  gpu_lights[0] = gpu_lights[1];
+  light_samples[0] = light_samples[1];
+  reservoirs[0] = reservoirs[1];
+  packed_reservoirs[0] = packed_reservoirs[1];
+}
