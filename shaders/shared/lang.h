@@ -39,6 +39,7 @@ using glm::cos;
 using glm::cross;
 using glm::dot;
 using glm::exp;
+using glm::exp2;
 using glm::floatBitsToUint;
 using glm::floor;
 using glm::fract;

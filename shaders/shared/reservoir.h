@@ -39,11 +39,16 @@ struct Reservoir {
 };
 LANTERN_STATIC_SIZE(Reservoir, 32);
 
+// uv is clamped to [0,1] (non-finite -> 0) so a bad coordinate can never reach packing.
+LANTERN_FUNC float light_sample_coordinate(float x) {
+  return is_finite(x) ? clamp(x, 0.0f, 1.0f) : 0.0f;
+}
+
 LANTERN_FUNC LightSample light_sample_make(uint light_index, vec2 uv, float target_pdf) {
   LightSample s;
   s.light_index = light_index;
-  s.u = uv.x;
-  s.v = uv.y;
+  s.u = light_sample_coordinate(uv.x);
+  s.v = light_sample_coordinate(uv.y);
   s.target_pdf = finite_positive_or_zero(target_pdf);
   return s;
 }
@@ -114,8 +119,11 @@ LANTERN_FUNC void reservoir_finalize(LANTERN_INOUT(Reservoir) r) {
 
 // Clamps the confidence M (e.g. temporal history to 20x the current M) so old samples cannot
 // dominate forever. Only M changes: W stays the sample's contribution weight.
+// A non-finite max_m means no cap.
 LANTERN_FUNC void reservoir_cap_m(LANTERN_INOUT(Reservoir) r, float max_m) {
-  r.M = min(r.M, max(max_m, 0.0f));
+  if (is_finite(max_m)) {
+    r.M = min(r.M, max(max_m, 0.0f));
+  }
 }
 
 LANTERN_END_SHARED
