@@ -74,9 +74,14 @@ class Registry {
     return i == SparseSet::kAbsent ? nullptr : &s->at(i);
   }
 
+  template <class T>
+  bool has(Entity e) const {
+    const Storage<T>* s = find_storage<T>();
+    return s != nullptr && s->contains(e);
+  }
   template <class... T>
   bool all_of(Entity e) const {
-    return ((find_storage<T>() != nullptr && find_storage<T>()->contains(e)) && ...);
+    return (has<T>(e) && ...);
   }
 
   // Changes e's T in place through fn(T&), then fires on_update<T>. Systems change components
