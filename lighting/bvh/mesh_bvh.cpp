@@ -1,0 +1,80 @@
+// Bottom-level BVH of one mesh: validates the mesh, builds over triangle boxes, stores triangles
+// as (v0, e1, e2) in leaf order, and refits after vertices move.
+#include "lighting/bvh/mesh_bvh.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "engine/core/error.h"
+
+namespace lantern::lighting {
+namespace {
+
+void check_positions(std::span<const glm::vec3> positions, const char* what) {
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const glm::vec3& p = positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError(fmt::format("{}: vertex {} is not finite ({}, {}, {})", what, i, p.x, p.y, p.z));
+  }
+}
+
+Aabb triangle_bounds(std::span<const glm::vec3> positions, const std::uint32_t* tri) {
+  Aabb box;
+  box.grow(positions[tri[0]]);
+  box.grow(positions[tri[1]]);
+  box.grow(positions[tri[2]]);
+  return box;
+}
+
+}  // namespace
+
+MeshBvh::MeshBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices,
+                 const BvhBuildOptions& options)
+    : indices_(indices.begin(), indices.end()), vertex_count_(positions.size()) {
+  if (indices.size() % 3 != 0)
+    throw InputError(fmt::format("mesh BVH: {} indices is not a multiple of 3", indices.size()));
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    if (indices[i] >= positions.size())
+      throw InputError(fmt::format("mesh BVH: index {} (at {}) is out of range for {} vertices", indices[i],
+                                   i, positions.size()));
+  }
+  check_positions(positions, "mesh BVH");
+  const std::size_t triangle_count = indices.size() / 3;
+  std::vector<Aabb> bounds(triangle_count);
+  for (std::size_t t = 0; t < triangle_count; ++t) bounds[t] = triangle_bounds(positions, &indices_[3 * t]);
+  BvhBuildOutput built = build_bvh(bounds, options);
+  nodes_ = std::move(built.nodes);
+  order_ = std::move(built.primitive_order);
+  set_triangles(positions);
+}
+
+void MeshBvh::set_triangles(std::span<const glm::vec3> positions) {
+  triangles_.resize(order_.size());
+  for (std::size_t slot = 0; slot < order_.size(); ++slot) {
+    const std::uint32_t t = order_[slot];
+    const glm::vec3 v0 = positions[indices_[3 * t]];
+    const glm::vec3 v1 = positions[indices_[3 * t + 1]];
+    const glm::vec3 v2 = positions[indices_[3 * t + 2]];
+    gpu::BvhTriangle& tri = triangles_[slot];
+    tri.v0 = glm::vec4(v0, glm::uintBitsToFloat(t));
+    tri.e1 = glm::vec4(v1 - v0, 0.0f);
+    tri.e2 = glm::vec4(v2 - v0, 0.0f);
+  }
+}
+
+void MeshBvh::refit(std::span<const glm::vec3> positions) {
+  if (positions.size() != vertex_count_)
+    throw InputError(fmt::format("mesh BVH refit: {} vertices given, the mesh was built with {}",
+                                 positions.size(), vertex_count_));
+  check_positions(positions, "mesh BVH refit");
+  set_triangles(positions);
+  std::vector<Aabb> slot_bounds(order_.size());
+  for (std::size_t slot = 0; slot < order_.size(); ++slot)
+    slot_bounds[slot] = triangle_bounds(positions, &indices_[3 * order_[slot]]);
+  refit_bvh(nodes_, slot_bounds);
+}
+
+Aabb MeshBvh::bounds() const { return nodes_.empty() ? Aabb{} : node_bounds(nodes_[0]); }
+
+}  // namespace lantern::lighting
