@@ -1,6 +1,6 @@
 #version 460
-// Layout probe: includes every shared header (so each is compiled as GLSL at build time) and
-// declares a std430 buffer of every shared struct. tests/layout/ reads the SPIR-V offsets and
+// Layout probe: includes every shared header that declares GPU structs (so each compiles as GLSL
+// at build time) and declares a std430 buffer of every shared struct. tests/layout/ reads the SPIR-V offsets and
 // array strides glslang emits and compares them with C++ offsetof/sizeof.
 #extension GL_GOOGLE_include_directive : require
 
@@ -15,6 +15,7 @@
 #include "shared/reservoir_pack.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
+#include "shared/scene.h"
 #include "shared/tonemap.h"
 
 layout(local_size_x = 1) in;
@@ -25,6 +26,10 @@ layout(std430, binding = 1) buffer GpuLightProbe { GpuLight gpu_lights[]; };
 layout(std430, binding = 2) buffer LightSampleProbe { LightSample light_samples[]; };
 layout(std430, binding = 3) buffer ReservoirProbe { Reservoir reservoirs[]; };
 layout(std430, binding = 4) buffer PackedReservoirProbe { PackedReservoir packed_reservoirs[]; };
+layout(std430, binding = 5) buffer FrameConstantsProbe { FrameConstants frame_constants[]; };
+layout(std430, binding = 6) buffer GpuVertexProbe { GpuVertex gpu_vertices[]; };
+layout(std430, binding = 7) buffer GpuMaterialProbe { GpuMaterial gpu_materials[]; };
+layout(std430, binding = 8) buffer GpuInstanceProbe { GpuInstance gpu_instances[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -33,4 +38,8 @@ void main() {
   light_samples[0] = light_samples[1];
   reservoirs[0] = reservoirs[1];
   packed_reservoirs[0] = packed_reservoirs[1];
+  frame_constants[0] = frame_constants[1];
+  gpu_vertices[0] = gpu_vertices[1];
+  gpu_materials[0] = gpu_materials[1];
+  gpu_instances[0] = gpu_instances[1];
 }

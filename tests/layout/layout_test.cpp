@@ -1,0 +1,220 @@
+// Every shared GPU/CPU struct has the same layout in C++ and in GLSL std430: C++ offsetof/sizeof
+// against the Offset/ArrayStride decorations glslang wrote into layout_probe.comp.spv. A scan of
+// shaders/shared/*.h makes sure a new struct cannot be added without being checked here.
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shared/alias_table.h"
+#include "shared/lights.h"
+#include "shared/reservoir.h"
+#include "shared/reservoir_pack.h"
+#include "shared/scene.h"
+#include "spirv_layout.h"
+
+namespace lantern::test {
+namespace {
+
+struct MemberLayout {
+  const char* name;
+  std::size_t offset;
+};
+
+struct StructLayout {
+  const char* name;
+  std::size_t size;
+  std::vector<MemberLayout> members;  // in declaration order
+};
+
+#define LANTERN_MEMBER(type, member) MemberLayout{#member, offsetof(gpu::type, member)}
+
+// One row per shared struct. Add new structs here (and a buffer of them in layout_probe.comp).
+const std::vector<StructLayout>& cpp_layouts() {
+  static const std::vector<StructLayout> table = {
+      {"AliasEntry", sizeof(gpu::AliasEntry),
+       {LANTERN_MEMBER(AliasEntry, threshold), LANTERN_MEMBER(AliasEntry, alias),
+        LANTERN_MEMBER(AliasEntry, pdf), LANTERN_MEMBER(AliasEntry, pad0)}},
+      {"GpuLight", sizeof(gpu::GpuLight),
+       {LANTERN_MEMBER(GpuLight, p0), LANTERN_MEMBER(GpuLight, p1), LANTERN_MEMBER(GpuLight, p2),
+        LANTERN_MEMBER(GpuLight, radiance)}},
+      {"LightSample", sizeof(gpu::LightSample),
+       {LANTERN_MEMBER(LightSample, light_index), LANTERN_MEMBER(LightSample, u),
+        LANTERN_MEMBER(LightSample, v), LANTERN_MEMBER(LightSample, target_pdf)}},
+      {"Reservoir", sizeof(gpu::Reservoir),
+       {LANTERN_MEMBER(Reservoir, selected), LANTERN_MEMBER(Reservoir, weight_sum),
+        LANTERN_MEMBER(Reservoir, M), LANTERN_MEMBER(Reservoir, W), LANTERN_MEMBER(Reservoir, pad0)}},
+      {"PackedReservoir", sizeof(gpu::PackedReservoir),
+       {LANTERN_MEMBER(PackedReservoir, light_index), LANTERN_MEMBER(PackedReservoir, uv),
+        LANTERN_MEMBER(PackedReservoir, W), LANTERN_MEMBER(PackedReservoir, m_target)}},
+      {"FrameConstants", sizeof(gpu::FrameConstants),
+       {LANTERN_MEMBER(FrameConstants, view_proj), LANTERN_MEMBER(FrameConstants, prev_view_proj),
+        LANTERN_MEMBER(FrameConstants, inv_view_proj), LANTERN_MEMBER(FrameConstants, camera_position),
+        LANTERN_MEMBER(FrameConstants, prev_camera_position), LANTERN_MEMBER(FrameConstants, frame),
+        LANTERN_MEMBER(FrameConstants, counts), LANTERN_MEMBER(FrameConstants, environment)}},
+      {"GpuVertex", sizeof(gpu::GpuVertex),
+       {LANTERN_MEMBER(GpuVertex, position_u), LANTERN_MEMBER(GpuVertex, normal_v)}},
+      {"GpuMaterial", sizeof(gpu::GpuMaterial),
+       {LANTERN_MEMBER(GpuMaterial, base_color), LANTERN_MEMBER(GpuMaterial, emission),
+        LANTERN_MEMBER(GpuMaterial, params), LANTERN_MEMBER(GpuMaterial, textures)}},
+      {"GpuInstance", sizeof(gpu::GpuInstance),
+       {LANTERN_MEMBER(GpuInstance, object_to_world), LANTERN_MEMBER(GpuInstance, prev_object_to_world),
+        LANTERN_MEMBER(GpuInstance, world_to_object), LANTERN_MEMBER(GpuInstance, geometry),
+        LANTERN_MEMBER(GpuInstance, bvh)}},
+  };
+  return table;
+}
+
+#undef LANTERN_MEMBER
+
+const SpirvStructs& probe() {
+  static const SpirvStructs structs = parse_spirv_structs(read_spirv_file(LANTERN_LAYOUT_PROBE_SPV));
+  return structs;
+}
+
+TEST(Layout, ProbeDeclaresStructsWithOffsets) {
+  ASSERT_FALSE(probe().empty()) << LANTERN_LAYOUT_PROBE_SPV;
+  // The parser must see real decorations, not just names: AliasEntry.alias sits at byte 4.
+  auto alias = probe().find("AliasEntry");
+  ASSERT_NE(alias, probe().end());
+  ASSERT_EQ(alias->second.member_offsets.size(), 4u);
+  EXPECT_EQ(alias->second.member_offsets[1], 4);
+  EXPECT_EQ(alias->second.array_stride, 16);
+}
+
+TEST(Layout, CppMatchesSpirvForEverySharedStruct) {
+  for (const StructLayout& cpp : cpp_layouts()) {
+    SCOPED_TRACE(cpp.name);
+    auto found = probe().find(cpp.name);
+    ASSERT_NE(found, probe().end())
+        << cpp.name << " is not in layout_probe.comp: declare a std430 buffer of it there";
+    const SpirvStruct& spirv = found->second;
+    ASSERT_EQ(spirv.member_offsets.size(), cpp.members.size())
+        << cpp.name << ": member count differs between GLSL and the table in layout_test.cpp";
+    for (std::size_t i = 0; i < cpp.members.size(); ++i) {
+      EXPECT_EQ(spirv.member_names[i], cpp.members[i].name) << cpp.name << " member " << i;
+      EXPECT_EQ(spirv.member_offsets[i], static_cast<std::int64_t>(cpp.members[i].offset))
+          << cpp.name << "." << cpp.members[i].name << ": SPIR-V Offset vs C++ offsetof";
+    }
+    EXPECT_EQ(spirv.array_stride, static_cast<std::int64_t>(cpp.size))
+        << cpp.name << ": SPIR-V ArrayStride vs C++ sizeof";
+  }
+}
+
+// The GLSL-visible text of a shared header: // comments and `#ifdef __cplusplus` blocks (C++-only
+// helpers such as CPU views with pointers) removed; a matching #else part is kept.
+std::string glsl_visible_text(const std::filesystem::path& header) {
+  std::ifstream file(header);
+  std::stringstream out;
+  std::string line;
+  int depth = 0;          // #if nesting depth
+  int cpp_only_at = -1;   // depth of the open `#ifdef __cplusplus`, -1 when outside one
+  static const std::regex directive(R"(^\s*#\s*(\w+)\s*(.*))");
+  while (std::getline(file, line)) {
+    line = line.substr(0, line.find("//"));
+    std::smatch m;
+    if (std::regex_search(line, m, directive)) {
+      std::string name = m[1];
+      if (name == "if" || name == "ifdef" || name == "ifndef") {
+        ++depth;
+        if (name == "ifdef" && m[2].str().find("__cplusplus") == 0 && cpp_only_at < 0) cpp_only_at = depth;
+        continue;
+      }
+      if (name == "else" && depth == cpp_only_at) {
+        cpp_only_at = -1;
+        continue;
+      }
+      if (name == "endif") {
+        if (depth == cpp_only_at) cpp_only_at = -1;
+        --depth;
+        continue;
+      }
+    }
+    if (cpp_only_at < 0) out << line << '\n';
+  }
+  return out.str();
+}
+
+std::vector<std::string> regex_captures(const std::string& text, const std::regex& pattern) {
+  std::vector<std::string> found;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), pattern); it != std::sregex_iterator(); ++it)
+    found.push_back((*it)[1]);
+  return found;
+}
+
+std::vector<std::filesystem::path> shared_headers() {
+  std::vector<std::filesystem::path> headers;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::filesystem::path(LANTERN_SOURCE_DIR) / "shaders/shared"))
+    if (entry.path().extension() == ".h") headers.push_back(entry.path());
+  return headers;
+}
+
+TEST(Layout, EverySharedHeaderStructIsChecked) {
+  std::set<std::string> covered;
+  for (const StructLayout& s : cpp_layouts()) covered.insert(s.name);
+  static const std::regex declaration(R"(\bstruct\s+([A-Za-z_]\w*)\s*\{)");
+  std::size_t structs = 0;
+  for (const std::filesystem::path& header : shared_headers()) {
+    for (const std::string& name : regex_captures(glsl_visible_text(header), declaration)) {
+      ++structs;
+      EXPECT_TRUE(covered.count(name))
+          << "struct " << name << " in " << header.filename().string()
+          << " has no row in tests/layout/layout_test.cpp (add one, and a buffer of it in "
+             "shaders/tests/layout_probe.comp)";
+    }
+  }
+  EXPECT_FALSE(shared_headers().empty()) << "no headers under " << LANTERN_SOURCE_DIR;
+  EXPECT_GE(structs, covered.size());
+}
+
+// Every shared header must be compiled as GLSL by the build: reachable through #include from
+// at least one shader stage under shaders/ (all stages are compiled at build time).
+TEST(Layout, EverySharedHeaderIsCompiledAsGlsl) {
+  const std::filesystem::path shaders = std::filesystem::path(LANTERN_SOURCE_DIR) / "shaders";
+  static const std::regex include(R"re(#\s*include\s+"([^"]+)")re");
+  std::map<std::string, std::vector<std::string>> includes;  // path relative to shaders/ -> includes
+  std::vector<std::string> stages;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(shaders)) {
+    if (!entry.is_regular_file()) continue;
+    std::string ext = entry.path().extension().string();
+    std::string rel = std::filesystem::relative(entry.path(), shaders).generic_string();
+    if (ext == ".comp" || ext == ".vert" || ext == ".frag" || ext == ".rgen") stages.push_back(rel);
+    if (ext != ".h" && ext != ".glsl" && ext != ".comp" && ext != ".vert" && ext != ".frag" && ext != ".rgen")
+      continue;
+    std::ifstream file(entry.path());
+    std::stringstream text;
+    text << file.rdbuf();
+    for (const std::string& target : regex_captures(text.str(), include)) {
+      // Shader includes resolve against shaders/ (-I) or the including file's folder.
+      std::filesystem::path sibling = entry.path().parent_path() / target;
+      includes[rel].push_back(std::filesystem::exists(sibling)
+                                  ? std::filesystem::relative(sibling, shaders).generic_string()
+                                  : target);
+    }
+  }
+  std::set<std::string> reached(stages.begin(), stages.end());
+  std::vector<std::string> frontier = stages;
+  while (!frontier.empty()) {
+    std::string file = frontier.back();
+    frontier.pop_back();
+    for (const std::string& next : includes[file])
+      if (reached.insert(next).second) frontier.push_back(next);
+  }
+  for (const std::filesystem::path& header : shared_headers()) {
+    std::string rel = "shared/" + header.filename().string();
+    EXPECT_TRUE(reached.count(rel)) << rel << " is not included by any shader stage, so the build "
+                                       "never compiles it as GLSL (include it in "
+                                       "shaders/tests/layout_probe.comp)";
+  }
+}
+
+}  // namespace
+}  // namespace lantern::test
