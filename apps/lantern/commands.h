@@ -26,5 +26,6 @@ struct CommonOptions {
 void add_common_flags(CLI::App& cmd, CommonOptions& options);
 
 void add_devices_command(CLI::App& root, CommonOptions& options);
+void add_info_command(CLI::App& root, CommonOptions& options);
 
 }  // namespace lantern::app

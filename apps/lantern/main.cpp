@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   root.require_subcommand(0, 1);
   app::CommonOptions options;
   app::add_devices_command(root, options);
+  app::add_info_command(root, options);
 
   try {
     root.parse(argc, argv);

@@ -1,0 +1,42 @@
+// Generator dispatch: "type" -> the generator's parameter reader and builder.
+#include "engine/level/generators/generator.h"
+
+#include <fmt/format.h>
+
+#include "engine/level/generators/night_market.h"
+#include "engine/level/json_level_reader.h"
+
+namespace lantern {
+
+void run_generator(JsonObject& params, JsonLevelReader& reader) {
+  const std::string type = params.string("type");
+  if (type == "night_market") {
+    NightMarketParams p;
+    p.seed = static_cast<std::uint64_t>(params.integer("seed", 1, 0, 0x7FFFFFFFFFFFFFFFll));
+    p.stalls = static_cast<std::uint32_t>(params.integer("stalls", p.stalls, 1, 20000));
+    p.lanterns_per_stall = static_cast<std::uint32_t>(params.integer("lanterns_per_stall", p.lanterns_per_stall, 0, 512));
+    p.lantern_subdivisions = static_cast<std::uint32_t>(params.integer("lantern_subdivisions", p.lantern_subdivisions, 0, 3));
+    p.lights_per_stall = static_cast<std::uint32_t>(params.integer("lights_per_stall", p.lights_per_stall, 0, 64));
+    p.sign_quads = static_cast<std::uint32_t>(params.integer("sign_quads", p.sign_quads, 0, 256));
+    p.movers = static_cast<std::uint32_t>(params.integer("movers", p.movers, 0, 10000));
+    p.flicker_fraction = params.number("flicker_fraction", p.flicker_fraction);
+    p.moving_light_fraction = params.number("moving_light_fraction", p.moving_light_fraction);
+    p.lantern_radiance = params.vec2("lantern_radiance", p.lantern_radiance);
+    p.light_intensity = params.vec2("light_intensity", p.light_intensity);
+    p.path_name = params.string("path", p.path_name);
+    p.path_duration = params.number("path_duration", p.path_duration);
+    if (p.flicker_fraction < 0.0f || p.flicker_fraction > 1.0f) params.fail("flicker_fraction", "must be in [0, 1]");
+    if (p.moving_light_fraction < 0.0f || p.moving_light_fraction > 1.0f)
+      params.fail("moving_light_fraction", "must be in [0, 1]");
+    if (p.lantern_radiance.x < 0.0f || p.lantern_radiance.y < p.lantern_radiance.x)
+      params.fail("lantern_radiance", "need 0 <= min <= max (negative radiance is not allowed)");
+    if (p.light_intensity.x < 0.0f || p.light_intensity.y < p.light_intensity.x)
+      params.fail("light_intensity", "need 0 <= min <= max");
+    if (p.path_duration <= 0.0f) params.fail("path_duration", "must be > 0");
+    generate_night_market(p, reader.builder(), fmt::format("{}: {}", reader.file().string(), params.pointer()));
+    return;
+  }
+  params.fail("type", fmt::format("unknown generator type '{}' (night_market)", type));
+}
+
+}  // namespace lantern

@@ -1,0 +1,238 @@
+// night_market: procedural stalls, lanterns, lights, occluders, movers and a camera path.
+// Static pieces are merged into one mesh per material to keep the instance count small.
+#include "engine/level/generators/night_market.h"
+
+#include <array>
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/level/generators/split_mix.h"
+#include "engine/level/primitives.h"
+
+namespace lantern {
+namespace {
+
+constexpr float kPitchX = 4.0f;  // stall width + gap
+constexpr float kPitchZ = 7.0f;  // stall depth + aisle
+constexpr int kPalette = 6;
+constexpr int kRadianceBins = 4;
+
+const std::array<glm::vec3, kPalette> kCanvas = {{{0.62f, 0.12f, 0.10f}, {0.10f, 0.30f, 0.55f}, {0.70f, 0.55f, 0.12f},
+                                                  {0.15f, 0.45f, 0.20f}, {0.55f, 0.25f, 0.50f}, {0.75f, 0.72f, 0.65f}}};
+const std::array<glm::vec3, kPalette> kGlow = {{{1.00f, 0.55f, 0.20f}, {1.00f, 0.30f, 0.15f}, {1.00f, 0.80f, 0.45f},
+                                                {0.95f, 0.40f, 0.60f}, {0.50f, 0.80f, 1.00f}, {1.00f, 0.90f, 0.70f}}};
+
+float log_uniform(SplitMix& rng, glm::vec2 range) {
+  if (range.x <= 0.0f || range.y <= range.x) return rng.uniform(range.x, range.y);
+  return range.x * std::pow(range.y / range.x, rng.uniform());
+}
+
+Material diffuse(const std::string& name, glm::vec3 color, float roughness) {
+  Material m;
+  m.name = name;
+  m.base_color = glm::vec4(color, 1.0f);
+  m.metallic = 0.0f;
+  m.roughness = roughness;
+  return m;
+}
+
+Material emitter(const std::string& name, glm::vec3 color, float radiance) {
+  Material m = diffuse(name, glm::vec3(0.05f), 0.6f);
+  m.emissive_factor = color;
+  m.emissive_strength = radiance;
+  return m;
+}
+
+glm::mat4 box_at(const glm::mat4& frame, glm::vec3 center, glm::vec3 size) {
+  return glm::scale(glm::translate(frame, center), size);
+}
+
+// Merged static geometry, keyed by material name; materials are created on first use.
+struct MergedMeshes {
+  std::map<std::string, std::pair<Material, Mesh>> parts;
+  void add(const Material& material, const Mesh& piece, const glm::mat4& m) {
+    auto [it, inserted] = parts.try_emplace(material.name, material, Mesh{});
+    append_transformed(it->second.second, piece, m);
+  }
+};
+
+}  // namespace
+
+void generate_night_market(const NightMarketParams& p, LevelBuilder& builder, const std::string& where) {
+  SplitMix rng(p.seed ^ 0x6E696768746D6B74ull);  // "nightmkt"
+  const auto cols = static_cast<std::uint32_t>(std::ceil(std::sqrt(static_cast<double>(p.stalls) * 1.5)));
+  const std::uint32_t rows = (p.stalls + cols - 1) / cols;
+  const float half_w = 0.5f * static_cast<float>(cols - 1) * kPitchX;
+  const float half_d = 0.5f * static_cast<float>(rows - 1) * kPitchZ;
+
+  const Mesh unit_box = make_box(glm::vec3(1.0f));
+  const Mesh lantern = make_ico_sphere(0.08f, p.lantern_subdivisions);
+  Mesh sign_quad = make_plane(glm::vec2(1.0f));  // faces +Y; rotated to face the aisle
+  MergedMeshes merged;
+  const Material wood = diffuse("market_wood", {0.35f, 0.22f, 0.12f}, 0.7f);
+  const Material metal = [] {
+    Material m = diffuse("market_metal", {0.55f, 0.55f, 0.58f}, 0.35f);
+    m.metallic = 1.0f;
+    return m;
+  }();
+  const Material crate = diffuse("market_crate", {0.45f, 0.33f, 0.2f}, 0.8f);
+  const Material goods = diffuse("market_goods", {0.6f, 0.5f, 0.35f}, 0.6f);
+
+  for (std::uint32_t s = 0; s < p.stalls; ++s) {
+    const std::uint32_t col = s % cols, row = s / cols;
+    const glm::vec3 center(static_cast<float>(col) * kPitchX - half_w, 0.0f, static_cast<float>(row) * kPitchZ - half_d);
+    // Even rows face +Z, odd rows -Z: pairs of rows face each other across an aisle.
+    const glm::mat4 frame = glm::rotate(glm::translate(glm::mat4(1.0f), center),
+                                        row % 2 ? glm::pi<float>() : 0.0f, glm::vec3(0, 1, 0));
+    const int hue = static_cast<int>(rng.below(kPalette));
+    const Material canvas = diffuse(fmt::format("market_canvas_{}", hue), kCanvas[static_cast<std::size_t>(hue)], 0.9f);
+
+    merged.add(wood, unit_box, box_at(frame, {0.0f, 0.5f, 0.6f}, {3.2f, 1.0f, 0.8f}));     // counter
+    merged.add(canvas, unit_box, box_at(frame, {0.0f, 1.3f, -1.0f}, {3.4f, 2.6f, 0.1f}));  // back wall
+    merged.add(canvas, unit_box, box_at(frame, {0.0f, 2.75f, 0.1f}, {3.6f, 0.08f, 2.6f})); // roof
+    for (float x : {-1.7f, 1.7f})
+      merged.add(metal, unit_box, box_at(frame, {x, 1.35f, 1.2f}, {0.08f, 2.7f, 0.08f}));  // posts
+    for (int g = 0; g < 3; ++g) {
+      const glm::vec3 size(rng.uniform(0.2f, 0.6f), rng.uniform(0.1f, 0.4f), rng.uniform(0.2f, 0.5f));
+      merged.add(goods, unit_box, box_at(frame, {rng.uniform(-1.2f, 1.2f), 1.0f + 0.5f * size.y, 0.6f}, size));
+    }
+    // A crate stack in the aisle in front of every other stall: occluders for shadow rays.
+    if (rng.chance(0.5f)) {
+      const float h = rng.uniform(0.5f, 1.4f);
+      merged.add(crate, unit_box, box_at(frame, {rng.uniform(-1.5f, 1.5f), 0.5f * h, 2.1f}, {0.7f, h, 0.7f}));
+    }
+
+    // Lantern string under the roof's front edge, sagging in the middle.
+    for (std::uint32_t k = 0; k < p.lanterns_per_stall; ++k) {
+      const float u = p.lanterns_per_stall > 1 ? static_cast<float>(k) / static_cast<float>(p.lanterns_per_stall - 1) : 0.5f;
+      const float x = -1.7f + 3.4f * u;
+      const float y = 2.55f - 0.35f * (1.0f - (2.0f * u - 1.0f) * (2.0f * u - 1.0f));
+      const int glow = static_cast<int>(rng.below(kPalette));
+      const float radiance = log_uniform(rng, p.lantern_radiance);
+      // Radiance bins (log-spaced) keep the material count small: bin centre stands for the bin.
+      const float t = p.lantern_radiance.y > p.lantern_radiance.x && p.lantern_radiance.x > 0.0f
+                          ? std::log(radiance / p.lantern_radiance.x) / std::log(p.lantern_radiance.y / p.lantern_radiance.x)
+                          : 0.0f;
+      const int bin = std::min(static_cast<int>(t * kRadianceBins), kRadianceBins - 1);
+      const float bin_radiance = p.lantern_radiance.x > 0.0f
+                                     ? p.lantern_radiance.x * std::pow(p.lantern_radiance.y / p.lantern_radiance.x,
+                                                                       (static_cast<float>(bin) + 0.5f) / kRadianceBins)
+                                     : p.lantern_radiance.y;
+      merged.add(emitter(fmt::format("market_lantern_{}_{}", glow, bin), kGlow[static_cast<std::size_t>(glow)], bin_radiance),
+                 lantern, glm::translate(frame, {x, y, 1.25f}));
+    }
+    // Sign: a strip of emissive quads on the back wall, facing the aisle.
+    const std::uint32_t sign_cols = std::max<std::uint32_t>(1, (p.sign_quads + 1) / 2);
+    for (std::uint32_t q = 0; q < p.sign_quads; ++q) {
+      const float x = (static_cast<float>(q % sign_cols) - 0.5f * static_cast<float>(sign_cols - 1)) * 0.32f;
+      const float y = 2.05f + 0.17f * static_cast<float>(q / sign_cols);
+      const glm::mat4 m = glm::scale(glm::rotate(glm::translate(frame, {x, y, -0.94f}), glm::half_pi<float>(), {1, 0, 0}),
+                                     glm::vec3(0.28f, 1.0f, 0.14f));
+      merged.add(emitter(fmt::format("market_sign_{}", hue), kGlow[static_cast<std::size_t>(hue)], 60.0f), sign_quad, m);
+    }
+    // Lights: a spot over the counter, then bulbs along the lantern string.
+    for (std::uint32_t k = 0; k < p.lights_per_stall; ++k) {
+      Light l;
+      const glm::vec3 warm = kGlow[rng.below(kPalette)];
+      l.color = warm;
+      l.intensity = log_uniform(rng, p.light_intensity);
+      if (k == 0) {
+        l.type = LightType::Spot;
+        l.name = fmt::format("stall{}_spot", s);
+        l.position = glm::vec3(frame * glm::vec4(0.0f, 2.6f, 0.6f, 1.0f));
+        l.rotation = look_at_orientation(glm::vec3(0.0f), glm::vec3(0, -1, 0));
+        l.inner_cone = glm::radians(30.0f);
+        l.outer_cone = glm::radians(50.0f);
+        l.intensity *= 3.0f;
+      } else {
+        l.type = LightType::Point;
+        l.name = fmt::format("stall{}_bulb{}", s, k);
+        l.position = glm::vec3(frame * glm::vec4(rng.uniform(-1.6f, 1.6f), rng.uniform(2.0f, 2.4f), 1.1f, 1.0f));
+      }
+      if (rng.chance(p.flicker_fraction)) {
+        l.behaviour = FlickerBehaviour{0.3f, 1.0f, rng.uniform(4.0f, 14.0f), static_cast<std::uint32_t>(rng.next())};
+      } else if (k > 0 && rng.chance(p.moving_light_fraction)) {
+        l.behaviour = OrbitBehaviour{l.position, 0.15f, rng.uniform(1.0f, 3.0f),
+                                     glm::vec3(0, 1, 0), rng.uniform(0.0f, 6.2831853f)};
+      }
+      builder.add_light(std::move(l));
+    }
+  }
+
+  // Ground under the whole market.
+  {
+    const glm::vec2 ground(2.0f * half_w + 24.0f, 2.0f * half_d + 24.0f);
+    const std::uint32_t mat = builder.add_material(diffuse("market_ground", {0.18f, 0.17f, 0.16f}, 0.9f));
+    const std::uint32_t mesh = builder.add_mesh(make_plane(ground), where + ": ground");
+    builder.add_instance("market_ground", mesh, mat, Transform{});
+  }
+  for (auto& [name, part] : merged.parts) {
+    part.second.name = name;
+    const std::uint32_t mat = builder.add_material(part.first);
+    const std::uint32_t mesh = builder.add_mesh(std::move(part.second), fmt::format("{}: merged mesh '{}'", where, name));
+    builder.add_instance(name, mesh, mat, Transform{});
+  }
+
+  // Movers: carts orbiting aisle points; every 4th is a spinning glowing sign.
+  if (p.movers > 0) {
+    const std::uint32_t cart_mesh = builder.add_mesh(make_box({1.2f, 1.0f, 0.8f}), where + ": cart");
+    const std::uint32_t cart_mat = builder.add_material(diffuse("market_cart", {0.5f, 0.1f, 0.08f}, 0.5f));
+    const std::uint32_t spinner_mesh = builder.add_mesh(make_box({1.0f, 0.6f, 0.05f}), where + ": spinner");
+    const std::uint32_t spinner_mat = builder.add_material(emitter("market_spinner", {0.4f, 0.9f, 1.0f}, 150.0f));
+    const std::uint32_t aisles = std::max<std::uint32_t>(1, rows / 2);
+    for (std::uint32_t i = 0; i < p.movers; ++i) {
+      const std::uint32_t aisle = rng.below(aisles);
+      const float z = (static_cast<float>(2 * aisle) + 0.5f) * kPitchZ - half_d;
+      const glm::vec3 c(rng.uniform(-half_w, half_w), 0.0f, z);
+      Transform t;
+      if (i % 4 == 3) {
+        t.translation = c + glm::vec3(0.0f, 3.4f, 0.0f);
+        builder.add_instance(fmt::format("spinner{}", i), spinner_mesh, spinner_mat, t,
+                             RotateBehaviour{glm::vec3(0, 1, 0), rng.uniform(0.5f, 2.0f)});
+      } else {
+        t.translation = c + glm::vec3(0.0f, 0.5f, 0.0f);
+        OrbitBehaviour orbit{t.translation, rng.uniform(1.0f, 1.5f), rng.uniform(0.2f, 0.6f), glm::vec3(0, 1, 0),
+                             rng.uniform(0.0f, 6.2831853f)};
+        builder.add_instance(fmt::format("cart{}", i), cart_mesh, cart_mat, t, orbit);
+      }
+    }
+  }
+
+  // A loop along the first aisle, across, back along the last aisle and across again.
+  Level& level = builder.level();
+  if (!level.find_path(p.path_name)) {
+    const float z0 = 0.5f * kPitchZ - half_d;
+    const float z1 = std::max(z0, (static_cast<float>(2 * std::max<std::uint32_t>(1, rows / 2) - 2) + 0.5f) * kPitchZ - half_d);
+    const float x0 = -half_w - 2.0f, x1 = half_w + 2.0f;
+    const std::array<glm::vec3, 5> corners = {{{x0, 1.7f, z0}, {x1, 1.7f, z0}, {x1, 2.5f, z1}, {x0, 1.7f, z1}, {x0, 1.7f, z0}}};
+    CameraPath path;
+    path.name = p.path_name;
+    path.loop = true;
+    const int per_side = 3;
+    const int steps = 4 * per_side;
+    for (int i = 0; i <= steps; ++i) {
+      const int side = std::min(i / per_side, 3);
+      const float u = static_cast<float>(i - side * per_side) / per_side;
+      const glm::vec3 pos = glm::mix(corners[static_cast<std::size_t>(side)], corners[static_cast<std::size_t>(side + 1)], u);
+      const glm::vec3 ahead = glm::mix(corners[static_cast<std::size_t>(side)], corners[static_cast<std::size_t>(side + 1)],
+                                       std::min(u + 0.5f, 1.0f)) + glm::vec3(0.0f, -0.3f, 0.0f);
+      const glm::vec3 look = glm::length(ahead - pos) > 0.5f ? ahead : pos + glm::vec3(1.0f, -0.2f, 0.0f);
+      path.keys.push_back({p.path_duration * static_cast<float>(i) / steps, pos, look_at_orientation(pos, look), std::nullopt});
+    }
+    path.keys.back().orientation = path.keys.front().orientation;
+    level.paths.push_back(std::move(path));
+  }
+  if (level.camera_path.empty()) level.camera_path = p.path_name;
+  if (!level.has_camera) {
+    const PathPose pose = level.find_path(p.path_name)->evaluate(0.0f);
+    level.camera.position = pose.position;
+    level.camera.orientation = pose.orientation;
+    level.camera.yfov = glm::radians(60.0f);
+    level.has_camera = true;
+  }
+}
+
+}  // namespace lantern

@@ -1,0 +1,12 @@
+// Names of behaviour kinds, as spelled in level files.
+#include "engine/scene/behaviour.h"
+
+namespace lantern {
+
+const char* behaviour_type_name(const Behaviour& b) {
+  constexpr const char* kNames[] = {"rotate", "orbit", "flicker", "follow_path"};
+  static_assert(std::variant_size_v<Behaviour> == std::size(kNames));
+  return kNames[b.index()];
+}
+
+}  // namespace lantern

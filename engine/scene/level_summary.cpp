@@ -1,0 +1,85 @@
+// Level summary: counting and formatting for `lantern info`.
+#include "engine/scene/level_summary.h"
+
+#include <fmt/format.h>
+
+namespace lantern {
+
+LevelSummary summarize(const Level& level) {
+  LevelSummary s;
+  s.name = level.name;
+  s.source = level.source.string();
+  s.instances = level.instances.size();
+  s.meshes = level.meshes.size();
+  for (const Instance& inst : level.instances) {
+    const std::uint64_t tris = level.meshes[inst.mesh].triangle_count();
+    s.triangles += tris;
+    if (level.materials[inst.material].emissive()) s.emissive_triangles += tris;
+    if (inst.behaviour) ++s.behaviours;
+  }
+  for (const Light& l : level.lights) {
+    if (l.type == LightType::Point) ++s.point_lights;
+    if (l.type == LightType::Spot) ++s.spot_lights;
+    if (l.type == LightType::Directional) ++s.directional_lights;
+    if (l.behaviour) ++s.behaviours;
+  }
+  s.entities = s.instances + level.lights.size() + 1;
+  s.environment_map = level.environment.has_value();
+  s.camera_path = level.camera_path;
+  for (const CameraPath& p : level.paths) s.paths.push_back({p.name, p.duration(), p.keys.size(), p.loop});
+  return s;
+}
+
+nlohmann::json to_json(const LevelSummary& s) {
+  nlohmann::json paths = nlohmann::json::array();
+  for (const auto& p : s.paths)
+    paths.push_back({{"name", p.name}, {"duration", p.duration}, {"keys", p.keys}, {"loop", p.loop}});
+  nlohmann::json j = {
+      {"level", s.name},
+      {"source", s.source},
+      {"entities", s.entities},
+      {"instances", s.instances},
+      {"meshes", s.meshes},
+      {"triangles", s.triangles},
+      {"emissive_triangles", s.emissive_triangles},
+      {"lights",
+       {{"point", s.point_lights},
+        {"spot", s.spot_lights},
+        {"directional", s.directional_lights},
+        {"total", s.point_lights + s.spot_lights + s.directional_lights}}},
+      {"volumes", s.volumes},
+      {"behaviours", s.behaviours},
+      {"environment_map", s.environment_map},
+      {"camera_path", s.camera_path},
+      {"paths", paths},
+  };
+  nlohmann::json enabled = nlohmann::json::object();
+  for (const auto& [section, value] : s.enabled) enabled[section] = value;
+  j["enabled"] = enabled;
+  return j;
+}
+
+std::string to_text(const LevelSummary& s) {
+  std::string out = fmt::format("level {} ({})\n", s.name, s.source);
+  out += fmt::format("  entities            {}\n", s.entities);
+  out += fmt::format("  instances           {}\n", s.instances);
+  out += fmt::format("  meshes              {}\n", s.meshes);
+  out += fmt::format("  triangles           {}\n", s.triangles);
+  out += fmt::format("  emissive triangles  {}\n", s.emissive_triangles);
+  out += fmt::format("  lights              {} point, {} spot, {} directional\n", s.point_lights,
+                     s.spot_lights, s.directional_lights);
+  out += fmt::format("  volumes             {}\n", s.volumes);
+  out += fmt::format("  behaviours          {}\n", s.behaviours);
+  out += fmt::format("  environment map     {}\n", s.environment_map ? "yes" : "no");
+  out += fmt::format("  camera              {}\n",
+                     s.camera_path.empty() ? "static" : "follows path '" + s.camera_path + "'");
+  out += fmt::format("  paths               {}\n", s.paths.size());
+  for (const auto& p : s.paths)
+    out += fmt::format("    {:<18}{:.2f} s, {} keys{}\n", p.name, p.duration, p.keys,
+                       p.loop ? ", loops" : "");
+  for (const auto& [section, value] : s.enabled)
+    out += fmt::format("  {}\n    {}\n", section, value.dump());
+  return out;
+}
+
+}  // namespace lantern
