@@ -7,11 +7,11 @@
 // through the GGX lobe (s = KHR_materials_specular factor); the Lambert base receives what the
 // layer does not reflect on the way in and on the way out: it is weighted by
 // (1 - s E(n.v)) (1 - s E(n.l)), E = an upper estimate of the specular lobe's directional
-// albedo (dielectric_specular_albedo). Symmetric in v and l, so reciprocal; s = 0 gives pure Lambert. Two rejected
-// forms, measured by the white-furnace test: glTF's 1 - F(v.h) reflects up to 1.54x the incident
-// energy at grazing view; 1 - F(n.v) per side loses up to 60% on rough surfaces at grazing view.
-// Metals are GGX with Schlick F0 = base colour and no diffuse.
-// Directions n, v (towards the viewer), l (towards the light) are unit vectors in world space.
+// albedo (dielectric_specular_albedo). Symmetric in v and l, so reciprocal; s = 0 gives pure
+// Lambert. Two rejected forms, measured by the white-furnace test: glTF's 1 - F(v.h) reflects up
+// to 1.54x the incident energy at grazing view; 1 - F(n.v) per side loses up to 60% on rough
+// surfaces at grazing view. Metals are GGX with Schlick F0 = base colour and no diffuse. Directions
+// n, v (towards the viewer), l (towards the light) are unit vectors in world space.
 #ifndef LANTERN_SHARED_BRDF_H
 #define LANTERN_SHARED_BRDF_H
 
@@ -99,8 +99,8 @@ LANTERN_FUNC vec3 brdf_eval(vec3 n, vec3 v, vec3 l, vec3 albedo, float roughness
   float s = clamp(specular, 0.0f, 1.0f);
   float diffuse_in = 1.0f - dielectric_specular_albedo(n_dot_v, roughness, s);
   float diffuse_out = 1.0f - dielectric_specular_albedo(n_dot_l, roughness, s);
-  vec3 dielectric = (diffuse_in * diffuse_out * kInvPi) * albedo +
-                    vec3(dielectric_fresnel(v_dot_h, s) * lobe);
+  vec3 dielectric =
+      (diffuse_in * diffuse_out * kInvPi) * albedo + vec3(dielectric_fresnel(v_dot_h, s) * lobe);
   vec3 metal = (albedo + (vec3(1.0f) - albedo) * w) * lobe;
   float m = clamp(metallic, 0.0f, 1.0f);
   return mix(dielectric, metal, m) * n_dot_l;

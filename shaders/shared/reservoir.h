@@ -4,9 +4,9 @@
 //
 // Convention: every candidate or reservoir enters with weight w_i = m_i * p̂(y_i) * W_i, where p̂ is
 // the target function of the pixel doing the resampling, W_i the candidate's contribution weight
-// (1 / source pdf for a fresh candidate) and m_i its MIS weight (the m_i of one resampling sum to 1).
-// Finalisation then sets W = weight_sum / p̂(y). All weights pass through a guard, so NaN, Inf and
-// negative inputs count as zero and the reservoir state stays finite.
+// (1 / source pdf for a fresh candidate) and m_i its MIS weight (the m_i of one resampling sum to
+// 1). Finalisation then sets W = weight_sum / p̂(y). All weights pass through a guard, so NaN, Inf
+// and negative inputs count as zero and the reservoir state stays finite.
 #ifndef LANTERN_SHARED_RESERVOIR_H
 #define LANTERN_SHARED_RESERVOIR_H
 
@@ -100,8 +100,8 @@ LANTERN_FUNC bool reservoir_merge(LANTERN_INOUT(Reservoir) r, Reservoir other, f
                                   float target_pdf_here, float u) {
   LightSample moved = other.selected;
   moved.target_pdf = finite_positive_or_zero(target_pdf_here);
-  float w = finite_positive_or_zero(mis_weight) * moved.target_pdf *
-            finite_positive_or_zero(other.W);
+  float w =
+      finite_positive_or_zero(mis_weight) * moved.target_pdf * finite_positive_or_zero(other.W);
   r.M += finite_positive_or_zero(other.M);
   return reservoir_add(r, moved, w, u);
 }
@@ -109,9 +109,8 @@ LANTERN_FUNC bool reservoir_merge(LANTERN_INOUT(Reservoir) r, Reservoir other, f
 // Generalized RIS contribution weight: W = weight_sum / p̂(y). Zero when nothing was selected
 // or p̂(y) = 0 (the sample then carries no contribution).
 LANTERN_FUNC void reservoir_finalize(LANTERN_INOUT(Reservoir) r) {
-  r.W = r.selected.light_index == kInvalidLight
-            ? 0.0f
-            : safe_ratio(r.weight_sum, r.selected.target_pdf);
+  r.W = r.selected.light_index == kInvalidLight ? 0.0f
+                                                : safe_ratio(r.weight_sum, r.selected.target_pdf);
   if (r.W == 0.0f) {
     r.selected.light_index = kInvalidLight;
   }

@@ -40,7 +40,9 @@ LANTERN_FUNC float mis_balance_term(float conf_j, float p_j_at_y) {
 }
 
 // Number of pairs k as a divisor: at least 1, and 1 for a non-finite k.
-LANTERN_FUNC float mis_pair_count(float k) { return max(finite_positive_or_zero(k), 1.0f); }
+LANTERN_FUNC float mis_pair_count(float k) {
+  return max(finite_positive_or_zero(k), 1.0f);
+}
 
 // `pairwise` (Bitterli 2022; Lin et al. 2022, "Generalized Resampled Importance Sampling"): each
 // neighbour i forms a pair with the canonical domain, whose confidence is split over the k pairs,

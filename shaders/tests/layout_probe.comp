@@ -6,6 +6,7 @@
 
 #include "shared/alias_table.h"
 #include "shared/brdf.h"
+#include "shared/bvh.h"
 #include "shared/color.h"
 #include "shared/common_math.h"
 #include "shared/lang.h"
@@ -30,6 +31,12 @@ layout(std430, binding = 5) buffer FrameConstantsProbe { FrameConstants frame_co
 layout(std430, binding = 6) buffer GpuVertexProbe { GpuVertex gpu_vertices[]; };
 layout(std430, binding = 7) buffer GpuMaterialProbe { GpuMaterial gpu_materials[]; };
 layout(std430, binding = 8) buffer GpuInstanceProbe { GpuInstance gpu_instances[]; };
+layout(std430, binding = 9) buffer BvhNodeProbe { BvhNode bvh_nodes[]; };
+layout(std430, binding = 10) buffer BvhTriangleProbe { BvhTriangle bvh_triangles[]; };
+layout(std430, binding = 11) buffer BvhInstanceProbe { BvhInstance bvh_instances[]; };
+layout(std430, binding = 12) buffer BvhSceneHeaderProbe { BvhSceneHeader bvh_headers[]; };
+layout(std430, binding = 13) buffer BvhRayProbe { BvhRay bvh_rays[]; };
+layout(std430, binding = 14) buffer BvhHitProbe { BvhHit bvh_hits[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -42,4 +49,10 @@ void main() {
   gpu_vertices[0] = gpu_vertices[1];
   gpu_materials[0] = gpu_materials[1];
   gpu_instances[0] = gpu_instances[1];
+  bvh_nodes[0] = bvh_nodes[1];
+  bvh_triangles[0] = bvh_triangles[1];
+  bvh_instances[0] = bvh_instances[1];
+  bvh_headers[0] = bvh_headers[1];
+  bvh_rays[0] = bvh_rays[1];
+  bvh_hits[0] = bvh_hits[1];
 }

@@ -5,8 +5,8 @@
 
 #include <cstddef>
 #include <filesystem>
-#include <map>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "shared/alias_table.h"
+#include "shared/bvh.h"
 #include "shared/lights.h"
 #include "shared/reservoir.h"
 #include "shared/reservoir_pack.h"
@@ -34,40 +35,82 @@ struct StructLayout {
   std::vector<MemberLayout> members;  // in declaration order
 };
 
-#define LANTERN_MEMBER(type, member) MemberLayout{#member, offsetof(gpu::type, member)}
+#define LANTERN_MEMBER(type, member)     \
+  MemberLayout {                         \
+#member, offsetof(gpu::type, member) \
+  }
 
 // One row per shared struct. Add new structs here (and a buffer of them in layout_probe.comp).
 const std::vector<StructLayout>& cpp_layouts() {
   static const std::vector<StructLayout> table = {
-      {"AliasEntry", sizeof(gpu::AliasEntry),
+      {"AliasEntry",
+       sizeof(gpu::AliasEntry),
        {LANTERN_MEMBER(AliasEntry, threshold), LANTERN_MEMBER(AliasEntry, alias),
         LANTERN_MEMBER(AliasEntry, pdf), LANTERN_MEMBER(AliasEntry, pad0)}},
-      {"GpuLight", sizeof(gpu::GpuLight),
+      {"GpuLight",
+       sizeof(gpu::GpuLight),
        {LANTERN_MEMBER(GpuLight, p0), LANTERN_MEMBER(GpuLight, p1), LANTERN_MEMBER(GpuLight, p2),
         LANTERN_MEMBER(GpuLight, radiance)}},
-      {"LightSample", sizeof(gpu::LightSample),
+      {"LightSample",
+       sizeof(gpu::LightSample),
        {LANTERN_MEMBER(LightSample, light_index), LANTERN_MEMBER(LightSample, u),
         LANTERN_MEMBER(LightSample, v), LANTERN_MEMBER(LightSample, target_pdf)}},
-      {"Reservoir", sizeof(gpu::Reservoir),
+      {"Reservoir",
+       sizeof(gpu::Reservoir),
        {LANTERN_MEMBER(Reservoir, selected), LANTERN_MEMBER(Reservoir, weight_sum),
-        LANTERN_MEMBER(Reservoir, M), LANTERN_MEMBER(Reservoir, W), LANTERN_MEMBER(Reservoir, pad0)}},
-      {"PackedReservoir", sizeof(gpu::PackedReservoir),
+        LANTERN_MEMBER(Reservoir, M), LANTERN_MEMBER(Reservoir, W),
+        LANTERN_MEMBER(Reservoir, pad0)}},
+      {"PackedReservoir",
+       sizeof(gpu::PackedReservoir),
        {LANTERN_MEMBER(PackedReservoir, light_index), LANTERN_MEMBER(PackedReservoir, uv),
         LANTERN_MEMBER(PackedReservoir, W), LANTERN_MEMBER(PackedReservoir, m_target)}},
-      {"FrameConstants", sizeof(gpu::FrameConstants),
+      {"FrameConstants",
+       sizeof(gpu::FrameConstants),
        {LANTERN_MEMBER(FrameConstants, view_proj), LANTERN_MEMBER(FrameConstants, prev_view_proj),
-        LANTERN_MEMBER(FrameConstants, inv_view_proj), LANTERN_MEMBER(FrameConstants, camera_position),
+        LANTERN_MEMBER(FrameConstants, inv_view_proj),
+        LANTERN_MEMBER(FrameConstants, camera_position),
         LANTERN_MEMBER(FrameConstants, prev_camera_position), LANTERN_MEMBER(FrameConstants, frame),
         LANTERN_MEMBER(FrameConstants, counts), LANTERN_MEMBER(FrameConstants, environment)}},
-      {"GpuVertex", sizeof(gpu::GpuVertex),
+      {"GpuVertex",
+       sizeof(gpu::GpuVertex),
        {LANTERN_MEMBER(GpuVertex, position_u), LANTERN_MEMBER(GpuVertex, normal_v)}},
-      {"GpuMaterial", sizeof(gpu::GpuMaterial),
+      {"GpuMaterial",
+       sizeof(gpu::GpuMaterial),
        {LANTERN_MEMBER(GpuMaterial, base_color), LANTERN_MEMBER(GpuMaterial, emission),
         LANTERN_MEMBER(GpuMaterial, params), LANTERN_MEMBER(GpuMaterial, textures)}},
-      {"GpuInstance", sizeof(gpu::GpuInstance),
-       {LANTERN_MEMBER(GpuInstance, object_to_world), LANTERN_MEMBER(GpuInstance, prev_object_to_world),
+      {"GpuInstance",
+       sizeof(gpu::GpuInstance),
+       {LANTERN_MEMBER(GpuInstance, object_to_world),
+        LANTERN_MEMBER(GpuInstance, prev_object_to_world),
         LANTERN_MEMBER(GpuInstance, world_to_object), LANTERN_MEMBER(GpuInstance, geometry),
         LANTERN_MEMBER(GpuInstance, bvh)}},
+      {"BvhNode",
+       sizeof(gpu::BvhNode),
+       {LANTERN_MEMBER(BvhNode, bounds_min), LANTERN_MEMBER(BvhNode, bounds_max)}},
+      {"BvhTriangle",
+       sizeof(gpu::BvhTriangle),
+       {LANTERN_MEMBER(BvhTriangle, v0), LANTERN_MEMBER(BvhTriangle, e1),
+        LANTERN_MEMBER(BvhTriangle, e2)}},
+      {"BvhInstance",
+       sizeof(gpu::BvhInstance),
+       {LANTERN_MEMBER(BvhInstance, object_to_world), LANTERN_MEMBER(BvhInstance, world_to_object),
+        LANTERN_MEMBER(BvhInstance, node_offset), LANTERN_MEMBER(BvhInstance, triangle_offset),
+        LANTERN_MEMBER(BvhInstance, user_id), LANTERN_MEMBER(BvhInstance, pad0)}},
+      {"BvhSceneHeader",
+       sizeof(gpu::BvhSceneHeader),
+       {LANTERN_MEMBER(BvhSceneHeader, tlas_node_offset),
+        LANTERN_MEMBER(BvhSceneHeader, tlas_node_count),
+        LANTERN_MEMBER(BvhSceneHeader, instance_count),
+        LANTERN_MEMBER(BvhSceneHeader, triangle_count)}},
+      {"BvhRay",
+       sizeof(gpu::BvhRay),
+       {LANTERN_MEMBER(BvhRay, origin), LANTERN_MEMBER(BvhRay, direction)}},
+      {"BvhHit",
+       sizeof(gpu::BvhHit),
+       {LANTERN_MEMBER(BvhHit, t), LANTERN_MEMBER(BvhHit, u), LANTERN_MEMBER(BvhHit, v),
+        LANTERN_MEMBER(BvhHit, instance), LANTERN_MEMBER(BvhHit, primitive),
+        LANTERN_MEMBER(BvhHit, user_id), LANTERN_MEMBER(BvhHit, pad0),
+        LANTERN_MEMBER(BvhHit, pad1)}},
   };
   return table;
 }
@@ -75,7 +118,8 @@ const std::vector<StructLayout>& cpp_layouts() {
 #undef LANTERN_MEMBER
 
 const SpirvStructs& probe() {
-  static const SpirvStructs structs = parse_spirv_structs(read_spirv_file(LANTERN_LAYOUT_PROBE_SPV));
+  static const SpirvStructs structs =
+      parse_spirv_structs(read_spirv_file(LANTERN_LAYOUT_PROBE_SPV));
   return structs;
 }
 
@@ -114,8 +158,8 @@ std::string glsl_visible_text(const std::filesystem::path& header) {
   std::ifstream file(header);
   std::stringstream out;
   std::string line;
-  int depth = 0;          // #if nesting depth
-  int cpp_only_at = -1;   // depth of the open `#ifdef __cplusplus`, -1 when outside one
+  int depth = 0;         // #if nesting depth
+  int cpp_only_at = -1;  // depth of the open `#ifdef __cplusplus`, -1 when outside one
   static const std::regex directive(R"(^\s*#\s*(\w+)\s*(.*))");
   while (std::getline(file, line)) {
     line = line.substr(0, line.find("//"));
@@ -124,7 +168,8 @@ std::string glsl_visible_text(const std::filesystem::path& header) {
       std::string name = m[1];
       if (name == "if" || name == "ifdef" || name == "ifndef") {
         ++depth;
-        if (name == "ifdef" && m[2].str().find("__cplusplus") == 0 && cpp_only_at < 0) cpp_only_at = depth;
+        if (name == "ifdef" && m[2].str().find("__cplusplus") == 0 && cpp_only_at < 0)
+          cpp_only_at = depth;
         continue;
       }
       if (name == "else" && depth == cpp_only_at) {
@@ -144,15 +189,16 @@ std::string glsl_visible_text(const std::filesystem::path& header) {
 
 std::vector<std::string> regex_captures(const std::string& text, const std::regex& pattern) {
   std::vector<std::string> found;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), pattern); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), pattern);
+       it != std::sregex_iterator(); ++it)
     found.push_back((*it)[1]);
   return found;
 }
 
 std::vector<std::filesystem::path> shared_headers() {
   std::vector<std::filesystem::path> headers;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(std::filesystem::path(LANTERN_SOURCE_DIR) / "shaders/shared"))
+  for (const auto& entry : std::filesystem::directory_iterator(
+           std::filesystem::path(LANTERN_SOURCE_DIR) / "shaders/shared"))
     if (entry.path().extension() == ".h") headers.push_back(entry.path());
   return headers;
 }
@@ -180,14 +226,16 @@ TEST(Layout, EverySharedHeaderStructIsChecked) {
 TEST(Layout, EverySharedHeaderIsCompiledAsGlsl) {
   const std::filesystem::path shaders = std::filesystem::path(LANTERN_SOURCE_DIR) / "shaders";
   static const std::regex include(R"re(#\s*include\s+"([^"]+)")re");
-  std::map<std::string, std::vector<std::string>> includes;  // path relative to shaders/ -> includes
+  std::map<std::string, std::vector<std::string>>
+      includes;  // path relative to shaders/ -> includes
   std::vector<std::string> stages;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(shaders)) {
     if (!entry.is_regular_file()) continue;
     std::string ext = entry.path().extension().string();
     std::string rel = std::filesystem::relative(entry.path(), shaders).generic_string();
     if (ext == ".comp" || ext == ".vert" || ext == ".frag" || ext == ".rgen") stages.push_back(rel);
-    if (ext != ".h" && ext != ".glsl" && ext != ".comp" && ext != ".vert" && ext != ".frag" && ext != ".rgen")
+    if (ext != ".h" && ext != ".glsl" && ext != ".comp" && ext != ".vert" && ext != ".frag" &&
+        ext != ".rgen")
       continue;
     std::ifstream file(entry.path());
     std::stringstream text;
@@ -210,7 +258,8 @@ TEST(Layout, EverySharedHeaderIsCompiledAsGlsl) {
   }
   for (const std::filesystem::path& header : shared_headers()) {
     std::string rel = "shared/" + header.filename().string();
-    EXPECT_TRUE(reached.count(rel)) << rel << " is not included by any shader stage, so the build "
+    EXPECT_TRUE(reached.count(rel)) << rel
+                                    << " is not included by any shader stage, so the build "
                                        "never compiles it as GLSL (include it in "
                                        "shaders/tests/layout_probe.comp)";
   }

@@ -44,7 +44,7 @@ SpirvStructs parse_spirv_structs(const std::vector<std::uint32_t>& words) {
   }
   std::unordered_map<std::uint32_t, std::string> names;
   std::unordered_map<std::uint32_t, StructId> structs;
-  std::unordered_map<std::uint32_t, std::int64_t> array_strides;  // array type id -> stride
+  std::unordered_map<std::uint32_t, std::int64_t> array_strides;   // array type id -> stride
   std::unordered_map<std::uint32_t, std::uint32_t> array_element;  // array type id -> element
   std::unordered_map<std::uint32_t, std::map<std::uint32_t, std::string>> member_names;
   std::unordered_map<std::uint32_t, std::map<std::uint32_t, std::int64_t>> member_offsets;

@@ -1,13 +1,14 @@
 // The shared BRDF: energy never exceeds 1 (white furnace), reciprocity, and the GGX VNDF and
 // cosine samplers agree with their pdfs (integral and histogram).
+#include "shared/brdf.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <initializer_list>
 #include <cstdio>
+#include <initializer_list>
 #include <vector>
 
-#include "shared/brdf.h"
 #include "shared/rng.h"
 #include "statistics.h"
 
@@ -41,7 +42,8 @@ test::RunningStats white_furnace(float cos_view, float roughness, float metallic
     vec2 u = rng_next_vec2(rng);
     vec3 l = rng_next_float(rng) < 0.5f ? cosine_sample_hemisphere(kNormal, u)
                                         : ggx_vndf_sample(kNormal, v, roughness, u);
-    float pdf = 0.5f * cosine_hemisphere_pdf(kNormal, l) + 0.5f * ggx_vndf_pdf(kNormal, v, l, roughness);
+    float pdf =
+        0.5f * cosine_hemisphere_pdf(kNormal, l) + 0.5f * ggx_vndf_pdf(kNormal, v, l, roughness);
     vec3 f_cos = brdf_eval(kNormal, v, l, vec3(1.0f), roughness, metallic, specular);
     stats.add(pdf > 0.0f ? double(f_cos.x) / double(pdf) : 0.0);
   }
@@ -58,10 +60,12 @@ TEST(Brdf, WhiteFurnaceNeverGainsEnergy) {
         test::RunningStats e = white_furnace(cos_view, roughness, metallic, specular, 100000, rng);
         double limit = 1.0 + 3.0 * e.standard_error() + 1e-3;
         std::printf("furnace rough %.2f cos_v %.1f %-10s: %.4f +- %.4f\n", roughness, cos_view,
-                    material == 0 ? "dielectric" : material == 1 ? "metal" : "lambert", e.mean(),
-                    e.standard_error());
-        EXPECT_LE(e.mean(), limit) << "roughness " << roughness << " cos_v " << cos_view
-                                   << " material " << material;
+                    material == 0   ? "dielectric"
+                    : material == 1 ? "metal"
+                                    : "lambert",
+                    e.mean(), e.standard_error());
+        EXPECT_LE(e.mean(), limit)
+            << "roughness " << roughness << " cos_v " << cos_view << " material " << material;
         if (material == 2) {  // pure Lambert reflects everything: checks the estimator itself
           EXPECT_NEAR(e.mean(), 1.0, 3.0 * e.standard_error() + 1e-3);
         }
@@ -142,7 +146,8 @@ TEST(Brdf, VndfSamplesMatchPdfHistogram) {
       double z = -1.0 + (zi + 0.5) * dz;
       double phi = (pi + 0.5) * dphi;
       double r = std::sqrt(1.0 - z * z);
-      vec3 l = normalize(float(r * std::cos(phi)) * t + float(r * std::sin(phi)) * b + float(z) * kNormal);
+      vec3 l = normalize(float(r * std::cos(phi)) * t + float(r * std::sin(phi)) * b +
+                         float(z) * kNormal);
       probability[bin_of(l)] += double(ggx_vndf_pdf(kNormal, v, l, roughness)) * dz * dphi;
     }
   uint rng = rng_init(uvec2(4u), 0u, 45u, 0u);

@@ -14,11 +14,19 @@ namespace lantern::gpu {
 namespace {
 
 const std::vector<float>& hostile_values() {
-  static const std::vector<float> values = {
-      std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
-      -std::numeric_limits<float>::infinity(), -1.0f, -0.0f, 0.0f,
-      std::numeric_limits<float>::max(), std::numeric_limits<float>::denorm_min(),
-      std::numeric_limits<float>::min(), 1e30f, 1e-30f, 1.0f, 0.5f};
+  static const std::vector<float> values = {std::numeric_limits<float>::quiet_NaN(),
+                                            std::numeric_limits<float>::infinity(),
+                                            -std::numeric_limits<float>::infinity(),
+                                            -1.0f,
+                                            -0.0f,
+                                            0.0f,
+                                            std::numeric_limits<float>::max(),
+                                            std::numeric_limits<float>::denorm_min(),
+                                            std::numeric_limits<float>::min(),
+                                            1e30f,
+                                            1e-30f,
+                                            1.0f,
+                                            0.5f};
   return values;
 }
 
@@ -83,7 +91,8 @@ TEST(ReservoirGuard, HostileInputsKeepStateFinite) {
 TEST(ReservoirGuard, HugeWeightsDoNotOverflowTheSum) {
   Reservoir r = reservoir_empty();
   for (int i = 0; i < 1000; ++i)
-    reservoir_update(r, light_sample_make(uint(i), vec2(0.5f), 1.0f), std::numeric_limits<float>::max(), 0.5f);
+    reservoir_update(r, light_sample_make(uint(i), vec2(0.5f), 1.0f),
+                     std::numeric_limits<float>::max(), 0.5f);
   EXPECT_TRUE(is_finite(r.weight_sum));
   reservoir_finalize(r);
   EXPECT_TRUE(finite_state(r));

@@ -1,9 +1,10 @@
 // PackedReservoir round trip: every field comes back within its documented quantisation.
+#include "shared/reservoir_pack.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "shared/reservoir_pack.h"
 #include "shared/rng.h"
 
 namespace lantern::gpu {
@@ -33,7 +34,9 @@ TEST(ReservoirPack, RoundTripWithinQuantisation) {
   }
 }
 
-TEST(ReservoirPack, SixteenBytes) { EXPECT_EQ(sizeof(PackedReservoir), 16u); }
+TEST(ReservoirPack, SixteenBytes) {
+  EXPECT_EQ(sizeof(PackedReservoir), 16u);
+}
 
 TEST(ReservoirPack, EdgeValues) {
   Reservoir r = reservoir_empty();

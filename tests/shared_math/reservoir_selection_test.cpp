@@ -36,8 +36,8 @@ Reservoir stream(const std::vector<float>& weights, const std::vector<float>& ta
 
 TEST(ReservoirSelection, FrequenciesMatchWeights) {
   // Weights spanning three orders of magnitude, one zero (must never be chosen).
-  const std::vector<float> weights = {1.0f, 0.5f, 3.0f, 0.0f, 0.01f, 2.5f, 7.0f, 0.2f,
-                                      1.5f, 4.0f, 0.7f, 0.05f, 6.0f, 1.0f, 2.0f, 0.3f};
+  const std::vector<float> weights = {1.0f, 0.5f, 3.0f, 0.0f,  0.01f, 2.5f, 7.0f, 0.2f,
+                                      1.5f, 4.0f, 0.7f, 0.05f, 6.0f,  1.0f, 2.0f, 0.3f};
   const std::vector<float> targets(weights.size(), 1.0f);
   uint rng = rng_init(uvec2(1u, 2u), 0u, 12345u, 0u);
   std::vector<std::uint64_t> counts(weights.size(), 0);
@@ -57,10 +57,10 @@ TEST(ReservoirSelection, FrequenciesMatchWeights) {
 TEST(ReservoirSelection, MergeOfTwoEqualsOneOverTheUnion) {
   // Candidates 0..5 go to reservoir A, 6..13 to B; both share one target function (same pixel),
   // so merging with m = 1 at the stored target must reproduce streaming all 14 at once.
-  const std::vector<float> weights = {0.3f, 2.0f, 1.0f, 0.1f, 5.0f, 0.6f, 1.2f,
+  const std::vector<float> weights = {0.3f, 2.0f, 1.0f,  0.1f, 5.0f, 0.6f, 1.2f,
                                       3.3f, 0.8f, 0.05f, 2.2f, 4.0f, 0.4f, 1.7f};
   const std::vector<float> targets = {0.5f, 1.0f, 2.0f, 0.25f, 4.0f, 1.5f, 0.3f,
-                                      2.5f, 0.9f, 0.1f, 3.0f, 6.0f, 0.7f, 1.1f};
+                                      2.5f, 0.9f, 0.1f, 3.0f,  6.0f, 0.7f, 1.1f};
   const uint a_count = 6u;
   const uint b_count = uint(weights.size()) - a_count;
   double union_sum = 0.0;

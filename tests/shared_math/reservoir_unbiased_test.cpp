@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <initializer_list>
 #include <functional>
+#include <initializer_list>
 #include <vector>
 
 #include "shared/reservoir.h"
@@ -38,7 +38,8 @@ Reservoir initial_ris(const ToyProblem& problem, uint pixel, uint& rng) {
   uint n = problem.candidates_per_pixel[pixel];
   float source_pdf = 1.0f / float(problem.light_count);
   for (uint i = 0; i < n; ++i) {
-    uint light = min(uint(rng_next_float(rng) * float(problem.light_count)), problem.light_count - 1u);
+    uint light =
+        min(uint(rng_next_float(rng) * float(problem.light_count)), problem.light_count - 1u);
     vec2 uv = rng_next_vec2(rng);
     float p_hat = problem.target(pixel, light, uv.x, uv.y);
     float weight = (1.0f / float(n)) * p_hat / source_pdf;
@@ -127,8 +128,8 @@ ToyProblem one_dimensional_problem() {
 // Neighbour 1 cannot see lights 0..5 and weighs the rest differently; neighbour 2 sees only
 // even lights. Visibility at the canonical pixel halves every third light.
 ToyProblem many_light_problem() {
-  static const float power[16] = {1.0f, 4.0f, 0.5f, 2.0f, 8.0f, 0.25f, 3.0f, 1.5f,
-                                  0.75f, 5.0f, 2.5f, 0.1f, 6.0f, 1.0f, 0.4f, 3.5f};
+  static const float power[16] = {1.0f,  4.0f, 0.5f, 2.0f, 8.0f, 0.25f, 3.0f, 1.5f,
+                                  0.75f, 5.0f, 2.5f, 0.1f, 6.0f, 1.0f,  0.4f, 3.5f};
   ToyProblem problem;
   problem.light_count = 16u;
   problem.candidates_per_pixel = {4u, 4u, 6u, 2u};

@@ -1,10 +1,11 @@
 // The shared PCG RNG: floats in [0,1) with uniform distribution, deterministic, and distinct
 // streams for different pixels, frames, seeds and passes.
+#include "shared/rng.h"
+
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "shared/rng.h"
 #include "statistics.h"
 
 namespace lantern::gpu {

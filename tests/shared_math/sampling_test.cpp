@@ -1,12 +1,13 @@
 // Light sampling geometry: uniform triangle sampling with its solid-angle pdf reproduces the
 // analytic solid angle (Van Oosterom-Strackee), and punctual falloffs follow KHR_lights_punctual.
+#include "shared/sampling.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <initializer_list>
 
 #include "shared/rng.h"
-#include "shared/sampling.h"
 #include "statistics.h"
 
 namespace lantern::gpu {
@@ -16,7 +17,8 @@ namespace {
 double solid_angle(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
   double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
   double numerator = std::abs(glm::dot(a, glm::cross(b, c)));
-  double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+  double denominator =
+      la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
   return 2.0 * std::atan2(numerator, denominator);
 }
 
@@ -25,10 +27,10 @@ TEST(Sampling, TriangleSolidAnglePdfMatchesVanOosteromStrackee) {
     vec3 p0, p1, p2, x;
   };
   const Case cases[] = {
-      {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {0, 0, 0}},            // small, in front
+      {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {0, 0, 0}},              // small, in front
       {{-2, -1, 0.5f}, {3, -1, 0.4f}, {0, 4, 0.6f}, {0, 0, 0}},  // large and close: wide angle
-      {{5, 5, 5}, {5.2f, 5, 5}, {5, 5.3f, 5.1f}, {1, 2, 0}},   // far and tilted
-      {{0, 0, 1}, {0, 1, 1}, {1, 0, 1}, {0.2f, 0.2f, 0}},      // opposite winding
+      {{5, 5, 5}, {5.2f, 5, 5}, {5, 5.3f, 5.1f}, {1, 2, 0}},     // far and tilted
+      {{0, 0, 1}, {0, 1, 1}, {1, 0, 1}, {0.2f, 0.2f, 0}},        // opposite winding
   };
   uint rng = rng_init(uvec2(7u), 0u, 47u, 0u);
   for (const Case& c : cases) {
@@ -45,7 +47,8 @@ TEST(Sampling, TriangleSolidAnglePdfMatchesVanOosteromStrackee) {
       ASSERT_GT(pdf, 0.0f);
       omega.add(1.0 / double(pdf));
     }
-    double expected = solid_angle(glm::dvec3(c.p0 - c.x), glm::dvec3(c.p1 - c.x), glm::dvec3(c.p2 - c.x));
+    double expected =
+        solid_angle(glm::dvec3(c.p0 - c.x), glm::dvec3(c.p1 - c.x), glm::dvec3(c.p2 - c.x));
     std::printf("triangle solid angle: MC %.6f +- %.6f, analytic %.6f\n", omega.mean(),
                 omega.standard_error(), expected);
     EXPECT_NEAR(omega.mean(), expected, 3.0 * omega.standard_error() + 1e-5 * expected);
@@ -91,7 +94,8 @@ TEST(Sampling, SpotConeFollowsKhrLightsPunctual) {
   EXPECT_EQ(spot_cone_falloff(cos_outer, cos_outer, cos_inner), 0.0f);
   EXPECT_EQ(spot_cone_falloff(-1.0f, cos_outer, cos_inner), 0.0f);
   // Halfway in cosine: the spec's linear ramp squared.
-  EXPECT_NEAR(spot_cone_falloff(0.5f * (cos_outer + cos_inner), cos_outer, cos_inner), 0.25f, 1e-5f);
+  EXPECT_NEAR(spot_cone_falloff(0.5f * (cos_outer + cos_inner), cos_outer, cos_inner), 0.25f,
+              1e-5f);
   // Monotonic between the cones.
   float previous = 0.0f;
   for (int i = 0; i <= 100; ++i) {
