@@ -54,23 +54,38 @@ struct Split {
   float cost = std::numeric_limits<float>::max();
 };
 
+// One primitive as the build moves it around: box, centroid and input index in one 48-byte record,
+// so binning and partitioning stream through memory instead of chasing indices.
+struct PrimRef {
+  Aabb box;
+  glm::vec3 centroid;
+  std::uint32_t id;
+};
+
 class Builder {
  public:
-  Builder(std::span<const Aabb> bounds, const BvhBuildOptions& options, std::vector<std::uint32_t>& order)
-      : bounds_(bounds), options_(options), order_(order), centroids_(bounds.size()) {
-    for (std::size_t i = 0; i < bounds.size(); ++i) centroids_[i] = bounds[i].centroid();
+  Builder(std::span<const Aabb> bounds, const BvhBuildOptions& options) : options_(options), refs_(bounds.size()) {
+    for (std::size_t i = 0; i < bounds.size(); ++i)
+      refs_[i] = PrimRef{bounds[i], bounds[i].centroid(), static_cast<std::uint32_t>(i)};
     std::uint32_t threads = options.thread_count != 0 ? options.thread_count
                                                       : std::max(1u, std::thread::hardware_concurrency());
     spare_threads_.store(static_cast<int>(threads) - 1);
   }
 
-  // Appends the subtree over order[begin, end) to `out` in depth-first order; child indices are
+  // Input index of the primitive in each leaf slot (valid after build).
+  std::vector<std::uint32_t> primitive_order() const {
+    std::vector<std::uint32_t> order(refs_.size());
+    for (std::size_t i = 0; i < refs_.size(); ++i) order[i] = refs_[i].id;
+    return order;
+  }
+
+  // Appends the subtree over slots [begin, end) to `out` in depth-first order; child indices are
   // relative to out[0].
   void build(std::uint32_t begin, std::uint32_t end, std::uint32_t depth, std::vector<gpu::BvhNode>& out) {
     Aabb box, centroid_box;
     for (std::uint32_t i = begin; i < end; ++i) {
-      box.grow(bounds_[order_[i]]);
-      centroid_box.grow(centroids_[order_[i]]);
+      box.grow(refs_[i].box);
+      centroid_box.grow(refs_[i].centroid);
     }
     const auto node_index = static_cast<std::uint32_t>(out.size());
     out.push_back(make_node(box, begin, end - begin));
@@ -126,6 +141,7 @@ class Builder {
   struct BinMapping {
     glm::vec3 origin;
     glm::vec3 scale;  // bins per unit length; 0 on an axis where all centroids coincide
+    std::uint32_t bins;
     std::uint32_t last_bin;
     std::uint32_t bin(const glm::vec3& centroid, int axis) const {
       const float f = (centroid[axis] - origin[axis]) * scale[axis];
@@ -133,26 +149,29 @@ class Builder {
     }
   };
 
-  BinMapping bin_mapping(const Aabb& centroid_box) const {
+  // Small nodes use fewer bins (at least 4): the per-node cost of many empty bins dominates the
+  // build near the leaves, and there are few distinct planes to choose from anyway.
+  BinMapping bin_mapping(const Aabb& centroid_box, std::uint32_t count) const {
     BinMapping m;
     m.origin = centroid_box.min;
+    m.bins = std::min(options_.bin_count, std::max(4u, count));
     const glm::vec3 extent = centroid_box.extent();
     for (int axis = 0; axis < 3; ++axis)
-      m.scale[axis] = extent[axis] > 0.0f ? static_cast<float>(options_.bin_count) / extent[axis] : 0.0f;
-    m.last_bin = options_.bin_count - 1;
+      m.scale[axis] = extent[axis] > 0.0f ? static_cast<float>(m.bins) / extent[axis] : 0.0f;
+    m.last_bin = m.bins - 1;
     return m;
   }
 
   Split find_sah_split(std::uint32_t begin, std::uint32_t end, const Aabb& centroid_box) const {
-    const BinMapping mapping = bin_mapping(centroid_box);
-    const std::uint32_t bins = options_.bin_count;
+    const BinMapping mapping = bin_mapping(centroid_box, end - begin);
+    const std::uint32_t bins = mapping.bins;
     std::array<std::array<Aabb, kMaxBins>, 3> bin_box{};
     std::array<std::array<std::uint32_t, kMaxBins>, 3> bin_count{};
     for (std::uint32_t i = begin; i < end; ++i) {
-      const std::uint32_t p = order_[i];
+      const PrimRef& ref = refs_[i];
       for (int axis = 0; axis < 3; ++axis) {
-        const std::uint32_t b = mapping.bin(centroids_[p], axis);
-        bin_box[axis][b].grow(bounds_[p]);
+        const std::uint32_t b = mapping.bin(ref.centroid, axis);
+        bin_box[axis][b].grow(ref.box);
         ++bin_count[axis][b];
       }
     }
@@ -192,11 +211,11 @@ class Builder {
 
   std::uint32_t partition_by_bin(std::uint32_t begin, std::uint32_t end, const Split& split,
                                  const Aabb& centroid_box) {
-    const BinMapping mapping = bin_mapping(centroid_box);
-    auto mid = std::partition(order_.begin() + begin, order_.begin() + end, [&](std::uint32_t p) {
-      return mapping.bin(centroids_[p], split.axis) < split.bin;
+    const BinMapping mapping = bin_mapping(centroid_box, end - begin);
+    auto mid = std::partition(refs_.begin() + begin, refs_.begin() + end, [&](const PrimRef& ref) {
+      return mapping.bin(ref.centroid, split.axis) < split.bin;
     });
-    return static_cast<std::uint32_t>(mid - order_.begin());
+    return static_cast<std::uint32_t>(mid - refs_.begin());
   }
 
   // Splits the range in two halves by centroid along the widest axis (ties by primitive index so
@@ -205,11 +224,11 @@ class Builder {
     const glm::vec3 e = centroid_box.extent();
     const int axis = (e.x >= e.y && e.x >= e.z) ? 0 : (e.y >= e.z ? 1 : 2);
     const std::uint32_t mid = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                     [&](std::uint32_t a, std::uint32_t b) {
-                       const float ca = centroids_[a][axis];
-                       const float cb = centroids_[b][axis];
-                       return ca < cb || (ca == cb && a < b);
+    std::nth_element(refs_.begin() + begin, refs_.begin() + mid, refs_.begin() + end,
+                     [&](const PrimRef& a, const PrimRef& b) {
+                       const float ca = a.centroid[axis];
+                       const float cb = b.centroid[axis];
+                       return ca < cb || (ca == cb && a.id < b.id);
                      });
     return mid;
   }
@@ -223,10 +242,8 @@ class Builder {
   }
   void release_thread() { spare_threads_.fetch_add(1); }
 
-  std::span<const Aabb> bounds_;
   const BvhBuildOptions& options_;
-  std::vector<std::uint32_t>& order_;
-  std::vector<glm::vec3> centroids_;
+  std::vector<PrimRef> refs_;
   std::atomic<int> spare_threads_{0};
 };
 
@@ -254,14 +271,12 @@ BvhBuildOutput build_bvh(std::span<const Aabb> primitive_bounds, const BvhBuildO
   }
 
   BvhBuildOutput output;
-  output.primitive_order.resize(primitive_bounds.size());
-  for (std::size_t i = 0; i < primitive_bounds.size(); ++i)
-    output.primitive_order[i] = static_cast<std::uint32_t>(i);
   if (primitive_bounds.empty()) return output;
+  Builder builder(primitive_bounds, options);
   output.nodes.reserve(2 * primitive_bounds.size());
-  Builder builder(primitive_bounds, options, output.primitive_order);
   builder.build(0, static_cast<std::uint32_t>(primitive_bounds.size()), 0, output.nodes);
   output.nodes.shrink_to_fit();
+  output.primitive_order = builder.primitive_order();
   return output;
 }
 
