@@ -17,7 +17,8 @@ class Handle {
   // The all-ones index is never allocated: it marks the null handle.
   static constexpr std::uint32_t kMaxIndex = kIndexMask - 1u;
   // A slot whose generation reaches this value is retired instead of wrapping to 0, so an old
-  // handle can never compare equal to a new one.
+  // handle can never compare equal to a new one. Bound: 2^32 creations per pool in the worst
+  // case (every slot retired): ~20 hours of 60k creations per second.
   static constexpr std::uint32_t kMaxGeneration = (1u << kGenerationBits) - 1u;
 
   constexpr Handle() = default;

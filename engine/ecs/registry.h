@@ -60,9 +60,11 @@ class Registry {
     if (i == SparseSet::kAbsent) missing(e, "get", component_id<T>());
     return s.at(i);
   }
+  // The const overloads never create a storage, so they are safe beside other readers.
   template <class T>
   const T& get(Entity e) const {
-    return const_cast<Registry*>(this)->get<T>(e);
+    if (const T* value = try_get<T>(e)) return *value;
+    missing(e, "get", component_id<T>());
   }
 
   // nullptr when e (stale or not) has no T.
@@ -72,6 +74,10 @@ class Registry {
     if (s == nullptr) return nullptr;
     const std::uint32_t i = s->index_of(e);
     return i == SparseSet::kAbsent ? nullptr : &s->at(i);
+  }
+  template <class T>
+  const T* try_get(Entity e) const {
+    return const_cast<Registry*>(this)->try_get<T>(e);
   }
 
   template <class T>

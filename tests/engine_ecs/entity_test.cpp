@@ -34,6 +34,11 @@ TEST(Entity, StaleHandleIsDetectedAfterSlotReuse) {
   EXPECT_THROW(r.remove<Health>(a), RuntimeError);
   EXPECT_THROW(r.destroy(a), RuntimeError);
   EXPECT_EQ(r.get<Health>(b).hp, 99);
+
+  const Registry& cr = r;  // the const path checks the same way, without creating storages
+  EXPECT_THROW(cr.get<Health>(a), RuntimeError);
+  EXPECT_EQ(cr.try_get<Health>(a), nullptr);
+  EXPECT_EQ(cr.get<Health>(b).hp, 99);
 }
 
 TEST(Entity, ErrorMessageNamesEntityAndComponent) {
