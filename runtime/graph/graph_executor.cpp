@@ -7,6 +7,7 @@
 
 #include "runtime/core/device.h"
 #include "runtime/core/vk_check.h"
+#include "runtime/gpu/gpu_timer.h"
 #include "runtime/graph/barrier_recorder.h"
 #include "runtime/graph/transient_create_info.h"
 
@@ -72,7 +73,11 @@ void GraphExecutor::realize_transients(const GraphDecl& decl, const CompiledGrap
                              static_cast<int>(r.image.format), r.buffer_usage, r.image_usage,
                              compiled.alias_plan.offsets[i]);
   }
-  if (signature == transient_signature_) return;
+  if (signature == transient_signature_) {
+    // Same objects, but resource indices may differ from last frame (e.g. a history read added).
+    transient_resources_ = compiled.aliased;
+    return;
+  }
   if (!transients_.empty()) device_.wait_idle();  // old objects may still be in flight
   release_transients();
   if (compiled.aliased.empty()) {
@@ -164,7 +169,7 @@ PhysicalResource GraphExecutor::realize_history(const ResourceDecl& r) {
   return p;
 }
 
-void GraphExecutor::record(RenderGraph& graph, VkCommandBuffer cmd, PassObserver* observer) {
+void GraphExecutor::record(RenderGraph& graph, VkCommandBuffer cmd, GpuTimer* timer) {
   if (!graph.baked()) throw RenderGraphError("render graph: record() before bake()");
   const GraphDecl& decl = graph.decl();
   const CompiledGraph& compiled = graph.compiled();
@@ -184,17 +189,19 @@ void GraphExecutor::record(RenderGraph& graph, VkCommandBuffer cmd, PassObserver
       physical[r] = realize_history(res);
   }
 
-  // Each pass: label, timer bracket, its barriers, its commands.
+  // Each pass: label and timestamps, its barriers, its commands. (An exception from a pass
+  // leaves `cmd` unusable anyway, so the open scope is not closed on that path.)
   for (const CompiledPass& compiled_pass : compiled.passes) {
     const PassDecl& pass = decl.passes[compiled_pass.pass];
-    CommandLabel label(device_, cmd, pass.name);
-    if (observer != nullptr) observer->begin_pass(cmd, pass.name);
+    if (timer != nullptr) timer->begin(cmd, pass.name);  // timestamps + debug label
+    else device_.begin_label(cmd, pass.name);
     record_barriers(cmd, barrier2_, compiled_pass.before, decl, physical);
     if (pass.execute) {
       PassContext context(cmd, decl, compiled_pass.pass, physical);
       pass.execute(context);
     }
-    if (observer != nullptr) observer->end_pass(cmd, pass.name);
+    if (timer != nullptr) timer->end(cmd);
+    else device_.end_label(cmd);
   }
   record_barriers(cmd, barrier2_, compiled.after, decl, physical);
 }

@@ -1,7 +1,7 @@
 // GraphExecutor: turns a baked RenderGraph into commands on a Device. It creates the transient
 // resources in one aliased memory block (reused while the frame's shape stays the same), keeps
-// the history pairs, and records per pass: a debug label, the PassObserver bracket (GPU
-// timestamps under the pass name), the pass's barriers, then its execute callback.
+// the history pairs, and records per pass: a debug label and GPU timestamps under the pass's
+// module.stage name (runtime::GpuTimer), the pass's barriers, then its execute callback.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -21,17 +21,10 @@
 
 namespace lantern::runtime {
 class Device;
+class GpuTimer;
 }
 
 namespace lantern::runtime::graph {
-
-// Brackets each pass's commands (a GPU timer writes timestamps under `name`).
-class PassObserver {
- public:
-  virtual ~PassObserver() = default;
-  virtual void begin_pass(VkCommandBuffer cmd, std::string_view name) = 0;
-  virtual void end_pass(VkCommandBuffer cmd, std::string_view name) = 0;
-};
 
 class GraphExecutor {
  public:
@@ -43,9 +36,11 @@ class GraphExecutor {
   // Compile options with this device's real memory requirements: pass to RenderGraph::bake().
   [[nodiscard]] CompileOptions compile_options() const;
 
-  // Records the baked frame of `graph` into `cmd`. Call between bake() and end_frame(). When the
-  // frame's transient layout changes, waits for the device before freeing the old one.
-  void record(RenderGraph& graph, VkCommandBuffer cmd, PassObserver* observer = nullptr);
+  // Records the baked frame of `graph` into `cmd`. Call between bake() and end_frame(). With a
+  // timer (reset by the caller at the start of `cmd`), each pass is a timed scope that also
+  // carries the debug label; without one, passes still get labels. When the frame's transient
+  // layout changes, waits for the device before freeing the old one.
+  void record(RenderGraph& graph, VkCommandBuffer cmd, GpuTimer* timer = nullptr);
 
   // Test switch: record Vulkan 1.0 barriers even when synchronization2 is available.
   void use_synchronization2(bool enabled);
