@@ -163,24 +163,49 @@ const nlohmann::json& expect_array(const nlohmann::json& value, const std::strin
   return value;
 }
 
+namespace {
+
+// 1-based line and column of byte `offset` in `text`.
+std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::size_t offset) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < std::min(offset, text.size()); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+// nlohmann's message without its "[json.exception.x.NNN] " prefix.
+std::string plain_message(const nlohmann::json::exception& e) {
+  std::string what = e.what();
+  if (auto bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
+  return what;
+}
+
+}  // namespace
+
 nlohmann::json parse_json_text(const std::string& text, const std::filesystem::path& file) {
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte is 1-based: the position of the offending character.
-    std::size_t line = 1, column = 1;
-    const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    for (std::size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    std::string what = e.what();
-    // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: " prefix.
+    const auto [line, column] = line_column(text, e.byte > 0 ? e.byte - 1 : 0);
+    std::string what = plain_message(e);
+    // Drop the "parse error at line 1, column 2: " part: the place is given as file:line:column.
     if (auto colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
+    throw InputError(fmt::format("{}:{}:{}: malformed JSON: {}", file.string(), line, column, what));
+  } catch (const nlohmann::json::exception& e) {
+    // E.g. "number overflow parsing '1e999'" (a number that is Inf as a double): locate the token.
+    const std::string what = plain_message(e);
+    std::size_t offset = std::string::npos;
+    if (auto open = what.find('\''), close = what.rfind('\''); open != std::string::npos && close > open)
+      offset = text.find(what.substr(open + 1, close - open - 1));
+    if (offset == std::string::npos) throw InputError(fmt::format("{}: malformed JSON: {}", file.string(), what));
+    const auto [line, column] = line_column(text, offset);
     throw InputError(fmt::format("{}:{}:{}: malformed JSON: {}", file.string(), line, column, what));
   }
 }

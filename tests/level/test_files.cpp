@@ -1,0 +1,73 @@
+// Level test helpers: data paths, scratch files, in-memory glTF documents.
+#include "tests/level/test_files.h"
+
+#include <cstring>
+#include <fstream>
+
+#include <unistd.h>
+
+namespace lantern::test {
+namespace {
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0u,
+                        b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0u;
+    const std::uint32_t v = (b0 << 16) | (b1 << 8) | b2;
+    out += kAlphabet[(v >> 18) & 63];
+    out += kAlphabet[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kAlphabet[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kAlphabet[v & 63] : '=';
+  }
+  return out;
+}
+
+}  // namespace
+
+std::filesystem::path data_dir() { return LANTERN_LEVEL_TEST_DATA; }
+
+std::filesystem::path scratch(const std::string& name) {
+  // Removed when the test process exits.
+  struct ScratchDir {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("lantern_level_test_" + std::to_string(::getpid()));
+    ScratchDir() { std::filesystem::create_directories(path); }
+    ~ScratchDir() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const ScratchDir dir;
+  return dir.path / name;
+}
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+}
+
+nlohmann::json triangle_gltf(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices) {
+  std::vector<unsigned char> bytes(positions.size() * 12 + indices.size() * 4);
+  std::memcpy(bytes.data(), positions.data(), positions.size() * 12);
+  std::memcpy(bytes.data() + positions.size() * 12, indices.data(), indices.size() * 4);
+  const auto pos_bytes = positions.size() * 12;
+  return {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}},
+        {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", indices.size() * 4}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", positions.size()}, {"type", "VEC3"}},
+        {{"bufferView", 1}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}}}},
+      {"materials", {{{"name", "m"}}}},
+      {"meshes", {{{"name", "tri"}, {"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"material", 0}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0},
+  };
+}
+
+}  // namespace lantern::test
