@@ -34,7 +34,7 @@ void dump_barriers(std::string& out, const GraphDecl& d, const BarrierBatch& bat
 std::string RenderGraph::dump() const {
   const GraphDecl& d = decl_;
   const CompiledGraph& c = compiled_;
-  if (!baked_) return "render graph: not baked\n";
+  if (!compiled_this_frame_) return "render graph: not baked\n";
   std::string out = fmt::format(
       "render graph, frame {}: {} passes ({} culled), {} resources, {} barriers\n", frame(),
       c.passes.size(), c.culled.size(), d.resources.size(), c.barrier_count());

@@ -94,6 +94,7 @@ void RenderGraph::begin_frame() {
   decl_ = {};
   compiled_ = {};
   baked_ = false;
+  compiled_this_frame_ = false;
   history_reads_.clear();
   history_.begin_frame();
 }
@@ -205,6 +206,7 @@ PassBuilder RenderGraph::begin_pass(std::string_view name, PassKind kind) {
 const CompiledGraph& RenderGraph::bake(const CompileOptions& options) {
   compiled_ = compile_graph(decl_, options);
   baked_ = true;
+  compiled_this_frame_ = true;
   return compiled_;
 }
 

@@ -96,9 +96,9 @@ class RenderGraph {
   [[nodiscard]] std::string dump() const;
   [[nodiscard]] const GraphDecl& decl() const { return decl_; }
   [[nodiscard]] const CompiledGraph& compiled() const { return compiled_; }
+  // True between bake() and end_frame(): the frame may be recorded.
   [[nodiscard]] bool baked() const { return baked_; }
   [[nodiscard]] uint64_t frame() const { return history_.frame(); }
-  [[nodiscard]] HistoryTracker& history_tracker() { return history_; }
 
  private:
   friend class PassBuilder;
@@ -116,6 +116,7 @@ class RenderGraph {
   GraphDecl decl_;
   CompiledGraph compiled_;
   bool baked_ = false;
+  bool compiled_this_frame_ = false;  // dump() stays available after end_frame()
   HistoryTracker history_;
   std::unordered_map<uint32_t, HistoryRead> history_reads_;  // by History resource index
 };

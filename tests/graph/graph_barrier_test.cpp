@@ -2,6 +2,7 @@
 // after write, image layout transitions, final transitions of imported resources.
 #include <gtest/gtest.h>
 
+#include "runtime/graph/barrier_recorder.h"
 #include "tests/graph/graph_test_util.h"
 
 namespace lantern::runtime::graph {
@@ -176,6 +177,25 @@ TEST(GraphBarriers, DumpListsPassesBarriersAndResources) {
                              "COMPUTE_SHADER/SHADER_STORAGE_WRITE -> COMPUTE_SHADER/SHADER_STORAGE_READ",
                              "sink buffer 64 B (imported)", "transient memory"})
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
+}
+
+}  // namespace
+}  // namespace lantern::runtime::graph
+
+namespace lantern::runtime::graph {
+namespace {
+
+TEST(GraphBarriers, Vulkan10MappingKeepsScopes) {
+  EXPECT_EQ(to_stage1(VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, true), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+  EXPECT_EQ(to_stage1(VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, true),
+            VK_PIPELINE_STAGE_TRANSFER_BIT);
+  EXPECT_EQ(to_stage1(VK_PIPELINE_STAGE_2_NONE, true), VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
+  EXPECT_EQ(to_stage1(VK_PIPELINE_STAGE_2_NONE, false), VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+  EXPECT_EQ(to_access1(VK_ACCESS_2_SHADER_STORAGE_READ_BIT), VK_ACCESS_SHADER_READ_BIT);
+  EXPECT_EQ(to_access1(VK_ACCESS_2_SHADER_SAMPLED_READ_BIT), VK_ACCESS_SHADER_READ_BIT);
+  EXPECT_EQ(to_access1(VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT), VK_ACCESS_SHADER_WRITE_BIT);
+  EXPECT_EQ(to_access1(VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT),
+            VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
 }
 
 }  // namespace
