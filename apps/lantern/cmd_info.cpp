@@ -1,11 +1,11 @@
 // `lantern info LEVEL [--json FILE]`: what the level contains (CLI.md). What the engine enables
 // for it (sampling structures, shader variants, memory) is added to LevelSummary::enabled by the
 // lighting layer once it exists; this command prints whatever is there.
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <fstream>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "apps/lantern/commands.h"
 #include "engine/core/error.h"
@@ -36,9 +36,12 @@ void run_info(const InfoOptions& o) {
 
 void add_info_command(CLI::App& root, CommonOptions& options) {
   auto opts = std::make_shared<InfoOptions>();
-  auto* cmd = root.add_subcommand("info", "Print what a level contains (and what the engine enables for it)");
+  auto* cmd = root.add_subcommand(
+      "info", "Print what a level contains (and what the engine enables for it)");
   add_common_flags(*cmd, options);
-  cmd->add_option("LEVEL", opts->level, "Level: a .json/.gltf/.glb file or a name under content/levels/")->required();
+  cmd->add_option("LEVEL", opts->level,
+                  "Level: a .json/.gltf/.glb file or a name under content/levels/")
+      ->required();
   cmd->add_option("--json", opts->json, "Also write the summary as JSON to FILE");
   cmd->callback([opts] { run_info(*opts); });
 }

@@ -1,9 +1,9 @@
 // glTF accessor reading with validation.
 #include "engine/level/gltf_accessor.h"
 
-#include <cstring>
-
 #include <fmt/format.h>
+
+#include <cstring>
 
 #include "engine/core/error.h"
 
@@ -41,7 +41,8 @@ float component(const unsigned char* p, int type, bool normalized) {
       std::memcpy(&v, p, 2);
       return normalized ? std::max(static_cast<float>(v) / 32767.0f, -1.0f) : static_cast<float>(v);
     }
-    default: return 0.0f;
+    default:
+      return 0.0f;
   }
 }
 
@@ -58,7 +59,8 @@ const tinygltf::Accessor& GltfAccessorReader::accessor_at(int accessor) const {
   return model_.accessors[static_cast<std::size_t>(accessor)];
 }
 
-std::vector<float> GltfAccessorReader::read(int index, int components, bool allow_normalized) const {
+std::vector<float> GltfAccessorReader::read(int index, int components,
+                                            bool allow_normalized) const {
   const tinygltf::Accessor& a = accessor_at(index);
   if (a.sparse.isSparse) fail(index, "sparse accessors are not supported");
   const int have = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
@@ -79,15 +81,18 @@ std::vector<float> GltfAccessorReader::read(int index, int components, bool allo
   const int stride_or_error = a.ByteStride(view);
   if (stride_or_error <= 0) fail(index, "invalid byte stride");
   const auto stride = static_cast<std::size_t>(stride_or_error);
-  const auto csize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType)));
+  const auto csize = static_cast<std::size_t>(
+      tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType)));
   const std::size_t element = csize * static_cast<std::size_t>(components);
   const std::size_t start = view.byteOffset + a.byteOffset;
   const std::size_t needed = a.count == 0 ? 0 : start + stride * (a.count - 1) + element;
   if (a.byteOffset + (a.count == 0 ? 0 : stride * (a.count - 1) + element) > view.byteLength ||
       needed > buffer.data.size())
-    fail(index, fmt::format("{} elements at offset {} overrun buffer view {} ({} bytes) / buffer {} "
-                            "({} bytes)", a.count, start, a.bufferView, view.byteLength, view.buffer,
-                            buffer.data.size()));
+    fail(index,
+         fmt::format("{} elements at offset {} overrun buffer view {} ({} bytes) / buffer {} "
+                     "({} bytes)",
+                     a.count, start, a.bufferView, view.byteLength, view.buffer,
+                     buffer.data.size()));
   for (std::size_t i = 0; i < a.count; ++i) {
     const unsigned char* p = buffer.data.data() + start + i * stride;
     for (int c = 0; c < components; ++c)
@@ -137,13 +142,16 @@ std::vector<std::uint32_t> GltfAccessorReader::indices(int index) const {
   if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model_.buffers.size())
     fail(index, fmt::format("buffer view {} names missing buffer {}", a.bufferView, view.buffer));
   const tinygltf::Buffer& buffer = model_.buffers[static_cast<std::size_t>(view.buffer)];
-  const auto csize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
+  const auto csize =
+      static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
   const int stride_or_error = a.ByteStride(view);
-  const std::size_t stride = stride_or_error > 0 ? static_cast<std::size_t>(stride_or_error) : csize;
+  const std::size_t stride =
+      stride_or_error > 0 ? static_cast<std::size_t>(stride_or_error) : csize;
   const std::size_t start = view.byteOffset + a.byteOffset;
   if (a.count > 0 && (a.byteOffset + stride * (a.count - 1) + csize > view.byteLength ||
                       start + stride * (a.count - 1) + csize > buffer.data.size()))
-    fail(index, fmt::format("{} indices at offset {} overrun buffer view {}", a.count, start, a.bufferView));
+    fail(index, fmt::format("{} indices at offset {} overrun buffer view {}", a.count, start,
+                            a.bufferView));
   std::vector<std::uint32_t> out(a.count);
   for (std::size_t i = 0; i < a.count; ++i) {
     const unsigned char* p = buffer.data.data() + start + i * stride;

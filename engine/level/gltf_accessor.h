@@ -2,12 +2,12 @@
 // that an accessor fits its buffer). Errors name the file and the accessor index.
 #pragma once
 
+#include <tiny_gltf.h>
+
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
-#include <tiny_gltf.h>
 
 namespace lantern {
 
@@ -17,7 +17,8 @@ class GltfAccessorReader {
   GltfAccessorReader(const tinygltf::Model& model, std::string where)
       : model_(model), where_(std::move(where)) {}
 
-  // Float scalars/vectors; `allow_normalized` also accepts normalized u8/u16 (texcoords, rotations).
+  // Float scalars/vectors; `allow_normalized` also accepts normalized u8/u16 (texcoords,
+  // rotations).
   std::vector<float> scalars(int accessor, bool allow_normalized = false) const;
   std::vector<glm::vec2> vec2s(int accessor, bool allow_normalized = false) const;
   std::vector<glm::vec3> vec3s(int accessor) const;

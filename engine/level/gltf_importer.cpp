@@ -2,18 +2,18 @@
 // embedded bytes); the runtime reads pixels later with OpenImageIO.
 #include "engine/level/gltf_importer.h"
 
-#include <algorithm>
-#include <cmath>
-#include <map>
-
 #include <fmt/format.h>
-#include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/type_ptr.hpp>
+#include <map>
+
 #include "engine/core/error.h"
-#include "engine/scene/finite.h"
 #include "engine/core/log.h"
 #include "engine/level/gltf_accessor.h"
+#include "engine/scene/finite.h"
 
 namespace lantern {
 namespace {
@@ -35,8 +35,9 @@ struct Importer {
   std::size_t material_base = 0;
   std::size_t image_base = 0;
   std::optional<std::uint32_t> default_material;
-  std::map<std::pair<int, int>, std::uint32_t> mesh_of_primitive;  // (mesh, primitive) -> level mesh
-  std::vector<glm::mat4> node_world;                               // filled while traversing
+  std::map<std::pair<int, int>, std::uint32_t>
+      mesh_of_primitive;              // (mesh, primitive) -> level mesh
+  std::vector<glm::mat4> node_world;  // filled while traversing
   std::vector<int> node_parent;
 
   [[noreturn]] void fail(const std::string& place, const std::string& message) const {
@@ -88,18 +89,21 @@ struct Importer {
       Material m;
       m.name = src.name;
       if (pbr.baseColorFactor.size() == 4)
-        m.base_color = glm::vec4(static_cast<float>(pbr.baseColorFactor[0]), static_cast<float>(pbr.baseColorFactor[1]),
-                                 static_cast<float>(pbr.baseColorFactor[2]), static_cast<float>(pbr.baseColorFactor[3]));
+        m.base_color = glm::vec4(
+            static_cast<float>(pbr.baseColorFactor[0]), static_cast<float>(pbr.baseColorFactor[1]),
+            static_cast<float>(pbr.baseColorFactor[2]), static_cast<float>(pbr.baseColorFactor[3]));
       m.metallic = static_cast<float>(pbr.metallicFactor);
       m.roughness = static_cast<float>(pbr.roughnessFactor);
       m.emissive_factor = vec3_of(src.emissiveFactor, glm::vec3(0.0f));
       m.double_sided = src.doubleSided;
-      if (auto it = src.extensions.find("KHR_materials_emissive_strength"); it != src.extensions.end() &&
-                                                                            it->second.Has("emissiveStrength"))
-        m.emissive_strength = static_cast<float>(it->second.Get("emissiveStrength").GetNumberAsDouble());
+      if (auto it = src.extensions.find("KHR_materials_emissive_strength");
+          it != src.extensions.end() && it->second.Has("emissiveStrength"))
+        m.emissive_strength =
+            static_cast<float>(it->second.Get("emissiveStrength").GetNumberAsDouble());
       if (auto it = src.extensions.find("KHR_materials_specular"); it != src.extensions.end()) {
         if (it->second.Has("specularFactor"))
-          m.specular_factor = static_cast<float>(it->second.Get("specularFactor").GetNumberAsDouble());
+          m.specular_factor =
+              static_cast<float>(it->second.Get("specularFactor").GetNumberAsDouble());
         if (it->second.Has("specularColorFactor")) {
           const tinygltf::Value& c = it->second.Get("specularColorFactor");
           if (c.IsArray() && c.ArrayLen() == 3)
@@ -111,7 +115,8 @@ struct Importer {
         fail(place, "negative emission (emissiveFactor × emissiveStrength must be ≥ 0)");
       if (!std::isfinite(m.emissive_strength) || !all_finite(m.emissive_factor))
         fail(place, "emission is not finite");
-      m.base_color_texture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, place);
+      m.base_color_texture =
+          texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, place);
       m.metallic_roughness_texture =
           texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, place);
       m.normal_texture = texture(src.normalTexture.index, src.normalTexture.texCoord, place);
@@ -123,7 +128,8 @@ struct Importer {
   std::uint32_t material_index(int gltf_material) {
     if (gltf_material >= 0) {
       if (static_cast<std::size_t>(gltf_material) >= model.materials.size())
-        throw InputError(fmt::format("{}: material {} does not exist", file.string(), gltf_material));
+        throw InputError(
+            fmt::format("{}: material {} does not exist", file.string(), gltf_material));
       return static_cast<std::uint32_t>(material_base + static_cast<std::size_t>(gltf_material));
     }
     if (!default_material) {  // glTF's default material
@@ -136,14 +142,16 @@ struct Importer {
   }
 
   std::uint32_t level_mesh(int mesh_index, int primitive_index) {
-    if (auto it = mesh_of_primitive.find({mesh_index, primitive_index}); it != mesh_of_primitive.end())
+    if (auto it = mesh_of_primitive.find({mesh_index, primitive_index});
+        it != mesh_of_primitive.end())
       return it->second;
     const tinygltf::Mesh& src = model.meshes[static_cast<std::size_t>(mesh_index)];
     const tinygltf::Primitive& prim = src.primitives[static_cast<std::size_t>(primitive_index)];
-    const std::string place =
-        fmt::format("{}: mesh {} '{}' primitive {}", file.string(), mesh_index, src.name, primitive_index);
+    const std::string place = fmt::format("{}: mesh {} '{}' primitive {}", file.string(),
+                                          mesh_index, src.name, primitive_index);
     if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-      throw InputError(fmt::format("{}: primitive mode {} is not supported (triangles only)", place, prim.mode));
+      throw InputError(
+          fmt::format("{}: primitive mode {} is not supported (triangles only)", place, prim.mode));
     auto attribute = [&](const char* name) {
       auto it = prim.attributes.find(name);
       return it == prim.attributes.end() ? -1 : it->second;
@@ -159,7 +167,8 @@ struct Importer {
       mesh.indices = accessors.indices(prim.indices);
     } else {
       mesh.indices.resize(mesh.positions.size());
-      for (std::size_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = static_cast<std::uint32_t>(i);
+      for (std::size_t i = 0; i < mesh.indices.size(); ++i)
+        mesh.indices[i] = static_cast<std::uint32_t>(i);
     }
     finalize_mesh(mesh, fmt::format("{} (POSITION accessor {})", place, pos), diagnostics);
     const auto index = static_cast<std::uint32_t>(level.meshes.size());
@@ -171,7 +180,8 @@ struct Importer {
   glm::mat4 local_matrix(const tinygltf::Node& node) const {
     if (node.matrix.size() == 16) {
       glm::mat4 m;
-      for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(node.matrix[static_cast<std::size_t>(i)]);
+      for (int i = 0; i < 16; ++i)
+        glm::value_ptr(m)[i] = static_cast<float>(node.matrix[static_cast<std::size_t>(i)]);
       return m;
     }
     return local_transform(node).matrix();
@@ -180,11 +190,13 @@ struct Importer {
   static Transform local_transform(const tinygltf::Node& node) {
     Transform t;
     if (node.translation.size() == 3)
-      t.translation = glm::vec3(static_cast<float>(node.translation[0]), static_cast<float>(node.translation[1]),
+      t.translation = glm::vec3(static_cast<float>(node.translation[0]),
+                                static_cast<float>(node.translation[1]),
                                 static_cast<float>(node.translation[2]));
     if (node.rotation.size() == 4)
-      t.rotation = glm::quat(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
-                             static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
+      t.rotation =
+          glm::quat(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                    static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
     if (node.scale.size() == 3)
       t.scale = glm::vec3(static_cast<float>(node.scale[0]), static_cast<float>(node.scale[1]),
                           static_cast<float>(node.scale[2]));
@@ -198,14 +210,15 @@ struct Importer {
     if (depth > model.nodes.size()) fail(place, "node hierarchy has a cycle");
     const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(index)];
     const glm::mat4 world = parent * local_matrix(node);
-    if (!all_finite(world[0]) || !all_finite(world[1]) ||
-        !all_finite(world[2]) || !all_finite(world[3]))
+    if (!all_finite(world[0]) || !all_finite(world[1]) || !all_finite(world[2]) ||
+        !all_finite(world[3]))
       fail(fmt::format("node {} '{}'", index, node.name), "transform is not finite");
     node_world[static_cast<std::size_t>(index)] = world;
     node_parent[static_cast<std::size_t>(index)] = parent_index;
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= model.meshes.size())
-        fail(fmt::format("node {} '{}'", index, node.name), fmt::format("mesh {} does not exist", node.mesh));
+        fail(fmt::format("node {} '{}'", index, node.name),
+             fmt::format("mesh {} does not exist", node.mesh));
       const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(node.mesh)];
       for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
         Instance inst;
@@ -230,13 +243,18 @@ struct Importer {
     if (li < 0 || static_cast<std::size_t>(li) >= model.lights.size())
       fail(node_place, fmt::format("KHR_lights_punctual light {} does not exist", li));
     const tinygltf::Light& src = model.lights[static_cast<std::size_t>(li)];
-    const std::string place = fmt::format("KHR_lights_punctual light {} '{}' (node {})", li, src.name, node_index);
+    const std::string place =
+        fmt::format("KHR_lights_punctual light {} '{}' (node {})", li, src.name, node_index);
     Light l;
     l.name = src.name;
-    if (src.type == "point") l.type = LightType::Point;
-    else if (src.type == "spot") l.type = LightType::Spot;
-    else if (src.type == "directional") l.type = LightType::Directional;
-    else fail(place, fmt::format("unknown light type '{}'", src.type));
+    if (src.type == "point")
+      l.type = LightType::Point;
+    else if (src.type == "spot")
+      l.type = LightType::Spot;
+    else if (src.type == "directional")
+      l.type = LightType::Directional;
+    else
+      fail(place, fmt::format("unknown light type '{}'", src.type));
     l.color = vec3_of(src.color, glm::vec3(1.0f));
     l.intensity = static_cast<float>(src.intensity);
     l.range = static_cast<float>(src.range);
@@ -248,9 +266,10 @@ struct Importer {
     if (l.type == LightType::Spot) {
       l.inner_cone = static_cast<float>(src.spot.innerConeAngle);
       l.outer_cone = static_cast<float>(src.spot.outerConeAngle);
-      if (!(l.inner_cone >= 0.0f && l.inner_cone < l.outer_cone && l.outer_cone <= glm::half_pi<float>() + 1e-6f))
-        fail(place, fmt::format("spot cone angles need 0 <= inner ({}) < outer ({}) <= pi/2", l.inner_cone,
-                                l.outer_cone));
+      if (!(l.inner_cone >= 0.0f && l.inner_cone < l.outer_cone &&
+            l.outer_cone <= glm::half_pi<float>() + 1e-6f))
+        fail(place, fmt::format("spot cone angles need 0 <= inner ({}) < outer ({}) <= pi/2",
+                                l.inner_cone, l.outer_cone));
     }
     const Transform t = Transform::from_matrix(world);
     l.position = t.translation;
@@ -282,8 +301,8 @@ struct Importer {
     if (!(c.yfov > 0.0f && c.yfov < glm::pi<float>()) || !(c.znear > 0.0f) || c.aspect < 0.0f ||
         (c.zfar != 0.0f && c.zfar <= c.znear))
       fail(fmt::format("camera {} '{}'", node.camera, src.name),
-           fmt::format("invalid perspective (yfov {}, aspect {}, znear {}, zfar {})", c.yfov, c.aspect, c.znear,
-                       c.zfar));
+           fmt::format("invalid perspective (yfov {}, aspect {}, znear {}, zfar {})", c.yfov,
+                       c.aspect, c.znear, c.zfar));
     const Transform t = Transform::from_matrix(node_world[static_cast<std::size_t>(camera_node)]);
     c.position = t.translation;
     c.orientation = t.rotation;
@@ -297,7 +316,9 @@ struct Importer {
     auto value = [&](std::size_t k) { return values[cubic ? 3 * k + 1 : k]; };
     if (t <= times.front()) return value(0);
     if (t >= times.back()) return value(times.size() - 1);
-    const std::size_t k = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
+    const std::size_t k =
+        static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin()) -
+        1;
     if (s.interpolation == "STEP") return value(k);
     const float u = (t - times[k]) / (times[k + 1] - times[k]);
     if (!rotation) return glm::mix(value(k), value(k + 1), u);
@@ -320,7 +341,8 @@ struct Importer {
       std::vector<float> all_times;
       for (std::size_t ci = 0; ci < anim.channels.size(); ++ci) {
         const tinygltf::AnimationChannel& ch = anim.channels[ci];
-        if (ch.target_node != camera_node || (ch.target_path != "translation" && ch.target_path != "rotation"))
+        if (ch.target_node != camera_node ||
+            (ch.target_path != "translation" && ch.target_path != "rotation"))
           continue;
         const std::string place = fmt::format("animation {} '{}' channel {}", ai, anim.name, ci);
         if (ch.sampler < 0 || static_cast<std::size_t>(ch.sampler) >= anim.samplers.size())
@@ -337,10 +359,12 @@ struct Importer {
           fail(place, fmt::format("{} key times but {} values", c.times.size(), c.values.size()));
         for (std::size_t k = 0; k < c.times.size(); ++k)
           if (!std::isfinite(c.times[k]) || (k > 0 && !(c.times[k] > c.times[k - 1])))
-            fail(place, fmt::format("key time {} ({}) is not finite and increasing (input accessor {})", k,
-                                    c.times[k], s.input));
+            fail(place,
+                 fmt::format("key time {} ({}) is not finite and increasing (input accessor {})", k,
+                             c.times[k], s.input));
         for (const glm::vec4& v : c.values)
-          if (!all_finite(v)) fail(place, fmt::format("non-finite value (output accessor {})", s.output));
+          if (!all_finite(v))
+            fail(place, fmt::format("non-finite value (output accessor {})", s.output));
         all_times.insert(all_times.end(), c.times.begin(), c.times.end());
         channels.push_back(std::move(c));
       }
@@ -349,21 +373,25 @@ struct Importer {
       all_times.erase(std::unique(all_times.begin(), all_times.end()), all_times.end());
       const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(camera_node)];
       const int parent = node_parent[static_cast<std::size_t>(camera_node)];
-      const glm::mat4 parent_world = parent >= 0 ? node_world[static_cast<std::size_t>(parent)] : placement;
+      const glm::mat4 parent_world =
+          parent >= 0 ? node_world[static_cast<std::size_t>(parent)] : placement;
       CameraPath path;
       path.name = anim.name.empty() ? "camera" : anim.name;
       for (float t : all_times) {
         Transform local = local_transform(node);
         for (const Channel& c : channels) {
           const glm::vec4 v = sample(*c.sampler, c.times, c.values, c.rotation, t);
-          if (c.rotation) local.rotation = glm::normalize(glm::quat(v.w, v.x, v.y, v.z));
-          else local.translation = glm::vec3(v);
+          if (c.rotation)
+            local.rotation = glm::normalize(glm::quat(v.w, v.x, v.y, v.z));
+          else
+            local.translation = glm::vec3(v);
         }
         const Transform world = Transform::from_matrix(parent_world * local.matrix());
         path.keys.push_back({t, world.translation, world.rotation, std::nullopt});
       }
       if (std::string problem = path.problem(); !problem.empty())
-        fail(fmt::format("animation {} '{}' of camera node {}", ai, anim.name, camera_node), problem);
+        fail(fmt::format("animation {} '{}' of camera node {}", ai, anim.name, camera_node),
+             problem);
       return path;
     }
     return std::nullopt;
@@ -383,8 +411,9 @@ GltfImport import_gltf(const std::filesystem::path& file, const glm::mat4& place
   tinygltf::Model model;
   std::string err, warn;
   const std::string ext = file.extension().string();
-  const bool ok = (ext == ".glb" || ext == ".GLB") ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                                                   : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+  const bool ok = (ext == ".glb" || ext == ".GLB")
+                      ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
+                      : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
   if (!ok || !err.empty()) {
     std::string what = err.empty() ? warn : err;
     while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
@@ -412,7 +441,8 @@ GltfImport import_gltf(const std::filesystem::path& file, const glm::mat4& place
     std::vector<bool> is_child(model.nodes.size(), false);
     for (const auto& n : model.nodes)
       for (int c : n.children)
-        if (c >= 0 && static_cast<std::size_t>(c) < is_child.size()) is_child[static_cast<std::size_t>(c)] = true;
+        if (c >= 0 && static_cast<std::size_t>(c) < is_child.size())
+          is_child[static_cast<std::size_t>(c)] = true;
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
       if (!is_child[i]) roots.push_back(static_cast<int>(i));
   }

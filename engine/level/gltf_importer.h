@@ -4,9 +4,8 @@
 #pragma once
 
 #include <filesystem>
-#include <optional>
-
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "engine/level/mesh_validation.h"
 #include "engine/scene/level.h"
@@ -14,9 +13,9 @@
 namespace lantern {
 
 struct GltfImport {
-  std::optional<Camera> camera;       // the first camera node, if any
+  std::optional<Camera> camera;           // the first camera node, if any
   std::optional<CameraPath> camera_path;  // sampled from an animation of that node, if any
-  std::size_t first_instance = 0;     // the instances this import appended: [first, end)
+  std::size_t first_instance = 0;         // the instances this import appended: [first, end)
   std::size_t first_light = 0;
 };
 

@@ -2,10 +2,10 @@
 // Sections are read in dependency order (materials and behaviours before what uses them).
 #include "engine/level/json_level.h"
 
+#include <fmt/format.h>
+
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "engine/core/error.h"
 #include "engine/level/generators/generator.h"
@@ -14,7 +14,8 @@
 
 namespace lantern {
 
-void read_json_level(const std::filesystem::path& file, Level& level, LoadDiagnostics& diagnostics) {
+void read_json_level(const std::filesystem::path& file, Level& level,
+                     LoadDiagnostics& diagnostics) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open level file", file.string()));
   std::stringstream text;
@@ -62,7 +63,8 @@ void JsonLevelReader::read(const nlohmann::json& document) {
     read_environment(env);
   }
   if (root.has("settings")) {
-    if (!root.raw("settings").is_object()) root.fail("settings", "expected an object of key: value");
+    if (!root.raw("settings").is_object())
+      root.fail("settings", "expected an object of key: value");
     read_settings(root.raw("settings"), "", root.pointer("settings"));
   }
   if (root.has("budgets")) level().budgets = existing_file(root, "budgets");
@@ -97,7 +99,8 @@ void JsonLevelReader::read_assets(const nlohmann::json& section, const std::stri
     if (behaviour) {
       for (std::size_t k = imported.first_instance; k < level().instances.size(); ++k)
         level().instances[k].behaviour = behaviour;
-      for (std::size_t k = imported.first_light; k < level().lights.size(); ++k) level().lights[k].behaviour = behaviour;
+      for (std::size_t k = imported.first_light; k < level().lights.size(); ++k)
+        level().lights[k].behaviour = behaviour;
     }
     if (imported.camera && !asset_camera_) asset_camera_ = imported.camera;
     if (imported.camera_path && !level().find_path(imported.camera_path->name)) {
@@ -113,7 +116,8 @@ void JsonLevelReader::read_camera(JsonObject& c) {
   if (c.has("target") && c.has("rotation")) c.fail("give either 'target' or 'rotation', not both");
   if (c.has("target")) {
     const glm::vec3 target = c.vec3("target");
-    if (glm::length(target - cam.position) < 1e-6f) c.fail("target", "target equals the camera position");
+    if (glm::length(target - cam.position) < 1e-6f)
+      c.fail("target", "target equals the camera position");
     cam.orientation = look_at_orientation(cam.position, target);
   } else {
     cam.orientation = c.quat("rotation", cam.orientation);
@@ -128,7 +132,8 @@ void JsonLevelReader::read_camera(JsonObject& c) {
     c.fail("need 0 < znear < zfar (zfar 0 = infinite)");
   if (c.has("path")) {
     const std::string path = c.string("path");
-    if (!level().find_path(path)) c.fail("path", fmt::format("no path named '{}' in 'paths'", path));
+    if (!level().find_path(path))
+      c.fail("path", fmt::format("no path named '{}' in 'paths'", path));
     level().camera_path = path;
   }
   c.finish();
@@ -160,8 +165,9 @@ void JsonLevelReader::read_settings(const nlohmann::json& value, const std::stri
     } else if (v.is_boolean() || v.is_number()) {
       level().settings[key] = v.dump();
     } else {
-      throw InputError(fmt::format("{}: {}: setting '{}' must be a string, number or boolean, got {}",
-                                   file_.string(), ptr, key, v.type_name()));
+      throw InputError(
+          fmt::format("{}: {}: setting '{}' must be a string, number or boolean, got {}",
+                      file_.string(), ptr, key, v.type_name()));
     }
   }
 }
@@ -179,10 +185,11 @@ void JsonLevelReader::check_follow_paths() {
   auto check = [&](const std::optional<Behaviour>& b, const std::string& what) {
     if (!b) return;
     if (const auto* f = std::get_if<FollowPathBehaviour>(&*b); f && !level().find_path(f->path))
-      throw InputError(fmt::format("{}: {}: follow_path names path '{}', which is not in 'paths'", file_.string(),
-                                   what, f->path));
+      throw InputError(fmt::format("{}: {}: follow_path names path '{}', which is not in 'paths'",
+                                   file_.string(), what, f->path));
   };
-  for (const Instance& inst : level().instances) check(inst.behaviour, fmt::format("instance '{}'", inst.name));
+  for (const Instance& inst : level().instances)
+    check(inst.behaviour, fmt::format("instance '{}'", inst.name));
   for (const Light& l : level().lights) check(l.behaviour, fmt::format("light '{}'", l.name));
 }
 

@@ -1,7 +1,7 @@
 // JSON levels: materials, behaviours, primitives, lights and paths.
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "engine/core/error.h"
 #include "engine/level/json_level_reader.h"
@@ -22,12 +22,16 @@ glm::quat direction_to_rotation(const glm::vec3& direction) {
 Transform JsonLevelReader::read_transform(JsonObject& o) {
   Transform t;
   t.translation = o.vec3("translation", t.translation);
-  if (o.has("rotation") && o.has("rotation_deg")) o.fail("give either 'rotation' or 'rotation_deg', not both");
+  if (o.has("rotation") && o.has("rotation_deg"))
+    o.fail("give either 'rotation' or 'rotation_deg', not both");
   t.rotation = o.quat("rotation", t.rotation);
-  if (o.has("rotation_deg")) t.rotation = glm::quat(glm::radians(o.vec3("rotation_deg")));  // XYZ Euler
+  if (o.has("rotation_deg"))
+    t.rotation = glm::quat(glm::radians(o.vec3("rotation_deg")));  // XYZ Euler
   if (o.has("scale")) {
-    if (o.raw("scale").is_number()) t.scale = glm::vec3(o.number("scale"));
-    else t.scale = o.vec3("scale");
+    if (o.raw("scale").is_number())
+      t.scale = glm::vec3(o.number("scale"));
+    else
+      t.scale = o.vec3("scale");
     if (glm::any(glm::equal(t.scale, glm::vec3(0.0f)))) o.fail("scale", "scale must not be zero");
   }
   return t;
@@ -39,8 +43,10 @@ Material JsonLevelReader::read_material(JsonObject& o) {
   m.roughness = 0.5f;
   if (o.has("base_color")) {
     const nlohmann::json& v = o.raw("base_color");
-    if (v.is_array() && v.size() == 3) m.base_color = glm::vec4(o.vec3("base_color"), 1.0f);
-    else m.base_color = o.vec4("base_color", m.base_color);
+    if (v.is_array() && v.size() == 3)
+      m.base_color = glm::vec4(o.vec3("base_color"), 1.0f);
+    else
+      m.base_color = o.vec4("base_color", m.base_color);
   }
   m.metallic = o.number("metallic", m.metallic);
   m.roughness = o.number("roughness", m.roughness);
@@ -51,8 +57,8 @@ Material JsonLevelReader::read_material(JsonObject& o) {
   m.double_sided = o.boolean("double_sided", false);
   if (glm::any(glm::lessThan(m.emissive_factor, glm::vec3(0.0f))) || m.emissive_strength < 0.0f)
     o.fail("negative radiance (emissive × emissive_strength must be >= 0)");
-  if (glm::any(glm::lessThan(glm::vec3(m.base_color), glm::vec3(0.0f))) || m.metallic < 0.0f || m.metallic > 1.0f ||
-      m.roughness < 0.0f || m.roughness > 1.0f || m.specular_factor < 0.0f)
+  if (glm::any(glm::lessThan(glm::vec3(m.base_color), glm::vec3(0.0f))) || m.metallic < 0.0f ||
+      m.metallic > 1.0f || m.roughness < 0.0f || m.roughness > 1.0f || m.specular_factor < 0.0f)
     o.fail("base_color, specular must be >= 0; metallic and roughness in [0, 1]");
   auto texture = [&](std::string_view key, TextureRef& slot) {
     if (!o.has(key)) return;
@@ -136,10 +142,12 @@ Behaviour JsonLevelReader::read_behaviour(JsonObject& o) {
     b.path = o.string("path");
     b.speed = o.number("speed", b.speed);
     b.loop = o.boolean("loop", b.loop);
-    if (!level().find_path(b.path)) o.fail("path", fmt::format("no path named '{}' in 'paths'", b.path));
+    if (!level().find_path(b.path))
+      o.fail("path", fmt::format("no path named '{}' in 'paths'", b.path));
     out = b;
   } else {
-    o.fail("type", fmt::format("unknown behaviour type '{}' (rotate, orbit, flicker, follow_path)", type));
+    o.fail("type",
+           fmt::format("unknown behaviour type '{}' (rotate, orbit, flicker, follow_path)", type));
   }
   o.finish();
   return out;
@@ -158,7 +166,8 @@ std::optional<Behaviour> JsonLevelReader::behaviour_ref(JsonObject& owner) {
   if (v.is_string()) {
     auto it = behaviours_.find(v.get<std::string>());
     if (it == behaviours_.end())
-      owner.fail("behaviour", fmt::format("no behaviour named '{}' in 'behaviours'", v.get<std::string>()));
+      owner.fail("behaviour",
+                 fmt::format("no behaviour named '{}' in 'behaviours'", v.get<std::string>()));
     return it->second;
   }
   JsonObject o = owner.object("behaviour");
@@ -174,21 +183,26 @@ void JsonLevelReader::read_primitive(JsonObject& o) {
     g.origin = o.vec3("origin", g.origin);
     g.u = o.vec3("u", g.u);
     g.v = o.vec3("v", g.v);
-    if (glm::length(glm::cross(g.u, g.v)) < 1e-9f) o.fail("u and v must be non-zero and not parallel");
+    if (glm::length(glm::cross(g.u, g.v)) < 1e-9f)
+      o.fail("u and v must be non-zero and not parallel");
     const nlohmann::json& counts = o.raw("counts");
-    if (!counts.is_array() || counts.size() != 2 || !counts[0].is_number_integer() || !counts[1].is_number_integer() ||
-        counts[0].get<std::int64_t>() < 1 || counts[1].get<std::int64_t>() < 1)
-      o.fail("counts", fmt::format("expected [nx, ny], two positive integers, got {}", counts.dump()));
+    if (!counts.is_array() || counts.size() != 2 || !counts[0].is_number_integer() ||
+        !counts[1].is_number_integer() || counts[0].get<std::int64_t>() < 1 ||
+        counts[1].get<std::int64_t>() < 1)
+      o.fail("counts",
+             fmt::format("expected [nx, ny], two positive integers, got {}", counts.dump()));
     const auto nx = counts[0].get<std::uint64_t>(), ny = counts[1].get<std::uint64_t>();
     if (nx > kMaxGridQuads || ny > kMaxGridQuads || nx * ny > kMaxGridQuads)
-      o.fail("counts", fmt::format("{} x {} = {} quads exceeds the limit of {} quads per grid", nx, ny,
-                                   static_cast<double>(nx) * static_cast<double>(ny), kMaxGridQuads));
+      o.fail("counts",
+             fmt::format("{} x {} = {} quads exceeds the limit of {} quads per grid", nx, ny,
+                         static_cast<double>(nx) * static_cast<double>(ny), kMaxGridQuads));
     g.nx = static_cast<std::uint32_t>(nx);
     g.ny = static_cast<std::uint32_t>(ny);
     g.size = o.vec2("size", g.size);
     if (g.size.x <= 0.0f || g.size.y <= 0.0f) o.fail("size", "quad size must be > 0");
     g.color = o.vec3("color", g.color);
-    if (glm::any(glm::lessThan(g.color, glm::vec3(0.0f)))) o.fail("color", "negative radiance colour");
+    if (glm::any(glm::lessThan(g.color, glm::vec3(0.0f))))
+      o.fail("color", "negative radiance colour");
     JsonObject r = o.object("radiance");
     g.radiance_min = r.number("min");
     g.radiance_max = r.number("max", g.radiance_min);
@@ -197,9 +211,10 @@ void JsonLevelReader::read_primitive(JsonObject& o) {
     g.seed = static_cast<std::uint32_t>(r.integer("seed", g.seed, 0, 0xFFFFFFFFll));
     if (g.radiance_min < 0.0f) r.fail("min", fmt::format("negative radiance {}", g.radiance_min));
     if (g.radiance_max < g.radiance_min) r.fail("max", "must be >= min");
-    if (g.pattern != "uniform" && g.pattern != "linear" && g.pattern != "log" && g.pattern != "checker" &&
-        g.pattern != "random")
-      r.fail("pattern", fmt::format("unknown pattern '{}' (uniform, linear, log, checker, random)", g.pattern));
+    if (g.pattern != "uniform" && g.pattern != "linear" && g.pattern != "log" &&
+        g.pattern != "checker" && g.pattern != "random")
+      r.fail("pattern", fmt::format("unknown pattern '{}' (uniform, linear, log, checker, random)",
+                                    g.pattern));
     r.finish();
     Material base = level().materials[material_ref(o, "material")];
     const Transform t = read_transform(o);
@@ -230,7 +245,8 @@ void JsonLevelReader::read_primitive(JsonObject& o) {
     if (radius <= 0.0f) o.fail("radius", "must be > 0");
     const std::string kind = o.string("mesh", "ico");
     if (kind == "ico") {
-      mesh = make_ico_sphere(radius, static_cast<std::uint32_t>(o.integer("subdivisions", 3, 0, 8)));
+      mesh =
+          make_ico_sphere(radius, static_cast<std::uint32_t>(o.integer("subdivisions", 3, 0, 8)));
     } else if (kind == "uv") {
       mesh = make_uv_sphere(radius, static_cast<std::uint32_t>(o.integer("segments", 32, 3, 4096)),
                             static_cast<std::uint32_t>(o.integer("rings", 16, 2, 4096)));
@@ -238,7 +254,9 @@ void JsonLevelReader::read_primitive(JsonObject& o) {
       o.fail("mesh", fmt::format("unknown sphere mesh '{}' (ico, uv)", kind));
     }
   } else {
-    o.fail("type", fmt::format("unknown primitive type '{}' (plane, box, sphere, emissive_quad_grid)", type));
+    o.fail(
+        "type",
+        fmt::format("unknown primitive type '{}' (plane, box, sphere, emissive_quad_grid)", type));
   }
   mesh.name = name;
   const std::uint32_t mat = material_ref(o, "material");
@@ -252,10 +270,14 @@ void JsonLevelReader::read_primitive(JsonObject& o) {
 void JsonLevelReader::read_light(JsonObject& o) {
   Light l;
   const std::string type = o.string("type");
-  if (type == "point") l.type = LightType::Point;
-  else if (type == "spot") l.type = LightType::Spot;
-  else if (type == "directional") l.type = LightType::Directional;
-  else o.fail("type", fmt::format("unknown light type '{}' (point, spot, directional)", type));
+  if (type == "point")
+    l.type = LightType::Point;
+  else if (type == "spot")
+    l.type = LightType::Spot;
+  else if (type == "directional")
+    l.type = LightType::Directional;
+  else
+    o.fail("type", fmt::format("unknown light type '{}' (point, spot, directional)", type));
   l.name = o.string("name", type);
   l.color = o.vec3("color", l.color);
   l.intensity = o.number("intensity");
@@ -266,7 +288,8 @@ void JsonLevelReader::read_light(JsonObject& o) {
   if (l.type != LightType::Directional) l.position = o.vec3("position");
   const int ways = int(o.has("direction")) + int(o.has("target")) + int(o.has("rotation"));
   if (ways > 1) o.fail("give one of 'direction', 'target', 'rotation'");
-  if (l.type != LightType::Point && ways == 0) o.fail("direction", "is required for spot and directional lights");
+  if (l.type != LightType::Point && ways == 0)
+    o.fail("direction", "is required for spot and directional lights");
   if (o.has("direction")) {
     const glm::vec3 d = o.vec3("direction");
     if (glm::length(d) < 1e-6f) o.fail("direction", "has zero length");
@@ -281,7 +304,8 @@ void JsonLevelReader::read_light(JsonObject& o) {
   if (l.type == LightType::Spot) {
     l.inner_cone = glm::radians(o.number("inner_cone_deg", 0.0f));
     l.outer_cone = glm::radians(o.number("outer_cone_deg", 45.0f));
-    if (!(l.inner_cone >= 0.0f && l.inner_cone < l.outer_cone && l.outer_cone <= glm::half_pi<float>() + 1e-6f))
+    if (!(l.inner_cone >= 0.0f && l.inner_cone < l.outer_cone &&
+          l.outer_cone <= glm::half_pi<float>() + 1e-6f))
       o.fail("need 0 <= inner_cone_deg < outer_cone_deg <= 90");
   }
   l.behaviour = behaviour_ref(o);
@@ -302,7 +326,8 @@ void JsonLevelReader::read_paths(JsonObject& section) {
       PathKey key;
       key.time = k.number("time");
       key.position = k.vec3("position");
-      if (k.has("target") && k.has("rotation")) k.fail("give either 'target' or 'rotation', not both");
+      if (k.has("target") && k.has("rotation"))
+        k.fail("give either 'target' or 'rotation', not both");
       if (k.has("target")) {
         const glm::vec3 target = k.vec3("target");
         if (glm::length(target - key.position) < 1e-6f) k.fail("target", "equals the position");

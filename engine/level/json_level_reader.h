@@ -5,10 +5,9 @@
 
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "engine/level/json_object.h"
 #include "engine/level/level_builder.h"
@@ -33,8 +32,9 @@ class JsonLevelReader {
   Transform read_transform(JsonObject& object);
   Material read_material(JsonObject& object);
   std::uint32_t material_ref(JsonObject& owner, std::string_view key);  // name or inline object
-  std::optional<Behaviour> behaviour_ref(JsonObject& owner);           // "behaviour": name or object
-  std::filesystem::path existing_file(JsonObject& owner, std::string_view key);  // relative to the level
+  std::optional<Behaviour> behaviour_ref(JsonObject& owner);  // "behaviour": name or object
+  std::filesystem::path existing_file(JsonObject& owner,
+                                      std::string_view key);  // relative to the level
 
   const std::filesystem::path& file() const { return file_; }
   LevelBuilder& builder() { return builder_; }
@@ -44,7 +44,8 @@ class JsonLevelReader {
   void read_assets(const nlohmann::json& section, const std::string& pointer);
   void read_camera(JsonObject& object);
   void read_environment(JsonObject& object);
-  void read_settings(const nlohmann::json& value, const std::string& prefix, const std::string& pointer);
+  void read_settings(const nlohmann::json& value, const std::string& prefix,
+                     const std::string& pointer);
   void read_generators(const nlohmann::json& section, const std::string& pointer);
   Behaviour read_behaviour(JsonObject& object);
   void check_follow_paths();

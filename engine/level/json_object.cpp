@@ -1,22 +1,24 @@
 // Strict typed JSON object reading with JSON-pointer error places; JSON parse with line:column.
 #include "engine/level/json_object.h"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "engine/core/error.h"
 
 namespace lantern {
 namespace {
 
-const char* type_name(const nlohmann::json& v) { return v.type_name(); }
+const char* type_name(const nlohmann::json& v) {
+  return v.type_name();
+}
 
 float finite_number(const nlohmann::json& v, const std::string& where,
                     const std::filesystem::path& file) {
   if (!v.is_number())
-    throw InputError(fmt::format("{}: {}: expected a number, got {}", file.string(), where,
-                                 type_name(v)));
+    throw InputError(
+        fmt::format("{}: {}: expected a number, got {}", file.string(), where, type_name(v)));
   const double d = v.get<double>();
   if (!std::isfinite(d) || std::abs(d) > 3.0e38)
     throw InputError(fmt::format("{}: {}: number {} is not finite", file.string(), where, d));
@@ -27,9 +29,9 @@ template <int N>
 glm::vec<N, float> vector(const nlohmann::json& v, const std::string& where,
                           const std::filesystem::path& file) {
   if (!v.is_array() || v.size() != N)
-    throw InputError(fmt::format("{}: {}: expected an array of {} numbers, got {}", file.string(),
-                                 where, N, v.is_array() ? fmt::format("{} values", v.size())
-                                                        : std::string(type_name(v))));
+    throw InputError(
+        fmt::format("{}: {}: expected an array of {} numbers, got {}", file.string(), where, N,
+                    v.is_array() ? fmt::format("{} values", v.size()) : std::string(type_name(v))));
   glm::vec<N, float> out;
   for (int i = 0; i < N; ++i) out[i] = finite_number(v[i], fmt::format("{}/{}", where, i), file);
   return out;
@@ -40,9 +42,12 @@ glm::vec<N, float> vector(const nlohmann::json& v, const std::string& where,
 std::string pointer_token(std::string_view key) {
   std::string out;
   for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
   }
   return out;
 }
@@ -59,7 +64,9 @@ std::string JsonObject::pointer(std::string_view key) const {
   return pointer_ + "/" + pointer_token(key);
 }
 
-bool JsonObject::has(std::string_view key) const { return value_.contains(key); }
+bool JsonObject::has(std::string_view key) const {
+  return value_.contains(key);
+}
 
 std::vector<std::string> JsonObject::keys() const {
   std::vector<std::string> out;
@@ -87,7 +94,9 @@ JsonObject JsonObject::object(std::string_view key) {
   return JsonObject(raw(key), pointer(key), file_);
 }
 
-float JsonObject::number(std::string_view key) { return finite_number(raw(key), pointer(key), file_); }
+float JsonObject::number(std::string_view key) {
+  return finite_number(raw(key), pointer(key), file_);
+}
 
 float JsonObject::number(std::string_view key, float fallback) {
   return has(key) ? number(key) : fallback;
@@ -129,7 +138,9 @@ bool JsonObject::boolean(std::string_view key, bool fallback) {
 glm::vec2 JsonObject::vec2(std::string_view key, glm::vec2 fallback) {
   return has(key) ? vector<2>(raw(key), pointer(key), file_) : fallback;
 }
-glm::vec3 JsonObject::vec3(std::string_view key) { return vector<3>(raw(key), pointer(key), file_); }
+glm::vec3 JsonObject::vec3(std::string_view key) {
+  return vector<3>(raw(key), pointer(key), file_);
+}
 glm::vec3 JsonObject::vec3(std::string_view key, glm::vec3 fallback) {
   return has(key) ? vec3(key) : fallback;
 }
@@ -158,8 +169,8 @@ void JsonObject::finish() const {
 const nlohmann::json& expect_array(const nlohmann::json& value, const std::string& pointer,
                                    const std::filesystem::path& file) {
   if (!value.is_array())
-    throw InputError(fmt::format("{}: {}: expected an array, got {}", file.string(), pointer,
-                                 type_name(value)));
+    throw InputError(
+        fmt::format("{}: {}: expected an array, got {}", file.string(), pointer, type_name(value)));
   return value;
 }
 
@@ -197,16 +208,20 @@ nlohmann::json parse_json_text(const std::string& text, const std::filesystem::p
     std::string what = plain_message(e);
     // Drop the "parse error at line 1, column 2: " part: the place is given as file:line:column.
     if (auto colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
-    throw InputError(fmt::format("{}:{}:{}: malformed JSON: {}", file.string(), line, column, what));
+    throw InputError(
+        fmt::format("{}:{}:{}: malformed JSON: {}", file.string(), line, column, what));
   } catch (const nlohmann::json::exception& e) {
     // E.g. "number overflow parsing '1e999'" (a number that is Inf as a double): locate the token.
     const std::string what = plain_message(e);
     std::size_t offset = std::string::npos;
-    if (auto open = what.find('\''), close = what.rfind('\''); open != std::string::npos && close > open)
+    if (auto open = what.find('\''), close = what.rfind('\'');
+        open != std::string::npos && close > open)
       offset = text.find(what.substr(open + 1, close - open - 1));
-    if (offset == std::string::npos) throw InputError(fmt::format("{}: malformed JSON: {}", file.string(), what));
+    if (offset == std::string::npos)
+      throw InputError(fmt::format("{}: malformed JSON: {}", file.string(), what));
     const auto [line, column] = line_column(text, offset);
-    throw InputError(fmt::format("{}:{}:{}: malformed JSON: {}", file.string(), line, column, what));
+    throw InputError(
+        fmt::format("{}:{}:{}: malformed JSON: {}", file.string(), line, column, what));
   }
 }
 

@@ -4,14 +4,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
-#include <nlohmann/json.hpp>
 
 namespace lantern {
 
@@ -21,7 +20,7 @@ class JsonObject {
   JsonObject(const nlohmann::json& value, std::string pointer, const std::filesystem::path& file);
 
   bool has(std::string_view key) const;
-  std::vector<std::string> keys() const;  // in document order (nlohmann sorts keys)
+  std::vector<std::string> keys() const;            // sorted (nlohmann keeps object keys sorted)
   const nlohmann::json& raw(std::string_view key);  // marks the key read; throws if missing
   std::string pointer() const { return pointer_; }
   std::string pointer(std::string_view key) const;

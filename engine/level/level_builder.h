@@ -12,13 +12,14 @@ namespace lantern {
 
 class LevelBuilder {
  public:
-  LevelBuilder(Level& level, LoadDiagnostics& diagnostics) : level_(level), diagnostics_(diagnostics) {}
+  LevelBuilder(Level& level, LoadDiagnostics& diagnostics)
+      : level_(level), diagnostics_(diagnostics) {}
 
   std::uint32_t add_material(Material material);
   // Validates the mesh (errors prefixed by `where`) and stores it.
   std::uint32_t add_mesh(Mesh mesh, const std::string& where);
-  void add_instance(std::string name, std::uint32_t mesh, std::uint32_t material, const Transform& transform,
-                    std::optional<Behaviour> behaviour = std::nullopt);
+  void add_instance(std::string name, std::uint32_t mesh, std::uint32_t material,
+                    const Transform& transform, std::optional<Behaviour> behaviour = std::nullopt);
   void add_light(Light light) { level_.lights.push_back(std::move(light)); }
 
   Level& level() { return level_; }

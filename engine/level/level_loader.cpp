@@ -1,10 +1,10 @@
 // Level loading entry point: path resolution, format dispatch, default camera, one warning.
 #include "engine/level/level_loader.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdlib>
-
-#include <fmt/format.h>
 
 #include "engine/core/error.h"
 #include "engine/core/log.h"
@@ -26,7 +26,8 @@ bool has_level_extension(const std::filesystem::path& p) {
 // A camera that sees the whole level from the front and a little above.
 Camera framing_camera(const Level& level) {
   Aabb box;
-  for (const Instance& inst : level.instances) box.extend(level.meshes[inst.mesh].bounds.transformed(inst.world));
+  for (const Instance& inst : level.instances)
+    box.extend(level.meshes[inst.mesh].bounds.transformed(inst.world));
   Camera cam;
   if (box.empty()) {
     cam.position = glm::vec3(0.0f, 1.0f, 5.0f);
@@ -57,7 +58,8 @@ std::filesystem::path resolve_level_path(std::string_view argument) {
     return p;
   }
   if (p.has_extension())
-    throw InputError(fmt::format("{}: not a level (expected .json, .gltf or .glb, or a level name)", p.string()));
+    throw InputError(fmt::format("{}: not a level (expected .json, .gltf or .glb, or a level name)",
+                                 p.string()));
   const std::filesystem::path levels = content_dir() / "levels";
   const std::filesystem::path named = levels / (std::string(argument) + ".json");
   if (std::filesystem::is_regular_file(named)) return named;
@@ -68,12 +70,14 @@ std::filesystem::path resolve_level_path(std::string_view argument) {
   std::sort(names.begin(), names.end());
   std::string known;
   for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
-  throw InputError(fmt::format("level '{}' not found: not a file, and not a level in {} (levels: {})", argument,
-                               levels.string(), known.empty() ? "none" : known));
+  throw InputError(
+      fmt::format("level '{}' not found: not a file, and not a level in {} (levels: {})", argument,
+                  levels.string(), known.empty() ? "none" : known));
 }
 
 Level load_level(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) throw InputError(fmt::format("{}: level file not found", file.string()));
+  if (!std::filesystem::is_regular_file(file))
+    throw InputError(fmt::format("{}: level file not found", file.string()));
   Level level;
   level.name = file.stem().string();
   level.source = file;
@@ -99,8 +103,8 @@ Level load_level(const std::filesystem::path& file) {
     log::info("{}: no camera in the level; framing the scene", file.string());
   }
   if (diagnostics.degenerate_triangles > 0)
-    log::warn("{}: skipped {} degenerate (zero-area) triangle{}", file.string(), diagnostics.degenerate_triangles,
-              diagnostics.degenerate_triangles == 1 ? "" : "s");
+    log::warn("{}: skipped {} degenerate (zero-area) triangle{}", file.string(),
+              diagnostics.degenerate_triangles, diagnostics.degenerate_triangles == 1 ? "" : "s");
   return level;
 }
 

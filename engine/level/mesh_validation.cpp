@@ -1,10 +1,10 @@
 // Mesh checks and repair: finite data, index range, degenerate triangles, normals, bounds.
 #include "engine/level/mesh_validation.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "engine/core/error.h"
 #include "engine/scene/finite.h"
@@ -16,8 +16,8 @@ template <class V>
 void require_finite(const std::vector<V>& values, const std::string& where, const char* attribute) {
   for (std::size_t i = 0; i < values.size(); ++i)
     if (!all_finite(values[i]))
-      throw InputError(fmt::format("{}: {} of vertex {} is not finite (NaN or Inf)", where,
-                                   attribute, i));
+      throw InputError(
+          fmt::format("{}: {} of vertex {} is not finite (NaN or Inf)", where, attribute, i));
 }
 
 }  // namespace
@@ -65,8 +65,10 @@ void finalize_mesh(Mesh& mesh, const std::string& where, LoadDiagnostics& diagno
     const glm::vec3 fn = glm::cross(mesh.positions[i1] - mesh.positions[i0],
                                     mesh.positions[i2] - mesh.positions[i0]);
     for (std::uint32_t i : {i0, i1, i2}) {
-      if (computed) mesh.normals[i] += fn;
-      else if (glm::dot(mesh.normals[i], mesh.normals[i]) < 1e-20f) mesh.normals[i] = fn;
+      if (computed)
+        mesh.normals[i] += fn;
+      else if (glm::dot(mesh.normals[i], mesh.normals[i]) < 1e-20f)
+        mesh.normals[i] = fn;
     }
   }
   for (glm::vec3& nrm : mesh.normals) {

@@ -3,9 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-
 #include <glm/gtc/constants.hpp>
+#include <map>
 
 #include "engine/level/generators/split_mix.h"
 
@@ -31,7 +30,8 @@ void orient_outwards(Mesh& m) {
   for (std::size_t t = 0; t < m.indices.size(); t += 3) {
     const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
                     c = m.positions[m.indices[t + 2]];
-    if (glm::dot(glm::cross(b - a, c - a), a + b + c) < 0.0f) std::swap(m.indices[t + 1], m.indices[t + 2]);
+    if (glm::dot(glm::cross(b - a, c - a), a + b + c) < 0.0f)
+      std::swap(m.indices[t + 1], m.indices[t + 2]);
   }
 }
 
@@ -59,8 +59,10 @@ Mesh make_box(glm::vec3 size, bool inward) {
   const glm::vec3 faces[6][3] = {{x, y, z},  {-x, z, y}, {y, z, x},
                                  {-y, x, z}, {z, x, y},  {-z, y, x}};
   for (const auto& f : faces) {
-    if (inward) add_quad(m, f[0], f[2], f[1]);
-    else add_quad(m, f[0], f[1], f[2]);
+    if (inward)
+      add_quad(m, f[0], f[2], f[1]);
+    else
+      add_quad(m, f[0], f[1], f[2]);
   }
   finish_bounds(m);
   return m;
@@ -76,7 +78,8 @@ Mesh make_uv_sphere(float radius, std::uint32_t segments, std::uint32_t rings) {
     const float theta = pi * static_cast<float>(r) / static_cast<float>(rings);
     for (std::uint32_t s = 0; s <= segments; ++s) {
       const float phi = 2.0f * pi * static_cast<float>(s) / static_cast<float>(segments);
-      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                        std::sin(theta) * std::sin(phi));
       m.positions.push_back(radius * n);
       m.normals.push_back(n);
       m.uvs.emplace_back(static_cast<float>(s) / static_cast<float>(segments),
@@ -87,7 +90,7 @@ Mesh make_uv_sphere(float radius, std::uint32_t segments, std::uint32_t rings) {
   for (std::uint32_t r = 0; r < rings; ++r) {
     for (std::uint32_t s = 0; s < segments; ++s) {
       const std::uint32_t a = r * row + s, b = (r + 1) * row + s, c = b + 1, d = a + 1;
-      if (r != 0) m.indices.insert(m.indices.end(), {a, b, d});          // skip the pole sliver
+      if (r != 0) m.indices.insert(m.indices.end(), {a, b, d});  // skip the pole sliver
       if (r != rings - 1) m.indices.insert(m.indices.end(), {d, b, c});
     }
   }
@@ -102,10 +105,10 @@ Mesh make_ico_sphere(float radius, std::uint32_t subdivisions) {
                               {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
                               {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
   for (glm::vec3& v : p) v = glm::normalize(v);
-  std::vector<std::uint32_t> idx = {0, 11, 5, 0, 5,  1,  0,  1,  7,  0,  7,  10, 0, 10, 11,
-                                    1, 5,  9, 5, 11, 4,  11, 10, 2,  10, 7,  6,  7, 1,  8,
-                                    3, 9,  4, 3, 4,  2,  3,  2,  6,  3,  6,  8,  3, 8,  9,
-                                    4, 9,  5, 2, 4,  11, 6,  2,  10, 8,  6,  7,  9, 8,  1};
+  std::vector<std::uint32_t> idx = {0, 11, 5, 0, 5,  1,  0,  1,  7,  0,  7, 10, 0, 10, 11,
+                                    1, 5,  9, 5, 11, 4,  11, 10, 2,  10, 7, 6,  7, 1,  8,
+                                    3, 9,  4, 3, 4,  2,  3,  2,  6,  3,  6, 8,  3, 8,  9,
+                                    4, 9,  5, 2, 4,  11, 6,  2,  10, 8,  6, 7,  9, 8,  1};
   for (std::uint32_t level = 0; level < subdivisions; ++level) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
     auto mid = [&](std::uint32_t a, std::uint32_t b) {
@@ -193,12 +196,16 @@ std::vector<EmissiveQuadBin> make_emissive_quad_grid(const EmissiveQuadGrid& g) 
   for (std::uint32_t j = 0; j < g.ny; ++j) {
     for (std::uint32_t i = 0; i < g.nx; ++i) {
       const float r = quad_grid_radiance(g, std::uint64_t{j} * g.nx + i);
-      const auto bin = levels == 1 ? 0u
-                                   : static_cast<std::uint32_t>(std::lround(
-                                         std::clamp(to_unit(r), 0.0f, 1.0f) * static_cast<float>(levels - 1)));
+      const auto bin =
+          levels == 1 ? 0u
+                      : static_cast<std::uint32_t>(std::lround(std::clamp(to_unit(r), 0.0f, 1.0f) *
+                                                               static_cast<float>(levels - 1)));
       EmissiveQuadBin& b = bins[bin];
-      b.radiance = levels == 1 ? g.radiance_max : from_unit(static_cast<float>(bin) / static_cast<float>(levels - 1));
-      const glm::vec3 c = g.origin + (static_cast<float>(i) + 0.5f) * g.u + (static_cast<float>(j) + 0.5f) * g.v;
+      b.radiance = levels == 1
+                       ? g.radiance_max
+                       : from_unit(static_cast<float>(bin) / static_cast<float>(levels - 1));
+      const glm::vec3 c =
+          g.origin + (static_cast<float>(i) + 0.5f) * g.u + (static_cast<float>(j) + 0.5f) * g.v;
       add_quad(b.mesh, c, du, dv);
     }
   }

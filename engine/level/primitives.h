@@ -3,10 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "engine/scene/mesh.h"
 
@@ -33,9 +32,9 @@ struct EmissiveQuadGrid {
   glm::vec3 u{1.0f, 0.0f, 0.0f};  // cell pitch along the first axis
   glm::vec3 v{0.0f, 0.0f, 1.0f};  // cell pitch along the second axis
   std::uint32_t nx = 1, ny = 1;
-  glm::vec2 size{0.5f};           // quad size in metres
-  glm::vec3 color{1.0f};          // emitted radiance colour (multiplies the scalar radiance)
-  float radiance_min = 1.0f;      // W/(sr·m²)
+  glm::vec2 size{0.5f};       // quad size in metres
+  glm::vec3 color{1.0f};      // emitted radiance colour (multiplies the scalar radiance)
+  float radiance_min = 1.0f;  // W/(sr·m²)
   float radiance_max = 1.0f;
   // "uniform" (min), "linear" / "log" ramps over the cells in order, "checker" (min/max),
   // "random" (log-uniform from `seed`).

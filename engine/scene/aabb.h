@@ -2,7 +2,6 @@
 #pragma once
 
 #include <glm/glm.hpp>
-
 #include <limits>
 
 namespace lantern {

@@ -3,10 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <variant>
-
-#include <glm/glm.hpp>
 
 namespace lantern {
 
@@ -46,7 +45,8 @@ struct FollowPathBehaviour {
   bool operator==(const FollowPathBehaviour&) const = default;
 };
 
-using Behaviour = std::variant<RotateBehaviour, OrbitBehaviour, FlickerBehaviour, FollowPathBehaviour>;
+using Behaviour =
+    std::variant<RotateBehaviour, OrbitBehaviour, FlickerBehaviour, FollowPathBehaviour>;
 
 // "rotate", "orbit", "flicker", "follow_path": the names the level format uses.
 const char* behaviour_type_name(const Behaviour& b);

@@ -2,7 +2,6 @@
 #include "engine/scene/camera.h"
 
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace lantern {

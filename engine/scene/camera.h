@@ -7,10 +7,10 @@
 namespace lantern {
 
 struct Camera {
-  float yfov = 0.8f;     // vertical field of view, radians
-  float aspect = 0.0f;   // width / height; 0 = take it from the output size
+  float yfov = 0.8f;    // vertical field of view, radians
+  float aspect = 0.0f;  // width / height; 0 = take it from the output size
   float znear = 0.05f;
-  float zfar = 0.0f;     // 0 = infinite far plane
+  float zfar = 0.0f;  // 0 = infinite far plane
   glm::vec3 position{0.0f};
   glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f};
 

@@ -1,10 +1,10 @@
 // Camera path evaluation: Hermite segments with centripetal Catmull-Rom tangents, squad rotations.
 #include "engine/scene/camera_path.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #define GLM_ENABLE_EXPERIMENTAL
 #include <glm/gtx/quaternion.hpp>

@@ -3,12 +3,11 @@
 // every key, no cusps on uneven spacing). Rotations: squad (smooth slerp). FOV: Hermite in time.
 #pragma once
 
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
 
 namespace lantern {
 

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <cmath>
-
 #include <glm/glm.hpp>
 
 namespace lantern {

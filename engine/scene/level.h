@@ -4,12 +4,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "engine/scene/behaviour.h"
 #include "engine/scene/camera.h"
@@ -38,22 +37,22 @@ struct EnvironmentMap {
 };
 
 struct Level {
-  std::string name;                // file stem
-  std::filesystem::path source;    // the file it came from
+  std::string name;              // file stem
+  std::filesystem::path source;  // the file it came from
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<ImageRef> images;
   std::vector<Instance> instances;
   std::vector<Light> lights;
   Camera camera;
-  bool has_camera = false;         // false: the loader framed the scene with a default camera
+  bool has_camera = false;  // false: the loader framed the scene with a default camera
   std::vector<CameraPath> paths;
-  std::string camera_path;         // the path the camera follows by default; empty = static
+  std::string camera_path;  // the path the camera follows by default; empty = static
   std::optional<EnvironmentMap> environment;
   // Free-form settings (nested JSON objects flattened to "a.b" keys, values as text, the same
   // form as `--set KEY=VALUE`); lighting validates them.
   std::map<std::string, std::string> settings;
-  std::filesystem::path budgets;   // optional budget file for `lantern bench`; empty = none
+  std::filesystem::path budgets;  // optional budget file for `lantern bench`; empty = none
 
   const CameraPath* find_path(std::string_view path_name) const {
     for (const CameraPath& p : paths)

@@ -26,14 +26,16 @@ LevelSummary summarize(const Level& level) {
   s.entities = s.instances + level.lights.size() + 1;
   s.environment_map = level.environment.has_value();
   s.camera_path = level.camera_path;
-  for (const CameraPath& p : level.paths) s.paths.push_back({p.name, p.duration(), p.keys.size(), p.loop});
+  for (const CameraPath& p : level.paths)
+    s.paths.push_back({p.name, p.duration(), p.keys.size(), p.loop});
   return s;
 }
 
 nlohmann::json to_json(const LevelSummary& s) {
   nlohmann::json paths = nlohmann::json::array();
   for (const auto& p : s.paths)
-    paths.push_back({{"name", p.name}, {"duration", p.duration}, {"keys", p.keys}, {"loop", p.loop}});
+    paths.push_back(
+        {{"name", p.name}, {"duration", p.duration}, {"keys", p.keys}, {"loop", p.loop}});
   nlohmann::json j = {
       {"level", s.name},
       {"source", s.source},

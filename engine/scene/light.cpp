@@ -5,9 +5,12 @@ namespace lantern {
 
 const char* light_type_name(LightType type) {
   switch (type) {
-    case LightType::Point: return "point";
-    case LightType::Spot: return "spot";
-    case LightType::Directional: return "directional";
+    case LightType::Point:
+      return "point";
+    case LightType::Spot:
+      return "spot";
+    case LightType::Directional:
+      return "directional";
   }
   return "?";
 }

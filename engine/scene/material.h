@@ -4,10 +4,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace lantern {
 
@@ -15,9 +14,9 @@ namespace lantern {
 // embedded in a glTF file (data URI or buffer view). Exactly one of the two is set.
 struct ImageRef {
   std::string name;
-  std::filesystem::path path;            // absolute; empty when embedded
-  std::string mime_type;                 // e.g. "image/png"; may be empty for files
-  std::vector<std::uint8_t> embedded;    // encoded file bytes (PNG/JPEG...), when embedded
+  std::filesystem::path path;          // absolute; empty when embedded
+  std::string mime_type;               // e.g. "image/png"; may be empty for files
+  std::vector<std::uint8_t> embedded;  // encoded file bytes (PNG/JPEG...), when embedded
 };
 
 // A texture slot: an index into Level::images (-1 = none) and the UV set it uses.
@@ -30,13 +29,13 @@ struct TextureRef {
 
 struct Material {
   std::string name;
-  glm::vec4 base_color{1.0f};           // linear RGBA factor
-  float metallic = 1.0f;                // glTF defaults
+  glm::vec4 base_color{1.0f};  // linear RGBA factor
+  float metallic = 1.0f;       // glTF defaults
   float roughness = 1.0f;
   glm::vec3 emissive_factor{0.0f};
-  float emissive_strength = 1.0f;       // KHR_materials_emissive_strength
-  float specular_factor = 1.0f;         // KHR_materials_specular; 0 = pure Lambertian dielectric
-  glm::vec3 specular_color{1.0f};       // KHR_materials_specular specularColorFactor
+  float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
+  float specular_factor = 1.0f;    // KHR_materials_specular; 0 = pure Lambertian dielectric
+  glm::vec3 specular_color{1.0f};  // KHR_materials_specular specularColorFactor
   bool double_sided = false;
   TextureRef base_color_texture;
   TextureRef metallic_roughness_texture;

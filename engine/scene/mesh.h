@@ -2,10 +2,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "engine/scene/aabb.h"
 
@@ -14,10 +13,10 @@ namespace lantern {
 struct Mesh {
   std::string name;
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;  // same count as positions
-  std::vector<glm::vec2> uvs;      // same count as positions, or empty
+  std::vector<glm::vec3> normals;      // same count as positions
+  std::vector<glm::vec2> uvs;          // same count as positions, or empty
   std::vector<std::uint32_t> indices;  // triangle list
-  Aabb bounds;                     // object space
+  Aabb bounds;                         // object space
 
   std::size_t triangle_count() const { return indices.size() / 3; }
 };

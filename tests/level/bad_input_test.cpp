@@ -20,13 +20,15 @@ std::string error_loading(const std::string& name, const std::string& text) {
 #define EXPECT_HAS(message, part) EXPECT_NE((message).find(part), std::string::npos) << (message)
 
 TEST(BadInput, MalformedJsonNamesLineAndColumn) {
-  const std::string e = error_loading("syntax.json", "{\n  \"lights\": [\n    { \"type\": \"point\", }\n  ]\n}\n");
+  const std::string e =
+      error_loading("syntax.json", "{\n  \"lights\": [\n    { \"type\": \"point\", }\n  ]\n}\n");
   EXPECT_HAS(e, "syntax.json:3:");
   EXPECT_HAS(e, "malformed JSON");
 }
 
 TEST(BadInput, MissingLevelFile) {
-  const std::string e = test::input_error_of([] { load_level_argument("/nonexistent/dir/level.json"); });
+  const std::string e =
+      test::input_error_of([] { load_level_argument("/nonexistent/dir/level.json"); });
   EXPECT_HAS(e, "/nonexistent/dir/level.json");
   EXPECT_HAS(e, "not found");
   const std::string named = test::input_error_of([] { load_level_argument("no_such_level_name"); });
@@ -35,11 +37,13 @@ TEST(BadInput, MissingLevelFile) {
 }
 
 TEST(BadInput, MissingReferencedAsset) {
-  const std::string e = error_loading("asset.json", R"({"assets": [{"file": "models/gone.gltf"}]})");
+  const std::string e =
+      error_loading("asset.json", R"({"assets": [{"file": "models/gone.gltf"}]})");
   EXPECT_HAS(e, "asset.json");
   EXPECT_HAS(e, "/assets/0/file");
   EXPECT_HAS(e, "gone.gltf");
-  const std::string env = error_loading("env.json", R"({"environment": {"file": "sky_missing.exr"}})");
+  const std::string env =
+      error_loading("env.json", R"({"environment": {"file": "sky_missing.exr"}})");
   EXPECT_HAS(env, "/environment/file");
 }
 
@@ -53,23 +57,30 @@ TEST(BadInput, UnknownKeysSectionsAndTypes) {
              "/lights/0/type: unknown light type 'area'");
   EXPECT_HAS(error_loading("beh.json", R"({"behaviours": {"b": {"type": "wobble"}}})"),
              "/behaviours/b/type: unknown behaviour type 'wobble'");
-  EXPECT_HAS(error_loading("gen.json", R"({"generators": [{"type": "forest"}]})"), "/generators/0/type");
-  EXPECT_HAS(error_loading("genkey.json", R"({"generators": [{"type": "night_market", "stals": 3}]})"),
-             "/generators/0/stals: unknown key");
+  EXPECT_HAS(error_loading("gen.json", R"({"generators": [{"type": "forest"}]})"),
+             "/generators/0/type");
+  EXPECT_HAS(
+      error_loading("genkey.json", R"({"generators": [{"type": "night_market", "stals": 3}]})"),
+      "/generators/0/stals: unknown key");
 }
 
 TEST(BadInput, WrongTypes) {
-  EXPECT_HAS(error_loading("type1.json", R"({"lights": [{"type": "point", "position": [0, 0, 0], "intensity": "bright"}]})"),
-             "/lights/0/intensity: expected a number, got string");
+  EXPECT_HAS(
+      error_loading(
+          "type1.json",
+          R"({"lights": [{"type": "point", "position": [0, 0, 0], "intensity": "bright"}]})"),
+      "/lights/0/intensity: expected a number, got string");
   EXPECT_HAS(error_loading("type2.json", R"({"camera": {"position": [0, 0]}})"),
              "/camera/position: expected an array of 3 numbers");
-  EXPECT_HAS(error_loading("type3.json", R"({"primitives": {"type": "box"}})"), "/primitives: expected an array");
+  EXPECT_HAS(error_loading("type3.json", R"({"primitives": {"type": "box"}})"),
+             "/primitives: expected an array");
   EXPECT_HAS(error_loading("type4.json", R"([1, 2, 3])"), "type4.json: /: expected an object");
 }
 
 TEST(BadInput, NonFiniteLightData) {
   // 1e999 overflows a double: JSON cannot say NaN or Inf any other way.
-  const std::string e = error_loading("inf.json", R"({"lights": [{"type": "point", "position": [0, 0, 0], "intensity": 1e999}]})");
+  const std::string e = error_loading(
+      "inf.json", R"({"lights": [{"type": "point", "position": [0, 0, 0], "intensity": 1e999}]})");
   EXPECT_HAS(e, "inf.json");
   EXPECT_HAS(e, "inf.json:1:67:");  // line:column of the number
   EXPECT_HAS(e, "1e999");
@@ -86,7 +97,8 @@ TEST(BadInput, NonFiniteVertexDataInGltf) {
 }
 
 TEST(BadInput, MalformedGltf) {
-  EXPECT_HAS(error_loading("broken.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ { \"mesh\": 0 } "),
+  EXPECT_HAS(error_loading("broken.gltf",
+                           "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ { \"mesh\": 0 } "),
              "broken.gltf: malformed glTF");
   auto doc = test::triangle_gltf({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
   doc["buffers"][0]["uri"] = "missing.bin";
@@ -105,7 +117,8 @@ TEST(BadInput, GltfAccessorOutOfRange) {
 
 TEST(BadInput, GltfLightWithNegativeIntensity) {
   auto doc = test::triangle_gltf({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
-  doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", -2.0}, {"name", "neg"}}};
+  doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "point"}, {"intensity", -2.0}, {"name", "neg"}}};
   doc["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
   doc["scenes"][0]["nodes"].push_back(1);
   const std::string e = error_loading("neglight.gltf", doc.dump());
@@ -114,22 +127,29 @@ TEST(BadInput, GltfLightWithNegativeIntensity) {
 }
 
 TEST(BadInput, PathWithOneKeyframe) {
-  const std::string e = error_loading("path.json", R"({"paths": {"solo": {"keys": [{"time": 0, "position": [0, 0, 0]}]}}})");
+  const std::string e = error_loading(
+      "path.json", R"({"paths": {"solo": {"keys": [{"time": 0, "position": [0, 0, 0]}]}}})");
   EXPECT_HAS(e, "path.json");
   EXPECT_HAS(e, "/paths/solo");
   EXPECT_HAS(e, "1 keyframe");
-  EXPECT_HAS(error_loading("follow.json", R"({"behaviours": {"f": {"type": "follow_path", "path": "nowhere"}}})"),
+  EXPECT_HAS(error_loading("follow.json",
+                           R"({"behaviours": {"f": {"type": "follow_path", "path": "nowhere"}}})"),
              "/behaviours/f/path: no path named 'nowhere'");
 }
 
 TEST(BadInput, NegativeRadiance) {
-  EXPECT_HAS(error_loading("neg1.json", R"({"materials": {"m": {"emissive": [1, 1, 1], "emissive_strength": -3}}})"),
-             "/materials/m: negative radiance");
-  EXPECT_HAS(error_loading("neg2.json", R"({"primitives": [{"type": "emissive_quad_grid", "counts": [2, 2],
+  EXPECT_HAS(
+      error_loading("neg1.json",
+                    R"({"materials": {"m": {"emissive": [1, 1, 1], "emissive_strength": -3}}})"),
+      "/materials/m: negative radiance");
+  EXPECT_HAS(
+      error_loading("neg2.json", R"({"primitives": [{"type": "emissive_quad_grid", "counts": [2, 2],
              "radiance": {"min": -5, "max": 10}}]})"),
-             "/primitives/0/radiance/min: negative radiance");
-  EXPECT_HAS(error_loading("neg3.json", R"({"generators": [{"type": "night_market", "lantern_radiance": [-1, 5]}]})"),
-             "/generators/0/lantern_radiance");
+      "/primitives/0/radiance/min: negative radiance");
+  EXPECT_HAS(
+      error_loading("neg3.json",
+                    R"({"generators": [{"type": "night_market", "lantern_radiance": [-1, 5]}]})"),
+      "/generators/0/lantern_radiance");
 }
 
 TEST(BadInput, AbsurdCountsAreCapped) {
@@ -137,10 +157,12 @@ TEST(BadInput, AbsurdCountsAreCapped) {
       "counts": [1000000, 1000000], "radiance": {"min": 1}}]})");
   EXPECT_HAS(e, "/primitives/0/counts");
   EXPECT_HAS(e, "exceeds the limit");
-  EXPECT_HAS(error_loading("stalls.json", R"({"generators": [{"type": "night_market", "stalls": 1e12}]})"),
-             "/generators/0/stalls: 1000000000000.0 is out of range [1, 20000]");
-  EXPECT_HAS(error_loading("subdiv.json", R"({"primitives": [{"type": "sphere", "subdivisions": 40}]})"),
-             "/primitives/0/subdivisions: 40 is out of range");
+  EXPECT_HAS(
+      error_loading("stalls.json", R"({"generators": [{"type": "night_market", "stalls": 1e12}]})"),
+      "/generators/0/stalls: 1000000000000.0 is out of range [1, 20000]");
+  EXPECT_HAS(
+      error_loading("subdiv.json", R"({"primitives": [{"type": "sphere", "subdivisions": 40}]})"),
+      "/primitives/0/subdivisions: 40 is out of range");
 }
 
 }  // namespace

@@ -1,11 +1,12 @@
 // Camera paths: interpolation passes through keyframes, is C1 in time (numerically), rotations
 // pass through their keys and stay continuous, clamping and looping, invalid paths are named.
+#include "engine/scene/camera_path.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "engine/scene/camera.h"
-#include "engine/scene/camera_path.h"
 
 namespace lantern {
 namespace {
@@ -15,10 +16,14 @@ CameraPath uneven_path(bool loop) {
   p.name = "uneven";
   p.loop = loop;
   // Uneven spacing in both time and distance, with a sharp turn at key 2.
-  const std::vector<std::pair<float, glm::vec3>> keys = {
-      {0.0f, {0, 1, 0}}, {1.0f, {4, 1, 0}}, {1.5f, {4.5f, 1.5f, 0.5f}}, {4.0f, {0, 3, 6}}, {5.0f, {-2, 1, 2}}};
+  const std::vector<std::pair<float, glm::vec3>> keys = {{0.0f, {0, 1, 0}},
+                                                         {1.0f, {4, 1, 0}},
+                                                         {1.5f, {4.5f, 1.5f, 0.5f}},
+                                                         {4.0f, {0, 3, 6}},
+                                                         {5.0f, {-2, 1, 2}}};
   for (const auto& [t, pos] : keys)
-    p.keys.push_back({t, pos, look_at_orientation(pos, glm::vec3(0, 0.5f, 1)), std::optional<float>(0.5f + 0.1f * t)});
+    p.keys.push_back({t, pos, look_at_orientation(pos, glm::vec3(0, 0.5f, 1)),
+                      std::optional<float>(0.5f + 0.1f * t)});
   if (loop) {
     PathKey closing = p.keys.front();
     closing.time = 7.0f;
@@ -29,10 +34,14 @@ CameraPath uneven_path(bool loop) {
 
 // One-sided second-order derivative estimates at t from the left and from the right.
 glm::vec3 left_velocity(const CameraPath& p, float t, float h) {
-  return (3.0f * p.evaluate(t).position - 4.0f * p.evaluate(t - h).position + p.evaluate(t - 2 * h).position) / (2 * h);
+  return (3.0f * p.evaluate(t).position - 4.0f * p.evaluate(t - h).position +
+          p.evaluate(t - 2 * h).position) /
+         (2 * h);
 }
 glm::vec3 right_velocity(const CameraPath& p, float t, float h) {
-  return (-3.0f * p.evaluate(t).position + 4.0f * p.evaluate(t + h).position - p.evaluate(t + 2 * h).position) / (2 * h);
+  return (-3.0f * p.evaluate(t).position + 4.0f * p.evaluate(t + h).position -
+          p.evaluate(t + 2 * h).position) /
+         (2 * h);
 }
 
 float angle_between(const glm::quat& a, const glm::quat& b) {
@@ -59,7 +68,8 @@ TEST(CameraPath, PositionIsC1AtInteriorKeys) {
       const glm::vec3 l = left_velocity(p, t, 1e-2f), r = right_velocity(p, t, 1e-2f);
       const float speed = std::max(glm::length(l), glm::length(r));
       ASSERT_GT(speed, 0.1f) << "key " << i;
-      EXPECT_LT(glm::length(l - r) / speed, 0.02f) << "velocity jumps at key " << i << " (loop " << loop << ")";
+      EXPECT_LT(glm::length(l - r) / speed, 0.02f)
+          << "velocity jumps at key " << i << " (loop " << loop << ")";
     }
   }
 }
@@ -78,7 +88,8 @@ TEST(CameraPath, RotationIsContinuous) {
   const CameraPath p = uneven_path(false);
   float worst = 0.0f;
   for (float t = 0.0f; t < p.end_time(); t += 1e-3f)
-    worst = std::max(worst, angle_between(p.evaluate(t).orientation, p.evaluate(t + 1e-3f).orientation));
+    worst = std::max(worst,
+                     angle_between(p.evaluate(t).orientation, p.evaluate(t + 1e-3f).orientation));
   EXPECT_LT(worst, 0.02f);  // radians per millisecond step: no flips or jumps
 }
 

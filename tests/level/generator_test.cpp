@@ -73,7 +73,8 @@ std::uint64_t hash_level(const Level& level) {
 
 Level market_with_seed(int seed) {
   const auto file = test::scratch("market_" + std::to_string(seed) + ".json");
-  test::write_text(file, R"({"generators": [{"type": "night_market", "seed": )" + std::to_string(seed) + "}]}");
+  test::write_text(
+      file, R"({"generators": [{"type": "night_market", "seed": )" + std::to_string(seed) + "}]}");
   return load_level(file);
 }
 

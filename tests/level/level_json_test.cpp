@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/level/level_loader.h"
@@ -35,7 +34,9 @@ void expect_near(glm::vec3 a, glm::vec3 b, float eps = 1e-5f) {
 
 class AllSections : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() { level_ = new Level(load_level(test::data_dir() / "all_sections.json")); }
+  static void SetUpTestSuite() {
+    level_ = new Level(load_level(test::data_dir() / "all_sections.json"));
+  }
   static void TearDownTestSuite() { delete level_; }
   static Level* level_;
 };
@@ -73,7 +74,8 @@ TEST_F(AllSections, PrimitivesArePlacedWithTheirTransforms) {
   for (const glm::vec3& n : floor.normals) expect_near(n, glm::vec3(0, 1, 0));
   // An inward box's normals point at its centre.
   const Mesh& room = l.meshes[instance(l, "room").mesh];
-  for (std::size_t i = 0; i < room.positions.size(); ++i) EXPECT_LT(glm::dot(room.normals[i], room.positions[i]), 0.0f);
+  for (std::size_t i = 0; i < room.positions.size(); ++i)
+    EXPECT_LT(glm::dot(room.normals[i], room.positions[i]), 0.0f);
   EXPECT_EQ(l.meshes[instance(l, "ball").mesh].triangle_count(), 8u * 4u * 2u - 2u * 8u);
   EXPECT_EQ(l.meshes[instance(l, "ico").mesh].triangle_count(), 80u);
 }
@@ -139,7 +141,8 @@ TEST_F(AllSections, BehavioursAttachToInstancesAndLights) {
 
 TEST_F(AllSections, AssetsArePlacedAndKeepTheirUnits) {
   const Level& l = *level_;
-  // lights_camera.gltf placed at x = 10 with scale 2: its bulb node at (1, 2, 3) lands at (12, 4, 6).
+  // lights_camera.gltf placed at x = 10 with scale 2: its bulb node at (1, 2, 3) lands at (12, 4,
+  // 6).
   expect_near(light(l, "bulb").position, glm::vec3(12, 4, 6));
   EXPECT_FLOAT_EQ(light(l, "bulb").intensity, 5.0f);  // intensity is not scaled by placement
   const Instance& panel = instance(l, "panel");

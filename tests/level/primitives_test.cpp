@@ -1,10 +1,10 @@
 // Procedural primitives: closed spheres and boxes face outwards, counts follow the parameters,
 // quad-grid radiances follow their pattern.
+#include "engine/level/primitives.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/gtc/constants.hpp>
-
-#include "engine/level/primitives.h"
 
 namespace lantern {
 namespace {
@@ -14,7 +14,9 @@ namespace {
 float signed_volume(const Mesh& m) {
   float v = 0.0f;
   for (std::size_t t = 0; t < m.indices.size(); t += 3)
-    v += glm::dot(m.positions[m.indices[t]], glm::cross(m.positions[m.indices[t + 1]], m.positions[m.indices[t + 2]])) / 6.0f;
+    v += glm::dot(m.positions[m.indices[t]],
+                  glm::cross(m.positions[m.indices[t + 1]], m.positions[m.indices[t + 2]])) /
+         6.0f;
   return v;
 }
 
@@ -36,7 +38,8 @@ TEST(Primitives, QuadGridRadiancePatterns) {
   g.pattern = "log";
   EXPECT_NEAR(quad_grid_radiance(g, 0), 1.0f, 1e-5f);
   EXPECT_NEAR(quad_grid_radiance(g, 9), 1e4f, 1.0f);
-  EXPECT_NEAR(quad_grid_radiance(g, 3) / quad_grid_radiance(g, 2), quad_grid_radiance(g, 2) / quad_grid_radiance(g, 1), 1e-3f);
+  EXPECT_NEAR(quad_grid_radiance(g, 3) / quad_grid_radiance(g, 2),
+              quad_grid_radiance(g, 2) / quad_grid_radiance(g, 1), 1e-3f);
   g.pattern = "checker";
   EXPECT_EQ(quad_grid_radiance(g, 0), 1.0f);
   EXPECT_EQ(quad_grid_radiance(g, 1), 1e4f);

@@ -3,11 +3,10 @@
 #pragma once
 
 #include <filesystem>
-#include <string>
-#include <vector>
-
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 namespace lantern::test {
 
@@ -16,8 +15,17 @@ std::filesystem::path data_dir();
 std::filesystem::path scratch(const std::string& name);
 void write_text(const std::filesystem::path& path, const std::string& text);
 
+// The binary buffer triangle_gltf embeds: positions (float3) then indices (u32).
+std::vector<unsigned char> triangle_buffer(const std::vector<glm::vec3>& positions,
+                                           const std::vector<std::uint32_t>& indices);
+// Writes a .glb: `document` (whose buffer 0 has no uri) as the JSON chunk and `bin` as the BIN
+// chunk.
+void write_glb(const std::filesystem::path& path, const nlohmann::json& document,
+               const std::vector<unsigned char>& bin);
+
 // A glTF document with one mesh (POSITION + u32 indices), one node and one material.
-nlohmann::json triangle_gltf(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices);
+nlohmann::json triangle_gltf(const std::vector<glm::vec3>& positions,
+                             const std::vector<std::uint32_t>& indices);
 
 // Runs `f` and returns the InputError message, or fails the test if none was thrown.
 template <class F>

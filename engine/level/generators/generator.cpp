@@ -14,9 +14,12 @@ void run_generator(JsonObject& params, JsonLevelReader& reader) {
     NightMarketParams p;
     p.seed = static_cast<std::uint64_t>(params.integer("seed", 1, 0, 0x7FFFFFFFFFFFFFFFll));
     p.stalls = static_cast<std::uint32_t>(params.integer("stalls", p.stalls, 1, 20000));
-    p.lanterns_per_stall = static_cast<std::uint32_t>(params.integer("lanterns_per_stall", p.lanterns_per_stall, 0, 512));
-    p.lantern_subdivisions = static_cast<std::uint32_t>(params.integer("lantern_subdivisions", p.lantern_subdivisions, 0, 3));
-    p.lights_per_stall = static_cast<std::uint32_t>(params.integer("lights_per_stall", p.lights_per_stall, 0, 64));
+    p.lanterns_per_stall = static_cast<std::uint32_t>(
+        params.integer("lanterns_per_stall", p.lanterns_per_stall, 0, 512));
+    p.lantern_subdivisions = static_cast<std::uint32_t>(
+        params.integer("lantern_subdivisions", p.lantern_subdivisions, 0, 3));
+    p.lights_per_stall =
+        static_cast<std::uint32_t>(params.integer("lights_per_stall", p.lights_per_stall, 0, 64));
     p.sign_quads = static_cast<std::uint32_t>(params.integer("sign_quads", p.sign_quads, 0, 256));
     p.movers = static_cast<std::uint32_t>(params.integer("movers", p.movers, 0, 10000));
     p.flicker_fraction = params.number("flicker_fraction", p.flicker_fraction);
@@ -25,7 +28,8 @@ void run_generator(JsonObject& params, JsonLevelReader& reader) {
     p.light_intensity = params.vec2("light_intensity", p.light_intensity);
     p.path_name = params.string("path", p.path_name);
     p.path_duration = params.number("path_duration", p.path_duration);
-    if (p.flicker_fraction < 0.0f || p.flicker_fraction > 1.0f) params.fail("flicker_fraction", "must be in [0, 1]");
+    if (p.flicker_fraction < 0.0f || p.flicker_fraction > 1.0f)
+      params.fail("flicker_fraction", "must be in [0, 1]");
     if (p.moving_light_fraction < 0.0f || p.moving_light_fraction > 1.0f)
       params.fail("moving_light_fraction", "must be in [0, 1]");
     if (p.lantern_radiance.x < 0.0f || p.lantern_radiance.y < p.lantern_radiance.x)
@@ -33,7 +37,8 @@ void run_generator(JsonObject& params, JsonLevelReader& reader) {
     if (p.light_intensity.x < 0.0f || p.light_intensity.y < p.light_intensity.x)
       params.fail("light_intensity", "need 0 <= min <= max");
     if (p.path_duration <= 0.0f) params.fail("path_duration", "must be > 0");
-    generate_night_market(p, reader.builder(), fmt::format("{}: {}", reader.file().string(), params.pointer()));
+    generate_night_market(p, reader.builder(),
+                          fmt::format("{}: {}", reader.file().string(), params.pointer()));
     return;
   }
   params.fail("type", fmt::format("unknown generator type '{}' (night_market)", type));

@@ -2,12 +2,12 @@
 // Static pieces are merged into one mesh per material to keep the instance count small.
 #include "engine/level/generators/night_market.h"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
-#include <map>
-
-#include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 
 #include "engine/level/generators/split_mix.h"
 #include "engine/level/primitives.h"
@@ -20,10 +20,18 @@ constexpr float kPitchZ = 7.0f;  // stall depth + aisle
 constexpr int kPalette = 6;
 constexpr int kRadianceBins = 4;
 
-const std::array<glm::vec3, kPalette> kCanvas = {{{0.62f, 0.12f, 0.10f}, {0.10f, 0.30f, 0.55f}, {0.70f, 0.55f, 0.12f},
-                                                  {0.15f, 0.45f, 0.20f}, {0.55f, 0.25f, 0.50f}, {0.75f, 0.72f, 0.65f}}};
-const std::array<glm::vec3, kPalette> kGlow = {{{1.00f, 0.55f, 0.20f}, {1.00f, 0.30f, 0.15f}, {1.00f, 0.80f, 0.45f},
-                                                {0.95f, 0.40f, 0.60f}, {0.50f, 0.80f, 1.00f}, {1.00f, 0.90f, 0.70f}}};
+const std::array<glm::vec3, kPalette> kCanvas = {{{0.62f, 0.12f, 0.10f},
+                                                  {0.10f, 0.30f, 0.55f},
+                                                  {0.70f, 0.55f, 0.12f},
+                                                  {0.15f, 0.45f, 0.20f},
+                                                  {0.55f, 0.25f, 0.50f},
+                                                  {0.75f, 0.72f, 0.65f}}};
+const std::array<glm::vec3, kPalette> kGlow = {{{1.00f, 0.55f, 0.20f},
+                                                {1.00f, 0.30f, 0.15f},
+                                                {1.00f, 0.80f, 0.45f},
+                                                {0.95f, 0.40f, 0.60f},
+                                                {0.50f, 0.80f, 1.00f},
+                                                {1.00f, 0.90f, 0.70f}}};
 
 float log_uniform(SplitMix& rng, glm::vec2 range) {
   if (range.x <= 0.0f || range.y <= range.x) return rng.uniform(range.x, range.y);
@@ -61,9 +69,11 @@ struct MergedMeshes {
 
 }  // namespace
 
-void generate_night_market(const NightMarketParams& p, LevelBuilder& builder, const std::string& where) {
+void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
+                           const std::string& where) {
   SplitMix rng(p.seed ^ 0x6E696768746D6B74ull);  // "nightmkt"
-  const auto cols = static_cast<std::uint32_t>(std::ceil(std::sqrt(static_cast<double>(p.stalls) * 1.5)));
+  const auto cols =
+      static_cast<std::uint32_t>(std::ceil(std::sqrt(static_cast<double>(p.stalls) * 1.5)));
   const std::uint32_t rows = (p.stalls + cols - 1) / cols;
   const float half_w = 0.5f * static_cast<float>(cols - 1) * kPitchX;
   const float half_d = 0.5f * static_cast<float>(rows - 1) * kPitchZ;
@@ -83,55 +93,70 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder, co
 
   for (std::uint32_t s = 0; s < p.stalls; ++s) {
     const std::uint32_t col = s % cols, row = s / cols;
-    const glm::vec3 center(static_cast<float>(col) * kPitchX - half_w, 0.0f, static_cast<float>(row) * kPitchZ - half_d);
+    const glm::vec3 center(static_cast<float>(col) * kPitchX - half_w, 0.0f,
+                           static_cast<float>(row) * kPitchZ - half_d);
     // Even rows face +Z, odd rows -Z: pairs of rows face each other across an aisle.
     const glm::mat4 frame = glm::rotate(glm::translate(glm::mat4(1.0f), center),
                                         row % 2 ? glm::pi<float>() : 0.0f, glm::vec3(0, 1, 0));
     const int hue = static_cast<int>(rng.below(kPalette));
-    const Material canvas = diffuse(fmt::format("market_canvas_{}", hue), kCanvas[static_cast<std::size_t>(hue)], 0.9f);
+    const Material canvas =
+        diffuse(fmt::format("market_canvas_{}", hue), kCanvas[static_cast<std::size_t>(hue)], 0.9f);
 
-    merged.add(wood, unit_box, box_at(frame, {0.0f, 0.5f, 0.6f}, {3.2f, 1.0f, 0.8f}));     // counter
-    merged.add(canvas, unit_box, box_at(frame, {0.0f, 1.3f, -1.0f}, {3.4f, 2.6f, 0.1f}));  // back wall
-    merged.add(canvas, unit_box, box_at(frame, {0.0f, 2.75f, 0.1f}, {3.6f, 0.08f, 2.6f})); // roof
+    merged.add(wood, unit_box, box_at(frame, {0.0f, 0.5f, 0.6f}, {3.2f, 1.0f, 0.8f}));  // counter
+    merged.add(canvas, unit_box,
+               box_at(frame, {0.0f, 1.3f, -1.0f}, {3.4f, 2.6f, 0.1f}));  // back wall
+    merged.add(canvas, unit_box, box_at(frame, {0.0f, 2.75f, 0.1f}, {3.6f, 0.08f, 2.6f}));  // roof
     for (float x : {-1.7f, 1.7f})
       merged.add(metal, unit_box, box_at(frame, {x, 1.35f, 1.2f}, {0.08f, 2.7f, 0.08f}));  // posts
     for (int g = 0; g < 3; ++g) {
-      const glm::vec3 size(rng.uniform(0.2f, 0.6f), rng.uniform(0.1f, 0.4f), rng.uniform(0.2f, 0.5f));
-      merged.add(goods, unit_box, box_at(frame, {rng.uniform(-1.2f, 1.2f), 1.0f + 0.5f * size.y, 0.6f}, size));
+      const glm::vec3 size(rng.uniform(0.2f, 0.6f), rng.uniform(0.1f, 0.4f),
+                           rng.uniform(0.2f, 0.5f));
+      merged.add(goods, unit_box,
+                 box_at(frame, {rng.uniform(-1.2f, 1.2f), 1.0f + 0.5f * size.y, 0.6f}, size));
     }
     // A crate stack in the aisle in front of every other stall: occluders for shadow rays.
     if (rng.chance(0.5f)) {
       const float h = rng.uniform(0.5f, 1.4f);
-      merged.add(crate, unit_box, box_at(frame, {rng.uniform(-1.5f, 1.5f), 0.5f * h, 2.1f}, {0.7f, h, 0.7f}));
+      merged.add(crate, unit_box,
+                 box_at(frame, {rng.uniform(-1.5f, 1.5f), 0.5f * h, 2.1f}, {0.7f, h, 0.7f}));
     }
 
     // Lantern string under the roof's front edge, sagging in the middle.
     for (std::uint32_t k = 0; k < p.lanterns_per_stall; ++k) {
-      const float u = p.lanterns_per_stall > 1 ? static_cast<float>(k) / static_cast<float>(p.lanterns_per_stall - 1) : 0.5f;
+      const float u = p.lanterns_per_stall > 1
+                          ? static_cast<float>(k) / static_cast<float>(p.lanterns_per_stall - 1)
+                          : 0.5f;
       const float x = -1.7f + 3.4f * u;
       const float y = 2.55f - 0.35f * (1.0f - (2.0f * u - 1.0f) * (2.0f * u - 1.0f));
       const int glow = static_cast<int>(rng.below(kPalette));
       const float radiance = log_uniform(rng, p.lantern_radiance);
       // Radiance bins (log-spaced) keep the material count small: bin centre stands for the bin.
       const float t = p.lantern_radiance.y > p.lantern_radiance.x && p.lantern_radiance.x > 0.0f
-                          ? std::log(radiance / p.lantern_radiance.x) / std::log(p.lantern_radiance.y / p.lantern_radiance.x)
+                          ? std::log(radiance / p.lantern_radiance.x) /
+                                std::log(p.lantern_radiance.y / p.lantern_radiance.x)
                           : 0.0f;
       const int bin = std::min(static_cast<int>(t * kRadianceBins), kRadianceBins - 1);
-      const float bin_radiance = p.lantern_radiance.x > 0.0f
-                                     ? p.lantern_radiance.x * std::pow(p.lantern_radiance.y / p.lantern_radiance.x,
-                                                                       (static_cast<float>(bin) + 0.5f) / kRadianceBins)
-                                     : p.lantern_radiance.y;
-      merged.add(emitter(fmt::format("market_lantern_{}_{}", glow, bin), kGlow[static_cast<std::size_t>(glow)], bin_radiance),
+      const float bin_radiance =
+          p.lantern_radiance.x > 0.0f
+              ? p.lantern_radiance.x * std::pow(p.lantern_radiance.y / p.lantern_radiance.x,
+                                                (static_cast<float>(bin) + 0.5f) / kRadianceBins)
+              : p.lantern_radiance.y;
+      merged.add(emitter(fmt::format("market_lantern_{}_{}", glow, bin),
+                         kGlow[static_cast<std::size_t>(glow)], bin_radiance),
                  lantern, glm::translate(frame, {x, y, 1.25f}));
     }
     // Sign: a strip of emissive quads on the back wall, facing the aisle.
     const std::uint32_t sign_cols = std::max<std::uint32_t>(1, (p.sign_quads + 1) / 2);
     for (std::uint32_t q = 0; q < p.sign_quads; ++q) {
-      const float x = (static_cast<float>(q % sign_cols) - 0.5f * static_cast<float>(sign_cols - 1)) * 0.32f;
+      const float x =
+          (static_cast<float>(q % sign_cols) - 0.5f * static_cast<float>(sign_cols - 1)) * 0.32f;
       const float y = 2.05f + 0.17f * static_cast<float>(q / sign_cols);
-      const glm::mat4 m = glm::scale(glm::rotate(glm::translate(frame, {x, y, -0.94f}), glm::half_pi<float>(), {1, 0, 0}),
-                                     glm::vec3(0.28f, 1.0f, 0.14f));
-      merged.add(emitter(fmt::format("market_sign_{}", hue), kGlow[static_cast<std::size_t>(hue)], 60.0f), sign_quad, m);
+      const glm::mat4 m = glm::scale(
+          glm::rotate(glm::translate(frame, {x, y, -0.94f}), glm::half_pi<float>(), {1, 0, 0}),
+          glm::vec3(0.28f, 1.0f, 0.14f));
+      merged.add(
+          emitter(fmt::format("market_sign_{}", hue), kGlow[static_cast<std::size_t>(hue)], 60.0f),
+          sign_quad, m);
     }
     // Lights: a spot over the counter, then bulbs along the lantern string.
     for (std::uint32_t k = 0; k < p.lights_per_stall; ++k) {
@@ -150,13 +175,15 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder, co
       } else {
         l.type = LightType::Point;
         l.name = fmt::format("stall{}_bulb{}", s, k);
-        l.position = glm::vec3(frame * glm::vec4(rng.uniform(-1.6f, 1.6f), rng.uniform(2.0f, 2.4f), 1.1f, 1.0f));
+        l.position = glm::vec3(
+            frame * glm::vec4(rng.uniform(-1.6f, 1.6f), rng.uniform(2.0f, 2.4f), 1.1f, 1.0f));
       }
       if (rng.chance(p.flicker_fraction)) {
-        l.behaviour = FlickerBehaviour{0.3f, 1.0f, rng.uniform(4.0f, 14.0f), static_cast<std::uint32_t>(rng.next())};
+        l.behaviour = FlickerBehaviour{0.3f, 1.0f, rng.uniform(4.0f, 14.0f),
+                                       static_cast<std::uint32_t>(rng.next())};
       } else if (k > 0 && rng.chance(p.moving_light_fraction)) {
-        l.behaviour = OrbitBehaviour{l.position, 0.15f, rng.uniform(1.0f, 3.0f),
-                                     glm::vec3(0, 1, 0), rng.uniform(0.0f, 6.2831853f)};
+        l.behaviour = OrbitBehaviour{l.position, 0.15f, rng.uniform(1.0f, 3.0f), glm::vec3(0, 1, 0),
+                                     rng.uniform(0.0f, 6.2831853f)};
       }
       builder.add_light(std::move(l));
     }
@@ -165,23 +192,29 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder, co
   // Ground under the whole market.
   {
     const glm::vec2 ground(2.0f * half_w + 24.0f, 2.0f * half_d + 24.0f);
-    const std::uint32_t mat = builder.add_material(diffuse("market_ground", {0.18f, 0.17f, 0.16f}, 0.9f));
+    const std::uint32_t mat =
+        builder.add_material(diffuse("market_ground", {0.18f, 0.17f, 0.16f}, 0.9f));
     const std::uint32_t mesh = builder.add_mesh(make_plane(ground), where + ": ground");
     builder.add_instance("market_ground", mesh, mat, Transform{});
   }
   for (auto& [name, part] : merged.parts) {
     part.second.name = name;
     const std::uint32_t mat = builder.add_material(part.first);
-    const std::uint32_t mesh = builder.add_mesh(std::move(part.second), fmt::format("{}: merged mesh '{}'", where, name));
+    const std::uint32_t mesh =
+        builder.add_mesh(std::move(part.second), fmt::format("{}: merged mesh '{}'", where, name));
     builder.add_instance(name, mesh, mat, Transform{});
   }
 
   // Movers: carts orbiting aisle points; every 4th is a spinning glowing sign.
   if (p.movers > 0) {
-    const std::uint32_t cart_mesh = builder.add_mesh(make_box({1.2f, 1.0f, 0.8f}), where + ": cart");
-    const std::uint32_t cart_mat = builder.add_material(diffuse("market_cart", {0.5f, 0.1f, 0.08f}, 0.5f));
-    const std::uint32_t spinner_mesh = builder.add_mesh(make_box({1.0f, 0.6f, 0.05f}), where + ": spinner");
-    const std::uint32_t spinner_mat = builder.add_material(emitter("market_spinner", {0.4f, 0.9f, 1.0f}, 150.0f));
+    const std::uint32_t cart_mesh =
+        builder.add_mesh(make_box({1.2f, 1.0f, 0.8f}), where + ": cart");
+    const std::uint32_t cart_mat =
+        builder.add_material(diffuse("market_cart", {0.5f, 0.1f, 0.08f}, 0.5f));
+    const std::uint32_t spinner_mesh =
+        builder.add_mesh(make_box({1.0f, 0.6f, 0.05f}), where + ": spinner");
+    const std::uint32_t spinner_mat =
+        builder.add_material(emitter("market_spinner", {0.4f, 0.9f, 1.0f}, 150.0f));
     const std::uint32_t aisles = std::max<std::uint32_t>(1, rows / 2);
     for (std::uint32_t i = 0; i < p.movers; ++i) {
       const std::uint32_t aisle = rng.below(aisles);
@@ -194,8 +227,8 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder, co
                              RotateBehaviour{glm::vec3(0, 1, 0), rng.uniform(0.5f, 2.0f)});
       } else {
         t.translation = c + glm::vec3(0.0f, 0.5f, 0.0f);
-        OrbitBehaviour orbit{t.translation, rng.uniform(1.0f, 1.5f), rng.uniform(0.2f, 0.6f), glm::vec3(0, 1, 0),
-                             rng.uniform(0.0f, 6.2831853f)};
+        OrbitBehaviour orbit{t.translation, rng.uniform(1.0f, 1.5f), rng.uniform(0.2f, 0.6f),
+                             glm::vec3(0, 1, 0), rng.uniform(0.0f, 6.2831853f)};
         builder.add_instance(fmt::format("cart{}", i), cart_mesh, cart_mat, t, orbit);
       }
     }
@@ -205,9 +238,12 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder, co
   Level& level = builder.level();
   if (!level.find_path(p.path_name)) {
     const float z0 = 0.5f * kPitchZ - half_d;
-    const float z1 = std::max(z0, (static_cast<float>(2 * std::max<std::uint32_t>(1, rows / 2) - 2) + 0.5f) * kPitchZ - half_d);
+    const float z1 = std::max(
+        z0, (static_cast<float>(2 * std::max<std::uint32_t>(1, rows / 2) - 2) + 0.5f) * kPitchZ -
+                half_d);
     const float x0 = -half_w - 2.0f, x1 = half_w + 2.0f;
-    const std::array<glm::vec3, 5> corners = {{{x0, 1.7f, z0}, {x1, 1.7f, z0}, {x1, 2.5f, z1}, {x0, 1.7f, z1}, {x0, 1.7f, z0}}};
+    const std::array<glm::vec3, 5> corners = {
+        {{x0, 1.7f, z0}, {x1, 1.7f, z0}, {x1, 2.5f, z1}, {x0, 1.7f, z1}, {x0, 1.7f, z0}}};
     CameraPath path;
     path.name = p.path_name;
     path.loop = true;
@@ -216,11 +252,16 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder, co
     for (int i = 0; i <= steps; ++i) {
       const int side = std::min(i / per_side, 3);
       const float u = static_cast<float>(i - side * per_side) / per_side;
-      const glm::vec3 pos = glm::mix(corners[static_cast<std::size_t>(side)], corners[static_cast<std::size_t>(side + 1)], u);
-      const glm::vec3 ahead = glm::mix(corners[static_cast<std::size_t>(side)], corners[static_cast<std::size_t>(side + 1)],
-                                       std::min(u + 0.5f, 1.0f)) + glm::vec3(0.0f, -0.3f, 0.0f);
-      const glm::vec3 look = glm::length(ahead - pos) > 0.5f ? ahead : pos + glm::vec3(1.0f, -0.2f, 0.0f);
-      path.keys.push_back({p.path_duration * static_cast<float>(i) / steps, pos, look_at_orientation(pos, look), std::nullopt});
+      const glm::vec3 pos = glm::mix(corners[static_cast<std::size_t>(side)],
+                                     corners[static_cast<std::size_t>(side + 1)], u);
+      const glm::vec3 ahead =
+          glm::mix(corners[static_cast<std::size_t>(side)],
+                   corners[static_cast<std::size_t>(side + 1)], std::min(u + 0.5f, 1.0f)) +
+          glm::vec3(0.0f, -0.3f, 0.0f);
+      const glm::vec3 look =
+          glm::length(ahead - pos) > 0.5f ? ahead : pos + glm::vec3(1.0f, -0.2f, 0.0f);
+      path.keys.push_back({p.path_duration * static_cast<float>(i) / steps, pos,
+                           look_at_orientation(pos, look), std::nullopt});
     }
     path.keys.back().orientation = path.keys.front().orientation;
     level.paths.push_back(std::move(path));
