@@ -159,6 +159,18 @@ void MemoryAllocator::free(const Allocation& a) {
   }
 }
 
+std::string describe(const std::vector<HeapStats>& heaps) {
+  auto mib = [](VkDeviceSize bytes) { return static_cast<double>(bytes) / (1 << 20); };
+  std::string text;
+  for (const HeapStats& h : heaps) {
+    if (h.blocks == 0) continue;
+    text += fmt::format("{}heap {} ({}, {:.1f} GiB): {:.1f} MiB reserved in {} block(s), {:.1f} MiB used by {} allocation(s)",
+                        text.empty() ? "" : "\n", h.heap, h.device_local ? "device-local" : "host",
+                        mib(h.heap_size) / 1024.0, mib(h.reserved), h.blocks, mib(h.used), h.allocations);
+  }
+  return text.empty() ? "no device memory allocated" : text;
+}
+
 std::vector<HeapStats> MemoryAllocator::stats() const {
   std::lock_guard lock(mutex_);
   std::vector<HeapStats> heaps = dedicated_;

@@ -55,7 +55,7 @@ PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& 
             fmt::format("pipelines-{:04x}-{:04x}-{}.bin", properties.vendorID, properties.deviceID, uuid);
     data = read_file(file_);
     if (!data.empty() && !header_matches(data, properties)) {
-      log::info("pipeline cache {} is for another device or driver: ignored", file_.string());
+      log::info("pipeline cache {} does not match this device and driver (or is damaged): ignored", file_.string());
       data.clear();
     }
   }

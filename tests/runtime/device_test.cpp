@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include "engine/core/error.h"
@@ -41,6 +42,21 @@ TEST(Device, BadSelectorsAreInputErrorsNamingDevices) {
   } else {
     EXPECT_THROW(Device device(options), InputError);
   }
+}
+
+// The counter must really see errors, or "zero validation errors" in every other test means nothing.
+TEST(Device, ValidationCountsAnInvalidCall) {
+  Device device(test::test_device_options());
+  ASSERT_TRUE(device.validation_enabled());
+  ASSERT_EQ(device.validation_errors(), 0u);
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = 0;  // VUID-VkBufferCreateInfo-size-00912: size must be greater than 0
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  std::fprintf(stderr, "(the validation error below is expected)\n");
+  VkBuffer buffer = VK_NULL_HANDLE;
+  const VkResult result = vkCreateBuffer(device.handle(), &info, nullptr, &buffer);
+  if (result == VK_SUCCESS) vkDestroyBuffer(device.handle(), buffer, nullptr);
+  EXPECT_GE(device.validation_errors(), 1u);
 }
 
 using DeviceCapsTest = test::GpuTest;

@@ -107,6 +107,7 @@ TEST_F(GpuResources, SubAllocatorSharesBlocksAndReleasesMemory) {
     const VkDeviceSize big_size = device.memory().block_size();  // > half a block: dedicated
     Buffer big(device, {.size = big_size, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.big"});
     EXPECT_GE(total(&HeapStats::reserved), total(&HeapStats::used));
+    EXPECT_NE(describe(device.memory().stats()).find("MiB used by"), std::string::npos);
     EXPECT_GE(total(&HeapStats::used), used_before + 32 * (256 << 10) + big_size);
   }
   EXPECT_EQ(total(&HeapStats::used), used_before) << "all bytes returned";
