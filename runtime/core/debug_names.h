@@ -1,4 +1,5 @@
-// Maps Vulkan handle types to VkObjectType so Device::set_name(handle, "name") works for any handle.
+// Maps Vulkan handle types to VkObjectType so Device::set_name(handle, "name") works for any
+// handle.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -8,9 +9,9 @@ namespace lantern::runtime {
 template <class Handle>
 struct ObjectTypeOf;
 
-#define LANTERN_OBJECT_TYPE(Handle, Type) \
-  template <>                             \
-  struct ObjectTypeOf<Handle> {           \
+#define LANTERN_OBJECT_TYPE(Handle, Type)       \
+  template <>                                   \
+  struct ObjectTypeOf<Handle> {                 \
     static constexpr VkObjectType value = Type; \
   }
 LANTERN_OBJECT_TYPE(VkBuffer, VK_OBJECT_TYPE_BUFFER);

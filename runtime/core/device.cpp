@@ -27,7 +27,8 @@ std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
 
 std::vector<DeviceInfo> describe(const std::vector<VkPhysicalDevice>& devices) {
   std::vector<DeviceInfo> infos;
-  for (std::uint32_t i = 0; i < devices.size(); ++i) infos.push_back(query_device_info(devices[i], i));
+  for (std::uint32_t i = 0; i < devices.size(); ++i)
+    infos.push_back(query_device_info(devices[i], i));
   return infos;
 }
 
@@ -61,8 +62,10 @@ std::vector<DeviceInfo> Device::enumerate() {
   return describe(physical_devices(instance.handle()));
 }
 
-Device::Device(const DeviceOptions& options) : persist_pipeline_cache_(options.persist_pipeline_cache) {
-  instance_ = std::make_unique<Instance>(resolve_validation_request(options.validation, options.sync_validation));
+Device::Device(const DeviceOptions& options)
+    : persist_pipeline_cache_(options.persist_pipeline_cache) {
+  instance_ = std::make_unique<Instance>(
+      resolve_validation_request(options.validation, options.sync_validation));
   const auto devices = physical_devices(instance_->handle());
   const auto infos = describe(devices);
   const std::uint32_t index = select_device(infos, options.selector);
@@ -92,14 +95,15 @@ Device::Device(const DeviceOptions& options) : persist_pipeline_cache_(options.p
   vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 
   const bool core13 = caps_.api_version >= VK_API_VERSION_1_3;
-  fn_.cmd_push_descriptor_set = load<PFN_vkCmdPushDescriptorSetKHR>(device_, "vkCmdPushDescriptorSetKHR");
-  fn_.cmd_pipeline_barrier2 =
-      load<PFN_vkCmdPipelineBarrier2KHR>(device_, core13 ? "vkCmdPipelineBarrier2" : "vkCmdPipelineBarrier2KHR");
+  fn_.cmd_push_descriptor_set =
+      load<PFN_vkCmdPushDescriptorSetKHR>(device_, "vkCmdPushDescriptorSetKHR");
+  fn_.cmd_pipeline_barrier2 = load<PFN_vkCmdPipelineBarrier2KHR>(
+      device_, core13 ? "vkCmdPipelineBarrier2" : "vkCmdPipelineBarrier2KHR");
   if (caps_.dynamic_rendering) {
-    fn_.cmd_begin_rendering =
-        load<PFN_vkCmdBeginRenderingKHR>(device_, core13 ? "vkCmdBeginRendering" : "vkCmdBeginRenderingKHR");
-    fn_.cmd_end_rendering =
-        load<PFN_vkCmdEndRenderingKHR>(device_, core13 ? "vkCmdEndRendering" : "vkCmdEndRenderingKHR");
+    fn_.cmd_begin_rendering = load<PFN_vkCmdBeginRenderingKHR>(
+        device_, core13 ? "vkCmdBeginRendering" : "vkCmdBeginRenderingKHR");
+    fn_.cmd_end_rendering = load<PFN_vkCmdEndRenderingKHR>(
+        device_, core13 ? "vkCmdEndRendering" : "vkCmdEndRenderingKHR");
   }
   if (caps_.debug_utils) {
     VkInstance inst = instance_->handle();
@@ -111,28 +115,33 @@ Device::Device(const DeviceOptions& options) : persist_pipeline_cache_(options.p
         vkGetInstanceProcAddr(inst, "vkCmdEndDebugUtilsLabelEXT"));
   }
   if (fn_.cmd_push_descriptor_set == nullptr || fn_.cmd_pipeline_barrier2 == nullptr)
-    throw RuntimeError("Vulkan driver did not return vkCmdPushDescriptorSetKHR / vkCmdPipelineBarrier2");
+    throw RuntimeError(
+        "Vulkan driver did not return vkCmdPushDescriptorSetKHR / vkCmdPipelineBarrier2");
 
   VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pool_info.flags =
+      VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pool_info.queueFamilyIndex = queue_family_;
   VK_CHECK(vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_));
   VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &submit_fence_));
 
   memory_ = std::make_unique<MemoryAllocator>(
-      device_, memory_properties_, MemoryAllocator::Options{.device_address = caps_.buffer_device_address});
+      device_, memory_properties_,
+      MemoryAllocator::Options{.device_address = caps_.buffer_device_address});
   pipeline_cache_ = std::make_unique<PipelineCache>(device_, properties_, options.cache_dir,
                                                     options.persist_pipeline_cache);
   set_name(queue_, "lantern.queue");
   set_name(command_pool_, "lantern.one_shot_pool");
 
-  log::info("Vulkan device {}: {} ({}, Vulkan {}, {}); ray query {}, descriptor indexing {}, validation {}",
-            info_.index, info_.name, info_.type, info_.api_version, info_.driver,
-            caps_.ray_query ? "yes" : "no", caps_.descriptor_indexing ? "yes" : "no",
-            instance_->sync_validation_enabled() ? "on (+sync)"
-            : instance_->validation_enabled()    ? "on"
-                                                 : "off");
+  log::info(
+      "Vulkan device {}: {} ({}, Vulkan {}, {}); ray query {}, descriptor indexing {}, validation "
+      "{}",
+      info_.index, info_.name, info_.type, info_.api_version, info_.driver,
+      caps_.ray_query ? "yes" : "no", caps_.descriptor_indexing ? "yes" : "no",
+      instance_->sync_validation_enabled() ? "on (+sync)"
+      : instance_->validation_enabled()    ? "on"
+                                           : "off");
 }
 
 Device::~Device() {
@@ -145,12 +154,24 @@ Device::~Device() {
   if (device_ != VK_NULL_HANDLE) vkDestroyDevice(device_, nullptr);
 }
 
-VkInstance Device::instance() const { return instance_->handle(); }
-VkPipelineCache Device::pipeline_cache() const { return pipeline_cache_->handle(); }
-bool Device::validation_enabled() const { return instance_->validation_enabled(); }
-bool Device::sync_validation_enabled() const { return instance_->sync_validation_enabled(); }
-std::uint32_t Device::validation_errors() const { return instance_->counters().errors.load(); }
-std::uint32_t Device::validation_warnings() const { return instance_->counters().warnings.load(); }
+VkInstance Device::instance() const {
+  return instance_->handle();
+}
+VkPipelineCache Device::pipeline_cache() const {
+  return pipeline_cache_->handle();
+}
+bool Device::validation_enabled() const {
+  return instance_->validation_enabled();
+}
+bool Device::sync_validation_enabled() const {
+  return instance_->sync_validation_enabled();
+}
+std::uint32_t Device::validation_errors() const {
+  return instance_->counters().errors.load();
+}
+std::uint32_t Device::validation_warnings() const {
+  return instance_->counters().warnings.load();
+}
 std::uint32_t Device::performance_warnings() const {
   return instance_->counters().performance_warnings.load();
 }
@@ -205,7 +226,9 @@ void Device::submit_and_wait(const std::function<void(VkCommandBuffer)>& record)
   VK_CHECK(vkWaitForFences(device_, 1, &submit_fence_, VK_TRUE, UINT64_MAX));
 }
 
-void Device::wait_idle() const { VK_CHECK(vkDeviceWaitIdle(device_)); }
+void Device::wait_idle() const {
+  VK_CHECK(vkDeviceWaitIdle(device_));
+}
 
 void Device::save_pipeline_cache() {
   if (const std::size_t bytes = pipeline_cache_->save(); bytes > 0)

@@ -6,9 +6,9 @@
 //   runtime::Device device({.selector = "auto"});          // logs the chosen device
 //   runtime::Buffer out(device, {.size = n * 4, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
 //                                .memory = runtime::MemoryUsage::Readback, .name = "out"});
-//   runtime::ShaderLibrary shaders;                        // compiled SPIR-V under LANTERN_SHADER_DIR
-//   runtime::ComputePipeline fill(device, shaders.load("tests/fill.comp"), {.name = "test.fill"});
-//   runtime::GpuTimer timer(device, 16);
+//   runtime::ShaderLibrary shaders;                        // compiled SPIR-V under
+//   LANTERN_SHADER_DIR runtime::ComputePipeline fill(device, shaders.load("tests/fill.comp"),
+//   {.name = "test.fill"}); runtime::GpuTimer timer(device, 16);
 //   device.submit_and_wait([&](VkCommandBuffer cmd) {
 //     timer.reset(cmd);
 //     auto scope = timer.scope(cmd, "test.fill");        // timestamps + debug label

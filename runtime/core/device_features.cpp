@@ -1,4 +1,5 @@
-// Feature negotiation: query supported features, enable what we need and what helps, fill DeviceCaps.
+// Feature negotiation: query supported features, enable what we need and what helps, fill
+// DeviceCaps.
 #include "runtime/core/device_features.h"
 
 #include <fmt/format.h>
@@ -11,7 +12,8 @@
 
 namespace lantern::runtime {
 
-FeatureNegotiation::FeatureNegotiation(VkPhysicalDevice device, std::uint32_t queue_timestamp_bits) {
+FeatureNegotiation::FeatureNegotiation(VkPhysicalDevice device,
+                                       std::uint32_t queue_timestamp_bits) {
   std::uint32_t count = 0;
   VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr));
   std::vector<VkExtensionProperties> available(count);
@@ -21,21 +23,28 @@ FeatureNegotiation::FeatureNegotiation(VkPhysicalDevice device, std::uint32_t qu
                        [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
   };
 
-  VkPhysicalDevicePushDescriptorPropertiesKHR push{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR};
-  VkPhysicalDeviceVulkan11Properties p11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES, &push};
+  VkPhysicalDevicePushDescriptorPropertiesKHR push{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR};
+  VkPhysicalDeviceVulkan11Properties p11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES,
+                                         &push};
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p11};
   vkGetPhysicalDeviceProperties2(device, &props);
   const VkPhysicalDeviceLimits& limits = props.properties.limits;
-  caps_.api_version = std::min(props.properties.apiVersion, static_cast<std::uint32_t>(VK_API_VERSION_1_3));
+  caps_.api_version =
+      std::min(props.properties.apiVersion, static_cast<std::uint32_t>(VK_API_VERSION_1_3));
   const bool core13 = caps_.api_version >= VK_API_VERSION_1_3;
 
   // What the device supports.
   VkPhysicalDeviceVulkan11Features s11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
   VkPhysicalDeviceVulkan12Features s12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &s11};
-  VkPhysicalDeviceSynchronization2FeaturesKHR s_sync2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES_KHR, &s12};
-  VkPhysicalDeviceDynamicRenderingFeaturesKHR s_dyn{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES_KHR, &s_sync2};
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR s_accel{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, &s_dyn};
-  VkPhysicalDeviceRayQueryFeaturesKHR s_rq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR, &s_accel};
+  VkPhysicalDeviceSynchronization2FeaturesKHR s_sync2{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES_KHR, &s12};
+  VkPhysicalDeviceDynamicRenderingFeaturesKHR s_dyn{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES_KHR, &s_sync2};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR s_accel{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, &s_dyn};
+  VkPhysicalDeviceRayQueryFeaturesKHR s_rq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR,
+                                           &s_accel};
   VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &s_rq};
   vkGetPhysicalDeviceFeatures2(device, &supported);
   const VkPhysicalDeviceFeatures& s10 = supported.features;
@@ -46,12 +55,14 @@ FeatureNegotiation::FeatureNegotiation(VkPhysicalDevice device, std::uint32_t qu
   };
   require(props.properties.apiVersion >= VK_API_VERSION_1_2, "Vulkan 1.2");
   require(has(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME), VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
-  require(queue_timestamp_bits > 0 && limits.timestampComputeAndGraphics, "timestamps on the graphics+compute queue");
+  require(queue_timestamp_bits > 0 && limits.timestampComputeAndGraphics,
+          "timestamps on the graphics+compute queue");
   require(s12.hostQueryReset, "hostQueryReset");
   require(s12.timelineSemaphore, "timelineSemaphore");
   require(s10.fragmentStoresAndAtomics, "fragmentStoresAndAtomics");
   require(s10.shaderStorageImageExtendedFormats, "shaderStorageImageExtendedFormats");
-  const bool sync2 = s_sync2.synchronization2 && (core13 || has(VK_KHR_SYNCHRONIZATION_2_EXTENSION_NAME));
+  const bool sync2 =
+      s_sync2.synchronization2 && (core13 || has(VK_KHR_SYNCHRONIZATION_2_EXTENSION_NAME));
   require(sync2, "synchronization2");
   if (!missing.empty()) {
     std::string list;
@@ -76,9 +87,11 @@ FeatureNegotiation::FeatureNegotiation(VkPhysicalDevice device, std::uint32_t qu
   // Optional features, reported in caps.
   features_.features.shaderInt64 = s10.shaderInt64;
   caps_.shader_int64 = s10.shaderInt64 == VK_TRUE;
-  caps_.storage_image_without_format = s10.shaderStorageImageReadWithoutFormat && s10.shaderStorageImageWriteWithoutFormat;
+  caps_.storage_image_without_format =
+      s10.shaderStorageImageReadWithoutFormat && s10.shaderStorageImageWriteWithoutFormat;
   features_.features.shaderStorageImageReadWithoutFormat = s10.shaderStorageImageReadWithoutFormat;
-  features_.features.shaderStorageImageWriteWithoutFormat = s10.shaderStorageImageWriteWithoutFormat;
+  features_.features.shaderStorageImageWriteWithoutFormat =
+      s10.shaderStorageImageWriteWithoutFormat;
   features_.features.samplerAnisotropy = s10.samplerAnisotropy;
   features_.features.independentBlend = s10.independentBlend;
   v11_.shaderDrawParameters = s11.shaderDrawParameters;
@@ -99,11 +112,13 @@ FeatureNegotiation::FeatureNegotiation(VkPhysicalDevice device, std::uint32_t qu
     v12_.descriptorBindingPartiallyBound = VK_TRUE;
     v12_.descriptorBindingVariableDescriptorCount = s12.descriptorBindingVariableDescriptorCount;
     v12_.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
-    v12_.shaderStorageBufferArrayNonUniformIndexing = s12.shaderStorageBufferArrayNonUniformIndexing;
+    v12_.shaderStorageBufferArrayNonUniformIndexing =
+        s12.shaderStorageBufferArrayNonUniformIndexing;
     v12_.shaderStorageImageArrayNonUniformIndexing = s12.shaderStorageImageArrayNonUniformIndexing;
   }
 
-  caps_.dynamic_rendering = s_dyn.dynamicRendering && (core13 || has(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME));
+  caps_.dynamic_rendering =
+      s_dyn.dynamicRendering && (core13 || has(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME));
   if (caps_.dynamic_rendering) {
     if (core13) {
       v13_.dynamicRendering = VK_TRUE;
@@ -114,7 +129,8 @@ FeatureNegotiation::FeatureNegotiation(VkPhysicalDevice device, std::uint32_t qu
   }
   if (core13) v13_.maintenance4 = VK_FALSE;
 
-  caps_.ray_query = has(VK_KHR_RAY_QUERY_EXTENSION_NAME) && has(VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
+  caps_.ray_query = has(VK_KHR_RAY_QUERY_EXTENSION_NAME) &&
+                    has(VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
                     has(VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME) && s_rq.rayQuery &&
                     s_accel.accelerationStructure && s12.bufferDeviceAddress;
   if (caps_.ray_query) {

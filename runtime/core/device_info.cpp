@@ -15,11 +15,16 @@ namespace {
 
 const char* type_name(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return "discrete";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return "integrated";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return "virtual";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return "cpu";
+    default:
+      return "other";
   }
 }
 
@@ -39,7 +44,8 @@ int auto_rank(const std::string& type) {
 }  // namespace
 
 std::string version_string(std::uint32_t v) {
-  return fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(v), VK_API_VERSION_MINOR(v), VK_API_VERSION_PATCH(v));
+  return fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(v), VK_API_VERSION_MINOR(v),
+                     VK_API_VERSION_PATCH(v));
 }
 
 DeviceInfo query_device_info(VkPhysicalDevice device, std::uint32_t index) {
@@ -73,7 +79,8 @@ DeviceInfo query_device_info(VkPhysicalDevice device, std::uint32_t index) {
   info.push_descriptor = has(extensions, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
   for (std::uint32_t h = 0; h < memory.memoryHeapCount; ++h)
     if ((memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) != 0)
-      info.device_local_bytes = std::max<std::uint64_t>(info.device_local_bytes, memory.memoryHeaps[h].size);
+      info.device_local_bytes =
+          std::max<std::uint64_t>(info.device_local_bytes, memory.memoryHeaps[h].size);
   std::memcpy(info.pipeline_cache_uuid.data(), props.properties.pipelineCacheUUID, VK_UUID_SIZE);
   return info;
 }
@@ -88,16 +95,18 @@ std::string describe_devices(std::span<const DeviceInfo> devices) {
 
 std::uint32_t select_device(std::span<const DeviceInfo> devices, const std::string& selector) {
   auto fail = [&](const std::string& why) -> std::uint32_t {
-    throw InputError(fmt::format("--device {}: {} (available: {})", selector, why, describe_devices(devices)));
+    throw InputError(
+        fmt::format("--device {}: {} (available: {})", selector, why, describe_devices(devices)));
   };
   if (devices.empty()) fail("no Vulkan devices found (is mesa-vulkan-drivers installed?)");
 
   if (selector == "auto" || selector == "gpu" || selector == "cpu") {
     const DeviceInfo* best = nullptr;
     for (const auto& d : devices) {
-      const bool allowed = selector == "auto" ||
-                           (selector == "gpu" && (d.type == "discrete" || d.type == "integrated")) ||
-                           (selector == "cpu" && d.type == "cpu");
+      const bool allowed =
+          selector == "auto" ||
+          (selector == "gpu" && (d.type == "discrete" || d.type == "integrated")) ||
+          (selector == "cpu" && d.type == "cpu");
       if (allowed && (best == nullptr || auto_rank(d.type) < auto_rank(best->type))) best = &d;
     }
     if (best == nullptr) fail(fmt::format("no {} device", selector == "gpu" ? "GPU" : "CPU"));

@@ -13,12 +13,12 @@
 namespace lantern::runtime {
 
 struct DeviceInfo {
-  std::uint32_t index = 0;    // position in vkEnumeratePhysicalDevices order (= --device INDEX)
-  std::string name;           // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
-  std::string type;           // "discrete" | "integrated" | "virtual" | "cpu" | "other"
-  std::string api_version;    // "1.4.305"
-  std::string driver;         // driver name and info, e.g. "llvmpipe Mesa 25.0.7"
-  bool ray_query = false;     // VK_KHR_ray_query + VK_KHR_acceleration_structure
+  std::uint32_t index = 0;  // position in vkEnumeratePhysicalDevices order (= --device INDEX)
+  std::string name;         // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string type;         // "discrete" | "integrated" | "virtual" | "cpu" | "other"
+  std::string api_version;  // "1.4.305"
+  std::string driver;       // driver name and info, e.g. "llvmpipe Mesa 25.0.7"
+  bool ray_query = false;   // VK_KHR_ray_query + VK_KHR_acceleration_structure
   bool descriptor_indexing = false;
   bool push_descriptor = false;
   std::uint64_t device_local_bytes = 0;  // size of the largest device-local heap

@@ -42,13 +42,15 @@ Instance::Instance(ValidationRequest request) {
       layers.push_back(kValidationLayer);
       validation_enabled_ = true;
     } else {
-      log::warn("Vulkan validation was requested but {} is not installed (Debian package "
-                "vulkan-validationlayers): validation unavailable, errors will not be caught",
-                kValidationLayer);
+      log::warn(
+          "Vulkan validation was requested but {} is not installed (Debian package "
+          "vulkan-validationlayers): validation unavailable, errors will not be caught",
+          kValidationLayer);
     }
   }
-  debug_utils_ = has_extension(nullptr, VK_EXT_DEBUG_UTILS_EXTENSION_NAME) ||
-                 (validation_enabled_ && has_extension(kValidationLayer, VK_EXT_DEBUG_UTILS_EXTENSION_NAME));
+  debug_utils_ =
+      has_extension(nullptr, VK_EXT_DEBUG_UTILS_EXTENSION_NAME) ||
+      (validation_enabled_ && has_extension(kValidationLayer, VK_EXT_DEBUG_UTILS_EXTENSION_NAME));
   if (debug_utils_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   if (validation_enabled_ && !debug_utils_) {
     log::warn("VK_EXT_debug_utils is unavailable: validation messages cannot be counted");

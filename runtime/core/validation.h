@@ -10,7 +10,8 @@
 
 namespace lantern::runtime {
 
-// Message counts since the instance was created. Thread-safe: drivers may call back from any thread.
+// Message counts since the instance was created. Thread-safe: drivers may call back from any
+// thread.
 struct ValidationCounters {
   std::atomic<std::uint32_t> errors{0};
   std::atomic<std::uint32_t> warnings{0};
@@ -29,9 +30,10 @@ struct ValidationRequest {
 ValidationRequest resolve_validation_request(bool option_validation, bool option_sync);
 
 // The messenger callback; user data must point to a ValidationCounters that outlives the messenger.
-VKAPI_ATTR VkBool32 VKAPI_CALL validation_callback(
-    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
-    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user_data);
+VKAPI_ATTR VkBool32 VKAPI_CALL validation_callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                   VkDebugUtilsMessageTypeFlagsEXT types,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void* user_data);
 
 // A messenger create-info wired to validation_callback (errors, warnings, performance).
 VkDebugUtilsMessengerCreateInfoEXT messenger_create_info(ValidationCounters* counters);

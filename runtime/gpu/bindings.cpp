@@ -16,66 +16,83 @@ Bindings::Bindings(const Pipeline& pipeline) : pipeline_(&pipeline) {
   for (const auto& b : pipeline.bindings()) slots_.push_back(Slot{.binding = &b});
 }
 
-Bindings::Slot& Bindings::slot(std::string_view name, std::initializer_list<VkDescriptorType> accepted,
-                               const char* call) {
-  auto it = std::find_if(slots_.begin(), slots_.end(), [&](const Slot& s) { return s.binding->name == name; });
+Bindings::Slot& Bindings::slot(std::string_view name,
+                               std::initializer_list<VkDescriptorType> accepted, const char* call) {
+  auto it = std::find_if(slots_.begin(), slots_.end(),
+                         [&](const Slot& s) { return s.binding->name == name; });
   if (it == slots_.end()) {
     std::string known;
     for (const auto& s : slots_)
-      known += fmt::format("{}{} ({})", known.empty() ? "" : ", ", s.binding->name, descriptor_type_name(s.binding->type));
-    throw RuntimeError(fmt::format("pipeline '{}': no binding named '{}' (shader bindings: {})", pipeline_->name(),
-                                   name, known.empty() ? "none" : known));
+      known += fmt::format("{}{} ({})", known.empty() ? "" : ", ", s.binding->name,
+                           descriptor_type_name(s.binding->type));
+    throw RuntimeError(fmt::format("pipeline '{}': no binding named '{}' (shader bindings: {})",
+                                   pipeline_->name(), name, known.empty() ? "none" : known));
   }
   if (std::find(accepted.begin(), accepted.end(), it->binding->type) == accepted.end())
-    throw RuntimeError(fmt::format("pipeline '{}': binding '{}' is a {}; Bindings::{} cannot bind it",
-                                   pipeline_->name(), name, descriptor_type_name(it->binding->type), call));
+    throw RuntimeError(
+        fmt::format("pipeline '{}': binding '{}' is a {}; Bindings::{} cannot bind it",
+                    pipeline_->name(), name, descriptor_type_name(it->binding->type), call));
   it->bound = true;
   return *it;
 }
 
-Bindings& Bindings::buffer(std::string_view name, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
-  slot(name, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}, "buffer").buffer = {buffer, offset, range};
+Bindings& Bindings::buffer(std::string_view name, VkBuffer buffer, VkDeviceSize offset,
+                           VkDeviceSize range) {
+  slot(name, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}, "buffer")
+      .buffer = {buffer, offset, range};
   return *this;
 }
 
-Bindings& Bindings::buffer(std::string_view name, const Buffer& buffer, VkDeviceSize offset, VkDeviceSize range) {
+Bindings& Bindings::buffer(std::string_view name, const Buffer& buffer, VkDeviceSize offset,
+                           VkDeviceSize range) {
   return this->buffer(name, buffer.handle(), offset, range);
 }
 
 Bindings& Bindings::storage_image(std::string_view name, const Image& image, VkImageLayout layout) {
-  slot(name, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, "storage_image").image = {VK_NULL_HANDLE, image.view(), layout};
+  slot(name, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, "storage_image").image = {VK_NULL_HANDLE,
+                                                                           image.view(), layout};
   return *this;
 }
 
-Bindings& Bindings::sampled_image(std::string_view name, const Image& image, VkSampler sampler, VkImageLayout layout) {
-  Slot& s = slot(name, {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}, "sampled_image");
+Bindings& Bindings::sampled_image(std::string_view name, const Image& image, VkSampler sampler,
+                                  VkImageLayout layout) {
+  Slot& s =
+      slot(name, {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+           "sampled_image");
   if (s.binding->type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER && sampler == VK_NULL_HANDLE)
-    throw RuntimeError(fmt::format("pipeline '{}': binding '{}' is a combined image sampler: pass a sampler",
-                                   pipeline_->name(), name));
+    throw RuntimeError(
+        fmt::format("pipeline '{}': binding '{}' is a combined image sampler: pass a sampler",
+                    pipeline_->name(), name));
   s.image = {sampler, image.view(), layout};
   return *this;
 }
 
 Bindings& Bindings::sampler(std::string_view name, VkSampler sampler) {
-  slot(name, {VK_DESCRIPTOR_TYPE_SAMPLER}, "sampler").image = {sampler, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED};
+  slot(name, {VK_DESCRIPTOR_TYPE_SAMPLER}, "sampler").image = {sampler, VK_NULL_HANDLE,
+                                                               VK_IMAGE_LAYOUT_UNDEFINED};
   return *this;
 }
 
-Bindings& Bindings::image_view(std::string_view name, VkImageView view, VkImageLayout layout, VkSampler sampler) {
+Bindings& Bindings::image_view(std::string_view name, VkImageView view, VkImageLayout layout,
+                               VkSampler sampler) {
   slot(name,
-       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
        "image_view")
       .image = {sampler, view, layout};
   return *this;
 }
 
-Bindings& Bindings::acceleration_structure(std::string_view name, VkAccelerationStructureKHR structure) {
-  slot(name, {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}, "acceleration_structure").structure = structure;
+Bindings& Bindings::acceleration_structure(std::string_view name,
+                                           VkAccelerationStructureKHR structure) {
+  slot(name, {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}, "acceleration_structure").structure =
+      structure;
   return *this;
 }
 
 bool Bindings::is_bound(std::string_view name) const {
-  return std::any_of(slots_.begin(), slots_.end(), [&](const Slot& s) { return s.bound && s.binding->name == name; });
+  return std::any_of(slots_.begin(), slots_.end(),
+                     [&](const Slot& s) { return s.bound && s.binding->name == name; });
 }
 
 std::vector<VkWriteDescriptorSet> Bindings::writes() const {
@@ -83,7 +100,8 @@ std::vector<VkWriteDescriptorSet> Bindings::writes() const {
   for (const auto& s : slots_)
     if (!s.bound) unbound += fmt::format("{}'{}'", unbound.empty() ? "" : ", ", s.binding->name);
   if (!unbound.empty())
-    throw RuntimeError(fmt::format("pipeline '{}': bindings not set: {}", pipeline_->name(), unbound));
+    throw RuntimeError(
+        fmt::format("pipeline '{}': bindings not set: {}", pipeline_->name(), unbound));
 
   std::vector<VkWriteDescriptorSet> writes;
   writes.reserve(slots_.size());

@@ -24,14 +24,17 @@ class Bindings {
   // Storage or uniform buffer (range VK_WHOLE_SIZE: to the end of the buffer).
   Bindings& buffer(std::string_view name, const Buffer& buffer, VkDeviceSize offset = 0,
                    VkDeviceSize range = VK_WHOLE_SIZE);
-  Bindings& storage_image(std::string_view name, const Image& image, VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL);
+  Bindings& storage_image(std::string_view name, const Image& image,
+                          VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL);
   // Sampled image or combined image sampler (the latter needs `sampler`).
-  Bindings& sampled_image(std::string_view name, const Image& image, VkSampler sampler = VK_NULL_HANDLE,
+  Bindings& sampled_image(std::string_view name, const Image& image,
+                          VkSampler sampler = VK_NULL_HANDLE,
                           VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   Bindings& sampler(std::string_view name, VkSampler sampler);
   // Raw forms for resources not owned by runtime::Buffer/Image (e.g. swapchain views).
   Bindings& buffer(std::string_view name, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range);
-  Bindings& image_view(std::string_view name, VkImageView view, VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE);
+  Bindings& image_view(std::string_view name, VkImageView view, VkImageLayout layout,
+                       VkSampler sampler = VK_NULL_HANDLE);
   Bindings& acceleration_structure(std::string_view name, VkAccelerationStructureKHR structure);
 
   const Pipeline& pipeline() const { return *pipeline_; }
@@ -50,7 +53,8 @@ class Bindings {
     VkWriteDescriptorSetAccelerationStructureKHR structure_write{
         VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
   };
-  Slot& slot(std::string_view name, std::initializer_list<VkDescriptorType> accepted, const char* call);
+  Slot& slot(std::string_view name, std::initializer_list<VkDescriptorType> accepted,
+             const char* call);
 
   const Pipeline* pipeline_;
   mutable std::vector<Slot> slots_;

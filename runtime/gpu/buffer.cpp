@@ -11,9 +11,11 @@
 
 namespace lantern::runtime {
 
-Buffer::Buffer(Device& device, const BufferDesc& desc) : device_(&device), size_(desc.size), name_(desc.name) {
+Buffer::Buffer(Device& device, const BufferDesc& desc)
+    : device_(&device), size_(desc.size), name_(desc.name) {
   if (desc.size == 0) throw RuntimeError(fmt::format("buffer '{}': size must be > 0", desc.name));
-  VkBufferUsageFlags usage = desc.usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  VkBufferUsageFlags usage =
+      desc.usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   if (!device.caps().buffer_device_address) usage &= ~VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = desc.size;
@@ -37,9 +39,13 @@ Buffer::Buffer(Device& device, const BufferDesc& desc) : device_(&device), size_
   if (!name_.empty()) device.set_name(buffer_, name_);
 }
 
-Buffer::~Buffer() { release(); }
+Buffer::~Buffer() {
+  release();
+}
 
-Buffer::Buffer(Buffer&& other) noexcept { *this = std::move(other); }
+Buffer::Buffer(Buffer&& other) noexcept {
+  *this = std::move(other);
+}
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
   if (this != &other) {

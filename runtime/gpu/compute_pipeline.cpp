@@ -13,14 +13,16 @@ namespace {
 const ShaderReflection* checked_compute(const std::shared_ptr<const ShaderCode>& shader) {
   if (!shader) throw RuntimeError("ComputePipeline: null shader");
   if (shader->reflection.stage != VK_SHADER_STAGE_COMPUTE_BIT)
-    throw RuntimeError(fmt::format("ComputePipeline: shader '{}' is not a compute shader", shader->name));
+    throw RuntimeError(
+        fmt::format("ComputePipeline: shader '{}' is not a compute shader", shader->name));
   return &shader->reflection;
 }
 }  // namespace
 
 ComputePipeline::ComputePipeline(Device& device, std::shared_ptr<const ShaderCode> shader,
                                  const ComputePipelineDesc& desc)
-    : Pipeline(device, desc.name.empty() && shader ? shader->name : desc.name, VK_PIPELINE_BIND_POINT_COMPUTE,
+    : Pipeline(device, desc.name.empty() && shader ? shader->name : desc.name,
+               VK_PIPELINE_BIND_POINT_COMPUTE,
                std::span<const ShaderReflection* const>(std::array{checked_compute(shader)})),
       shader_(std::move(shader)) {
   const ShaderReflection& r = shader_->reflection;
@@ -44,19 +46,23 @@ ComputePipeline::ComputePipeline(Device& device, std::shared_ptr<const ShaderCod
   info.stage.pName = r.entry_point.c_str();
   info.stage.pSpecializationInfo = constants.empty() ? nullptr : &spec;
   info.layout = layout_;
-  const VkResult result = vkCreateComputePipelines(device.handle(), device.pipeline_cache(), 1, &info, nullptr, &pipeline_);
+  const VkResult result = vkCreateComputePipelines(device.handle(), device.pipeline_cache(), 1,
+                                                   &info, nullptr, &pipeline_);
   vkDestroyShaderModule(device.handle(), module, nullptr);
   VK_CHECK(result);
   device.set_name(pipeline_, name_);
 }
 
-void ComputePipeline::dispatch(VkCommandBuffer cmd, std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+void ComputePipeline::dispatch(VkCommandBuffer cmd, std::uint32_t x, std::uint32_t y,
+                               std::uint32_t z) const {
   vkCmdDispatch(cmd, x, y, z);
 }
 
-void ComputePipeline::dispatch_threads(VkCommandBuffer cmd, std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+void ComputePipeline::dispatch_threads(VkCommandBuffer cmd, std::uint32_t x, std::uint32_t y,
+                                       std::uint32_t z) const {
   auto groups = [](std::uint32_t n, std::uint32_t size) { return (n + size - 1) / size; };
-  vkCmdDispatch(cmd, groups(x, local_size_[0]), groups(y, local_size_[1]), groups(z, local_size_[2]));
+  vkCmdDispatch(cmd, groups(x, local_size_[0]), groups(y, local_size_[1]),
+                groups(z, local_size_[2]));
 }
 
 void ComputePipeline::warm_up() const {

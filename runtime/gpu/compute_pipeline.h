@@ -18,7 +18,8 @@ struct ComputePipelineDesc {
 
 class ComputePipeline : public Pipeline {
  public:
-  ComputePipeline(Device& device, std::shared_ptr<const ShaderCode> shader, const ComputePipelineDesc& desc = {});
+  ComputePipeline(Device& device, std::shared_ptr<const ShaderCode> shader,
+                  const ComputePipelineDesc& desc = {});
   ComputePipeline(ComputePipeline&&) noexcept = default;
   ~ComputePipeline() = default;
 

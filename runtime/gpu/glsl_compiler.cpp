@@ -27,14 +27,23 @@ std::optional<std::string> read_text(const std::filesystem::path& path) {
 
 EShLanguage language_of(VkShaderStageFlagBits stage) {
   switch (stage) {
-    case VK_SHADER_STAGE_VERTEX_BIT: return EShLangVertex;
-    case VK_SHADER_STAGE_FRAGMENT_BIT: return EShLangFragment;
-    case VK_SHADER_STAGE_COMPUTE_BIT: return EShLangCompute;
-    case VK_SHADER_STAGE_RAYGEN_BIT_KHR: return EShLangRayGen;
-    case VK_SHADER_STAGE_MISS_BIT_KHR: return EShLangMiss;
-    case VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR: return EShLangClosestHit;
-    case VK_SHADER_STAGE_ANY_HIT_BIT_KHR: return EShLangAnyHit;
-    default: throw InputError(fmt::format("compile_glsl: unsupported shader stage {:#x}", static_cast<unsigned>(stage)));
+    case VK_SHADER_STAGE_VERTEX_BIT:
+      return EShLangVertex;
+    case VK_SHADER_STAGE_FRAGMENT_BIT:
+      return EShLangFragment;
+    case VK_SHADER_STAGE_COMPUTE_BIT:
+      return EShLangCompute;
+    case VK_SHADER_STAGE_RAYGEN_BIT_KHR:
+      return EShLangRayGen;
+    case VK_SHADER_STAGE_MISS_BIT_KHR:
+      return EShLangMiss;
+    case VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR:
+      return EShLangClosestHit;
+    case VK_SHADER_STAGE_ANY_HIT_BIT_KHR:
+      return EShLangAnyHit;
+    default:
+      throw InputError(fmt::format("compile_glsl: unsupported shader stage {:#x}",
+                                   static_cast<unsigned>(stage)));
   }
 }
 
@@ -73,7 +82,8 @@ class Includer final : public glslang::TShader::Includer {
 
 void initialize_glslang_once() {
   static std::once_flag once;
-  std::call_once(once, [] { glslang::InitializeProcess(); });  // finalized at process exit by the OS
+  std::call_once(once,
+                 [] { glslang::InitializeProcess(); });  // finalized at process exit by the OS
 }
 
 }  // namespace
@@ -91,7 +101,8 @@ VkShaderStageFlagBits stage_from_extension(const std::filesystem::path& path) {
 }
 
 GlslResult compile_glsl(const std::filesystem::path& path, VkShaderStageFlagBits stage,
-                        std::span<const std::string> defines, std::span<const std::filesystem::path> include_dirs) {
+                        std::span<const std::string> defines,
+                        std::span<const std::filesystem::path> include_dirs) {
   initialize_glslang_once();
   if (stage == VkShaderStageFlagBits{}) stage = stage_from_extension(path);
   const EShLanguage language = language_of(stage);
@@ -101,8 +112,9 @@ GlslResult compile_glsl(const std::filesystem::path& path, VkShaderStageFlagBits
   std::string preamble;
   for (const auto& define : defines) {
     const auto eq = define.find('=');
-    preamble += eq == std::string::npos ? fmt::format("#define {} 1\n", define)
-                                        : fmt::format("#define {} {}\n", define.substr(0, eq), define.substr(eq + 1));
+    preamble += eq == std::string::npos
+                    ? fmt::format("#define {} 1\n", define)
+                    : fmt::format("#define {} {}\n", define.substr(0, eq), define.substr(eq + 1));
   }
   std::vector<std::filesystem::path> dirs(include_dirs.begin(), include_dirs.end());
 #ifdef LANTERN_SOURCE_DIR
@@ -131,7 +143,8 @@ GlslResult compile_glsl(const std::filesystem::path& path, VkShaderStageFlagBits
   glslang::TProgram program;
   program.addShader(&shader);
   if (!program.link(messages)) {
-    result.log = fmt::format("{}: link failed: {}{}", name, program.getInfoLog(), program.getInfoDebugLog());
+    result.log =
+        fmt::format("{}: link failed: {}{}", name, program.getInfoLog(), program.getInfoDebugLog());
     return result;
   }
   glslang::SpvOptions options;

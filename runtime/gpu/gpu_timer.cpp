@@ -9,7 +9,8 @@
 
 namespace lantern::runtime {
 
-GpuTimer::GpuTimer(Device& device, std::uint32_t max_scopes) : device_(device), max_scopes_(max_scopes) {
+GpuTimer::GpuTimer(Device& device, std::uint32_t max_scopes)
+    : device_(device), max_scopes_(max_scopes) {
   VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   info.queryType = VK_QUERY_TYPE_TIMESTAMP;
   info.queryCount = 2 * max_scopes;
@@ -17,7 +18,9 @@ GpuTimer::GpuTimer(Device& device, std::uint32_t max_scopes) : device_(device), 
   device.set_name(pool_, "lantern.gpu_timer");
 }
 
-GpuTimer::~GpuTimer() { vkDestroyQueryPool(device_.handle(), pool_, nullptr); }
+GpuTimer::~GpuTimer() {
+  vkDestroyQueryPool(device_.handle(), pool_, nullptr);
+}
 
 void GpuTimer::reset(VkCommandBuffer cmd) {
   vkCmdResetQueryPool(cmd, pool_, 0, 2 * max_scopes_);
@@ -27,7 +30,8 @@ void GpuTimer::reset(VkCommandBuffer cmd) {
 
 void GpuTimer::begin(VkCommandBuffer cmd, std::string_view name) {
   if (entries_.size() >= max_scopes_)
-    throw RuntimeError(fmt::format("GpuTimer: more than {} scopes in one frame (at '{}')", max_scopes_, name));
+    throw RuntimeError(
+        fmt::format("GpuTimer: more than {} scopes in one frame (at '{}')", max_scopes_, name));
   const auto index = static_cast<std::uint32_t>(entries_.size());
   entries_.push_back({std::string(name), static_cast<std::uint32_t>(open_.size()), false});
   open_.push_back(index);
@@ -46,19 +50,23 @@ void GpuTimer::end(VkCommandBuffer cmd) {
 
 std::vector<GpuTimer::Result> GpuTimer::resolve() const {
   if (!open_.empty())
-    throw RuntimeError(fmt::format("GpuTimer: scope '{}' was never ended", entries_[open_.back()].name));
+    throw RuntimeError(
+        fmt::format("GpuTimer: scope '{}' was never ended", entries_[open_.back()].name));
   std::vector<Result> results;
   if (entries_.empty()) return results;
   std::vector<std::uint64_t> ticks(2 * entries_.size());
-  VK_CHECK(vkGetQueryPoolResults(device_.handle(), pool_, 0, static_cast<std::uint32_t>(ticks.size()),
-                                 ticks.size() * sizeof(std::uint64_t), ticks.data(), sizeof(std::uint64_t),
-                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  VK_CHECK(vkGetQueryPoolResults(
+      device_.handle(), pool_, 0, static_cast<std::uint32_t>(ticks.size()),
+      ticks.size() * sizeof(std::uint64_t), ticks.data(), sizeof(std::uint64_t),
+      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   const std::uint32_t bits = device_.caps().timestamp_valid_bits;
   const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
   const double ns_per_tick = device_.caps().timestamp_period_ns;
   for (std::size_t i = 0; i < entries_.size(); ++i) {
-    const std::uint64_t elapsed = ((ticks[2 * i + 1] & mask) - (ticks[2 * i] & mask)) & mask;  // wrap-safe
-    results.push_back({entries_[i].name, static_cast<double>(elapsed) * ns_per_tick * 1e-6, entries_[i].depth});
+    const std::uint64_t elapsed =
+        ((ticks[2 * i + 1] & mask) - (ticks[2 * i] & mask)) & mask;  // wrap-safe
+    results.push_back(
+        {entries_[i].name, static_cast<double>(elapsed) * ns_per_tick * 1e-6, entries_[i].depth});
   }
   return results;
 }

@@ -47,7 +47,9 @@ class GpuTimer {
     GpuTimer& timer_;
     VkCommandBuffer cmd_;
   };
-  [[nodiscard]] Scope scope(VkCommandBuffer cmd, std::string_view name) { return Scope(*this, cmd, name); }
+  [[nodiscard]] Scope scope(VkCommandBuffer cmd, std::string_view name) {
+    return Scope(*this, cmd, name);
+  }
 
  private:
   struct Entry {

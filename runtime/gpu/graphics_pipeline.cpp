@@ -11,23 +11,28 @@
 namespace lantern::runtime {
 namespace {
 
-std::array<const ShaderReflection*, 2> checked_stages(const Device& device, const std::shared_ptr<const ShaderCode>& v,
+std::array<const ShaderReflection*, 2> checked_stages(const Device& device,
+                                                      const std::shared_ptr<const ShaderCode>& v,
                                                       const std::shared_ptr<const ShaderCode>& f) {
   if (!device.caps().dynamic_rendering)
-    throw RuntimeError("GraphicsPipeline needs dynamic rendering (Vulkan 1.3 or VK_KHR_dynamic_rendering)");
+    throw RuntimeError(
+        "GraphicsPipeline needs dynamic rendering (Vulkan 1.3 or VK_KHR_dynamic_rendering)");
   if (!v || !f) throw RuntimeError("GraphicsPipeline: null shader");
-  if (v->reflection.stage != VK_SHADER_STAGE_VERTEX_BIT || f->reflection.stage != VK_SHADER_STAGE_FRAGMENT_BIT)
-    throw RuntimeError(fmt::format("GraphicsPipeline: expected a vertex and a fragment shader, got '{}' and '{}'",
-                                   v->name, f->name));
+  if (v->reflection.stage != VK_SHADER_STAGE_VERTEX_BIT ||
+      f->reflection.stage != VK_SHADER_STAGE_FRAGMENT_BIT)
+    throw RuntimeError(
+        fmt::format("GraphicsPipeline: expected a vertex and a fragment shader, got '{}' and '{}'",
+                    v->name, f->name));
   return {&v->reflection, &f->reflection};
 }
 
 }  // namespace
 
 GraphicsPipeline::GraphicsPipeline(Device& device, std::shared_ptr<const ShaderCode> vertex,
-                                   std::shared_ptr<const ShaderCode> fragment, const GraphicsPipelineDesc& desc)
-    : Pipeline(device, desc.name.empty() && vertex ? vertex->name : desc.name, VK_PIPELINE_BIND_POINT_GRAPHICS,
-               checked_stages(device, vertex, fragment)) {
+                                   std::shared_ptr<const ShaderCode> fragment,
+                                   const GraphicsPipelineDesc& desc)
+    : Pipeline(device, desc.name.empty() && vertex ? vertex->name : desc.name,
+               VK_PIPELINE_BIND_POINT_GRAPHICS, checked_stages(device, vertex, fragment)) {
   const ShaderReflection* reflections[] = {&vertex->reflection, &fragment->reflection};
   const auto constants = desc.constants.resolve(reflections, name_);
   std::vector<VkSpecializationMapEntry> entries;
@@ -44,34 +49,42 @@ GraphicsPipeline::GraphicsPipeline(Device& device, std::shared_ptr<const ShaderC
     stages[i].pSpecializationInfo = constants.empty() ? nullptr : &spec;
   }
 
-  const VkVertexInputBindingDescription vertex_binding{0, desc.vertex_stride, VK_VERTEX_INPUT_RATE_VERTEX};
-  VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  const VkVertexInputBindingDescription vertex_binding{0, desc.vertex_stride,
+                                                       VK_VERTEX_INPUT_RATE_VERTEX};
+  VkPipelineVertexInputStateCreateInfo vertex_input{
+      VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   if (desc.vertex_stride > 0) {
     vertex_input.vertexBindingDescriptionCount = 1;
     vertex_input.pVertexBindingDescriptions = &vertex_binding;
-    vertex_input.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(desc.vertex_attributes.size());
+    vertex_input.vertexAttributeDescriptionCount =
+        static_cast<std::uint32_t>(desc.vertex_attributes.size());
     vertex_input.pVertexAttributeDescriptions = desc.vertex_attributes.data();
   }
-  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{
+      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = desc.topology;
   VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
   viewport.viewportCount = 1;
   viewport.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  VkPipelineRasterizationStateCreateInfo raster{
+      VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   raster.polygonMode = VK_POLYGON_MODE_FILL;
   raster.cullMode = desc.cull_mode;
   raster.frontFace = desc.front_face;
   raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  VkPipelineMultisampleStateCreateInfo multisample{
+      VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  VkPipelineDepthStencilStateCreateInfo depth{
+      VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   const bool has_depth = desc.depth_format != VK_FORMAT_UNDEFINED;
   depth.depthTestEnable = has_depth && desc.depth_test;
   depth.depthWriteEnable = has_depth && desc.depth_write;
   depth.depthCompareOp = desc.depth_compare;
   std::vector<VkPipelineColorBlendAttachmentState> blend_attachments(desc.color_formats.size());
   for (auto& a : blend_attachments) a.colorWriteMask = 0xf;  // no blending: G-buffer style writes
-  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  VkPipelineColorBlendStateCreateInfo blend{
+      VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = static_cast<std::uint32_t>(blend_attachments.size());
   blend.pAttachments = blend_attachments.data();
   const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
@@ -96,14 +109,15 @@ GraphicsPipeline::GraphicsPipeline(Device& device, std::shared_ptr<const ShaderC
   info.pColorBlendState = &blend;
   info.pDynamicState = &dynamic;
   info.layout = layout_;
-  const VkResult result = vkCreateGraphicsPipelines(device.handle(), device.pipeline_cache(), 1, &info, nullptr, &pipeline_);
+  const VkResult result = vkCreateGraphicsPipelines(device.handle(), device.pipeline_cache(), 1,
+                                                    &info, nullptr, &pipeline_);
   for (VkShaderModule m : modules) vkDestroyShaderModule(device.handle(), m, nullptr);
   VK_CHECK(result);
   device.set_name(pipeline_, name_);
 }
 
-void begin_rendering(const Device& device, VkCommandBuffer cmd, VkExtent2D extent, std::span<const ColorTarget> colors,
-                     const DepthTarget* depth) {
+void begin_rendering(const Device& device, VkCommandBuffer cmd, VkExtent2D extent,
+                     std::span<const ColorTarget> colors, const DepthTarget* depth) {
   std::vector<VkRenderingAttachmentInfoKHR> color_infos;
   for (const ColorTarget& c : colors) {
     VkRenderingAttachmentInfoKHR a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO_KHR};
@@ -129,12 +143,15 @@ void begin_rendering(const Device& device, VkCommandBuffer cmd, VkExtent2D exten
   info.pColorAttachments = color_infos.data();
   info.pDepthAttachment = depth != nullptr ? &depth_info : nullptr;
   device.fn().cmd_begin_rendering(cmd, &info);
-  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f, 1.0f};
+  const VkViewport viewport{
+      0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, extent};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void end_rendering(const Device& device, VkCommandBuffer cmd) { device.fn().cmd_end_rendering(cmd); }
+void end_rendering(const Device& device, VkCommandBuffer cmd) {
+  device.fn().cmd_end_rendering(cmd);
+}
 
 }  // namespace lantern::runtime

@@ -17,7 +17,8 @@ struct GraphicsPipelineDesc {
   std::string name;  // default: the vertex shader's name
   std::vector<VkFormat> color_formats;
   VkFormat depth_format = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment
-  // One interleaved vertex buffer at binding 0 (stride 0: no vertex input, e.g. full-screen passes).
+  // One interleaved vertex buffer at binding 0 (stride 0: no vertex input, e.g. full-screen
+  // passes).
   std::uint32_t vertex_stride = 0;
   std::vector<VkVertexInputAttributeDescription> vertex_attributes;  // binding must be 0
   VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -32,8 +33,8 @@ struct GraphicsPipelineDesc {
 class GraphicsPipeline : public Pipeline {
  public:
   // Throws lantern::RuntimeError when the device lacks dynamic rendering.
-  GraphicsPipeline(Device& device, std::shared_ptr<const ShaderCode> vertex, std::shared_ptr<const ShaderCode> fragment,
-                   const GraphicsPipelineDesc& desc);
+  GraphicsPipeline(Device& device, std::shared_ptr<const ShaderCode> vertex,
+                   std::shared_ptr<const ShaderCode> fragment, const GraphicsPipelineDesc& desc);
   GraphicsPipeline(GraphicsPipeline&&) noexcept = default;
   ~GraphicsPipeline() = default;
 };

@@ -28,24 +28,47 @@ VkImageAspectFlags aspect_of(VkFormat format) {
 
 std::uint32_t texel_size(VkFormat format) {
   switch (format) {
-    case VK_FORMAT_R8_UNORM: case VK_FORMAT_R8_UINT: return 1;
-    case VK_FORMAT_R16_SFLOAT: case VK_FORMAT_R16_UINT: case VK_FORMAT_D16_UNORM: return 2;
-    case VK_FORMAT_R8G8B8A8_UNORM: case VK_FORMAT_R8G8B8A8_SRGB: case VK_FORMAT_B8G8R8A8_UNORM:
-    case VK_FORMAT_B8G8R8A8_SRGB: case VK_FORMAT_R32_SFLOAT: case VK_FORMAT_R32_UINT:
-    case VK_FORMAT_R16G16_SFLOAT: case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
-    case VK_FORMAT_B10G11R11_UFLOAT_PACK32: case VK_FORMAT_D32_SFLOAT: case VK_FORMAT_X8_D24_UNORM_PACK32:
+    case VK_FORMAT_R8_UNORM:
+    case VK_FORMAT_R8_UINT:
+      return 1;
+    case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_R16_UINT:
+    case VK_FORMAT_D16_UNORM:
+      return 2;
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R16G16_SFLOAT:
+    case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
+    case VK_FORMAT_B10G11R11_UFLOAT_PACK32:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
       return 4;
-    case VK_FORMAT_R16G16B16A16_SFLOAT: case VK_FORMAT_R32G32_SFLOAT: case VK_FORMAT_R32G32_UINT: return 8;
-    case VK_FORMAT_R32G32B32A32_SFLOAT: case VK_FORMAT_R32G32B32A32_UINT: return 16;
-    default: throw RuntimeError(fmt::format("texel_size: unsupported VkFormat {}", static_cast<int>(format)));
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+    case VK_FORMAT_R32G32_SFLOAT:
+    case VK_FORMAT_R32G32_UINT:
+      return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+    case VK_FORMAT_R32G32B32A32_UINT:
+      return 16;
+    default:
+      throw RuntimeError(
+          fmt::format("texel_size: unsupported VkFormat {}", static_cast<int>(format)));
   }
 }
 
 Image::Image(Device& device, const ImageDesc& desc)
-    : device_(&device), format_(desc.format), extent_{desc.width, desc.height}, aspect_(aspect_of(desc.format)),
+    : device_(&device),
+      format_(desc.format),
+      extent_{desc.width, desc.height},
+      aspect_(aspect_of(desc.format)),
       name_(desc.name) {
   if (desc.width == 0 || desc.height == 0)
-    throw RuntimeError(fmt::format("image '{}': extent {}x{} must be non-zero", desc.name, desc.width, desc.height));
+    throw RuntimeError(fmt::format("image '{}': extent {}x{} must be non-zero", desc.name,
+                                   desc.width, desc.height));
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = desc.format;
@@ -60,7 +83,8 @@ Image::Image(Device& device, const ImageDesc& desc)
   VkMemoryRequirements requirements{};
   vkGetImageMemoryRequirements(device.handle(), image_, &requirements);
   try {
-    allocation_ = device.memory().allocate(requirements, MemoryUsage::DeviceLocal, ResourceKind::OptimalImage);
+    allocation_ = device.memory().allocate(requirements, MemoryUsage::DeviceLocal,
+                                           ResourceKind::OptimalImage);
   } catch (...) {
     vkDestroyImage(device.handle(), image_, nullptr);
     throw;
@@ -79,9 +103,13 @@ Image::Image(Device& device, const ImageDesc& desc)
   }
 }
 
-Image::~Image() { release(); }
+Image::~Image() {
+  release();
+}
 
-Image::Image(Image&& other) noexcept { *this = std::move(other); }
+Image::Image(Image&& other) noexcept {
+  *this = std::move(other);
+}
 
 Image& Image::operator=(Image&& other) noexcept {
   if (this != &other) {

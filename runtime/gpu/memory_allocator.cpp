@@ -21,7 +21,8 @@ struct MemoryAllocator::Block {
       : memory(m), type(t), kind(k), mapped(p), offsets(size) {}
 };
 
-MemoryAllocator::MemoryAllocator(VkDevice device, const VkPhysicalDeviceMemoryProperties& properties,
+MemoryAllocator::MemoryAllocator(VkDevice device,
+                                 const VkPhysicalDeviceMemoryProperties& properties,
                                  Options options)
     : device_(device), properties_(properties), options_(options) {
   dedicated_.resize(properties_.memoryHeapCount);
@@ -29,7 +30,8 @@ MemoryAllocator::MemoryAllocator(VkDevice device, const VkPhysicalDeviceMemoryPr
   VkDeviceSize smallest_heap = ~VkDeviceSize{0};
   for (std::uint32_t h = 0; h < properties_.memoryHeapCount; ++h)
     smallest_heap = std::min(smallest_heap, properties_.memoryHeaps[h].size);
-  options_.block_size = std::min(options_.block_size, std::max<VkDeviceSize>(smallest_heap / 8, 1 << 20));
+  options_.block_size =
+      std::min(options_.block_size, std::max<VkDeviceSize>(smallest_heap / 8, 1 << 20));
 }
 
 MemoryAllocator::~MemoryAllocator() {
@@ -69,7 +71,8 @@ int MemoryAllocator::find_memory_type(std::uint32_t type_bits, MemoryUsage usage
   return best;
 }
 
-VkDeviceMemory MemoryAllocator::allocate_memory(VkDeviceSize size, std::uint32_t type, std::byte** mapped) {
+VkDeviceMemory MemoryAllocator::allocate_memory(VkDeviceSize size, std::uint32_t type,
+                                                std::byte** mapped) {
   VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
   flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -87,7 +90,8 @@ VkDeviceMemory MemoryAllocator::allocate_memory(VkDeviceSize size, std::uint32_t
   return memory;
 }
 
-Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage, ResourceKind kind) {
+Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage,
+                                     ResourceKind kind) {
   const int type_index = find_memory_type(req.memoryTypeBits, usage);
   if (type_index < 0)
     throw RuntimeError(fmt::format("no Vulkan memory type fits usage {} (type bits {:#x})",
@@ -119,7 +123,8 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
   }
   std::byte* mapped = nullptr;
   VkDeviceMemory memory = allocate_memory(options_.block_size, type, &mapped);
-  auto& block = blocks_.emplace_back(std::make_unique<Block>(memory, type, kind, mapped, options_.block_size));
+  auto& block = blocks_.emplace_back(
+      std::make_unique<Block>(memory, type, kind, mapped, options_.block_size));
   const auto offset = block->offsets.allocate(req.size, req.alignment);
   LANTERN_ASSERT(offset.has_value());
   a.memory = memory;
@@ -142,7 +147,8 @@ void MemoryAllocator::free(const Allocation& a) {
     --s.allocations;
     return;
   }
-  auto it = std::find_if(blocks_.begin(), blocks_.end(), [&](const auto& b) { return b.get() == a.block; });
+  auto it = std::find_if(blocks_.begin(), blocks_.end(),
+                         [&](const auto& b) { return b.get() == a.block; });
   LANTERN_ASSERT(it != blocks_.end());
   Block& block = **it;
   block.offsets.free(a.offset);
@@ -164,9 +170,11 @@ std::string describe(const std::vector<HeapStats>& heaps) {
   std::string text;
   for (const HeapStats& h : heaps) {
     if (h.blocks == 0) continue;
-    text += fmt::format("{}heap {} ({}, {:.1f} GiB): {:.1f} MiB reserved in {} block(s), {:.1f} MiB used by {} allocation(s)",
-                        text.empty() ? "" : "\n", h.heap, h.device_local ? "device-local" : "host",
-                        mib(h.heap_size) / 1024.0, mib(h.reserved), h.blocks, mib(h.used), h.allocations);
+    text += fmt::format(
+        "{}heap {} ({}, {:.1f} GiB): {:.1f} MiB reserved in {} block(s), {:.1f} MiB used by {} "
+        "allocation(s)",
+        text.empty() ? "" : "\n", h.heap, h.device_local ? "device-local" : "host",
+        mib(h.heap_size) / 1024.0, mib(h.reserved), h.blocks, mib(h.used), h.allocations);
   }
   return text.empty() ? "no device memory allocated" : text;
 }
@@ -177,7 +185,8 @@ std::vector<HeapStats> MemoryAllocator::stats() const {
   for (std::uint32_t h = 0; h < properties_.memoryHeapCount; ++h) {
     heaps[h].heap = h;
     heaps[h].heap_size = properties_.memoryHeaps[h].size;
-    heaps[h].device_local = (properties_.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) != 0;
+    heaps[h].device_local =
+        (properties_.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) != 0;
   }
   for (const auto& block : blocks_) {
     HeapStats& s = heaps[properties_.memoryTypes[block->type].heapIndex];

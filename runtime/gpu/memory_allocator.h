@@ -52,13 +52,15 @@ class MemoryAllocator {
     VkDeviceSize block_size = 64ull << 20;
     bool device_address = false;  // allocate with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT
   };
-  MemoryAllocator(VkDevice device, const VkPhysicalDeviceMemoryProperties& properties, Options options);
+  MemoryAllocator(VkDevice device, const VkPhysicalDeviceMemoryProperties& properties,
+                  Options options);
   ~MemoryAllocator();
   MemoryAllocator(const MemoryAllocator&) = delete;
   MemoryAllocator& operator=(const MemoryAllocator&) = delete;
 
   // Throws lantern::RuntimeError when no memory type fits or the device is out of memory.
-  Allocation allocate(const VkMemoryRequirements& requirements, MemoryUsage usage, ResourceKind kind);
+  Allocation allocate(const VkMemoryRequirements& requirements, MemoryUsage usage,
+                      ResourceKind kind);
   void free(const Allocation& allocation);
 
   std::vector<HeapStats> stats() const;

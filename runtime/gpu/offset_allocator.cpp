@@ -17,10 +17,12 @@ OffsetAllocator::OffsetAllocator(std::uint64_t capacity) : capacity_(capacity) {
   if (capacity > 0) free_.emplace(0, capacity);
 }
 
-std::optional<std::uint64_t> OffsetAllocator::allocate(std::uint64_t size, std::uint64_t alignment) {
+std::optional<std::uint64_t> OffsetAllocator::allocate(std::uint64_t size,
+                                                       std::uint64_t alignment) {
   if (alignment == 0) alignment = 1;
   if ((alignment & (alignment - 1)) != 0)
-    throw std::logic_error(fmt::format("OffsetAllocator: alignment {} is not a power of two", alignment));
+    throw std::logic_error(
+        fmt::format("OffsetAllocator: alignment {} is not a power of two", alignment));
   if (size == 0) size = 1;  // distinct offsets for zero-sized requests
 
   auto best = free_.end();

@@ -45,22 +45,26 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> SpecConstants::resolve(
       if (found == nullptr) {
         std::string known;
         for (const ShaderReflection* s : shaders)
-          for (const auto& c : s->spec_constants) known += fmt::format("{}{} (id {})", known.empty() ? "" : ", ", c.name, c.id);
-        throw RuntimeError(fmt::format("pipeline '{}': no specialisation constant named '{}' (shader has: {})",
-                                       pipeline, e.name, known.empty() ? "none" : known));
+          for (const auto& c : s->spec_constants)
+            known += fmt::format("{}{} (id {})", known.empty() ? "" : ", ", c.name, c.id);
+        throw RuntimeError(
+            fmt::format("pipeline '{}': no specialisation constant named '{}' (shader has: {})",
+                        pipeline, e.name, known.empty() ? "none" : known));
       }
       id = found->id;
     }
     auto same = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == id; });
-    if (same != out.end()) same->second = e.bits;  // last set wins
-    else out.emplace_back(id, e.bits);
+    if (same != out.end())
+      same->second = e.bits;  // last set wins
+    else
+      out.emplace_back(id, e.bits);
   }
   return out;
 }
 
-VkSpecializationInfo make_specialization_info(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& constants,
-                                              std::vector<VkSpecializationMapEntry>& entries,
-                                              std::vector<std::uint32_t>& data) {
+VkSpecializationInfo make_specialization_info(
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& constants,
+    std::vector<VkSpecializationMapEntry>& entries, std::vector<std::uint32_t>& data) {
   entries.clear();
   data.clear();
   for (const auto& [id, bits] : constants) {
@@ -77,26 +81,32 @@ VkSpecializationInfo make_specialization_info(const std::vector<std::pair<std::u
 
 Pipeline::Pipeline(Device& device, std::string name, VkPipelineBindPoint bind_point,
                    std::span<const ShaderReflection* const> stages)
-    : device_(&device), name_(std::move(name)), bind_point_(bind_point), bindings_(merge_bindings(stages, name_)) {
+    : device_(&device),
+      name_(std::move(name)),
+      bind_point_(bind_point),
+      bindings_(merge_bindings(stages, name_)) {
   for (const ShaderReflection* s : stages) {
-    if (s->push_constant_bytes > 0) push_constant_stages_ |= static_cast<VkShaderStageFlags>(s->stage);
+    if (s->push_constant_bytes > 0)
+      push_constant_stages_ |= static_cast<VkShaderStageFlags>(s->stage);
     push_constant_bytes_ = std::max(push_constant_bytes_, s->push_constant_bytes);
   }
   if (push_constant_bytes_ > device.caps().max_push_constant_bytes)
-    throw RuntimeError(fmt::format("pipeline '{}': {} bytes of push constants exceed the device limit of {}", name_,
-                                   push_constant_bytes_, device.caps().max_push_constant_bytes));
+    throw RuntimeError(
+        fmt::format("pipeline '{}': {} bytes of push constants exceed the device limit of {}",
+                    name_, push_constant_bytes_, device.caps().max_push_constant_bytes));
   if (bindings_.size() > device.caps().max_push_descriptors)
-    throw RuntimeError(fmt::format("pipeline '{}': {} bindings exceed maxPushDescriptors {}", name_, bindings_.size(),
-                                   device.caps().max_push_descriptors));
+    throw RuntimeError(fmt::format("pipeline '{}': {} bindings exceed maxPushDescriptors {}", name_,
+                                   bindings_.size(), device.caps().max_push_descriptors));
 
   std::vector<VkDescriptorSetLayoutBinding> layout_bindings;
   for (const auto& b : bindings_) {
     // Push descriptors cover set 0 with fixed-size bindings; bindless sets will come with
     // descriptor indexing (caps().descriptor_indexing) as a separate, persistent set.
     if (b.set != 0 || b.count != 1)
-      throw RuntimeError(fmt::format("pipeline '{}': binding '{}' (set {}, binding {}, count {}) is not supported: "
-                                     "only single descriptors in set 0 (push descriptors)",
-                                     name_, b.name, b.set, b.binding, b.count));
+      throw RuntimeError(fmt::format(
+          "pipeline '{}': binding '{}' (set {}, binding {}, count {}) is not supported: "
+          "only single descriptors in set 0 (push descriptors)",
+          name_, b.name, b.set, b.binding, b.count));
     layout_bindings.push_back({b.binding, b.type, b.count, b.stages, nullptr});
   }
   VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
@@ -151,26 +161,28 @@ const DescriptorBinding* Pipeline::find_binding(std::string_view name) const {
 
 void Pipeline::bind(VkCommandBuffer cmd, const Bindings& bindings) const {
   if (&bindings.pipeline() != this)
-    throw RuntimeError(fmt::format("pipeline '{}': bound with Bindings made for pipeline '{}'", name_,
-                                   bindings.pipeline().name()));
+    throw RuntimeError(fmt::format("pipeline '{}': bound with Bindings made for pipeline '{}'",
+                                   name_, bindings.pipeline().name()));
   vkCmdBindPipeline(cmd, bind_point_, pipeline_);
   if (bindings_.empty()) return;
   const auto writes = bindings.writes();
-  device_->fn().cmd_push_descriptor_set(cmd, bind_point_, layout_, 0, static_cast<std::uint32_t>(writes.size()),
-                                        writes.data());
+  device_->fn().cmd_push_descriptor_set(cmd, bind_point_, layout_, 0,
+                                        static_cast<std::uint32_t>(writes.size()), writes.data());
 }
 
 void Pipeline::bind(VkCommandBuffer cmd) const {
   if (!bindings_.empty())
-    throw RuntimeError(fmt::format("pipeline '{}' has {} descriptor bindings: bind it with Bindings", name_,
-                                   bindings_.size()));
+    throw RuntimeError(
+        fmt::format("pipeline '{}' has {} descriptor bindings: bind it with Bindings", name_,
+                    bindings_.size()));
   vkCmdBindPipeline(cmd, bind_point_, pipeline_);
 }
 
 void Pipeline::push_constants(VkCommandBuffer cmd, const void* data, std::uint32_t bytes) const {
   if (bytes != push_constant_bytes_)
-    throw RuntimeError(fmt::format("pipeline '{}': push constants of {} bytes, the shader declares {}", name_, bytes,
-                                   push_constant_bytes_));
+    throw RuntimeError(
+        fmt::format("pipeline '{}': push constants of {} bytes, the shader declares {}", name_,
+                    bytes, push_constant_bytes_));
   vkCmdPushConstants(cmd, layout_, push_constant_stages_, 0, bytes, data);
 }
 

@@ -30,8 +30,8 @@ class SpecConstants {
 
   // Resolves names against the shaders; throws lantern::RuntimeError for unknown names.
   // Returns (constant_id, 32-bit value) pairs.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> resolve(std::span<const ShaderReflection* const> shaders,
-                                                               std::string_view pipeline) const;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> resolve(
+      std::span<const ShaderReflection* const> shaders, std::string_view pipeline) const;
 
  private:
   struct Entry {
@@ -87,8 +87,8 @@ class Pipeline {
 };
 
 // Packs resolved constants into a VkSpecializationInfo; the info points into `data` and `entries`.
-VkSpecializationInfo make_specialization_info(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& constants,
-                                              std::vector<VkSpecializationMapEntry>& entries,
-                                              std::vector<std::uint32_t>& data);
+VkSpecializationInfo make_specialization_info(
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& constants,
+    std::vector<VkSpecializationMapEntry>& entries, std::vector<std::uint32_t>& data);
 
 }  // namespace lantern::runtime

@@ -28,7 +28,8 @@ bool header_matches(const std::vector<char>& data, const VkPhysicalDevicePropert
   VkPipelineCacheHeaderVersionOne header{};
   if (data.size() < sizeof(header)) return false;
   std::memcpy(&header, data.data(), sizeof(header));
-  return header.headerSize >= sizeof(header) && header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE &&
+  return header.headerSize >= sizeof(header) &&
+         header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE &&
          header.vendorID == p.vendorID && header.deviceID == p.deviceID &&
          std::memcmp(header.pipelineCacheUUID, p.pipelineCacheUUID, VK_UUID_SIZE) == 0;
 }
@@ -36,7 +37,8 @@ bool header_matches(const std::vector<char>& data, const VkPhysicalDevicePropert
 }  // namespace
 
 std::filesystem::path PipelineCache::default_dir() {
-  if (const char* dir = std::getenv("LANTERN_CACHE_DIR"); dir != nullptr && *dir != '\0') return dir;
+  if (const char* dir = std::getenv("LANTERN_CACHE_DIR"); dir != nullptr && *dir != '\0')
+    return dir;
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg != '\0')
     return std::filesystem::path(xdg) / "lantern";
   if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0')
@@ -51,11 +53,13 @@ PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& 
   if (persist) {
     std::string uuid;
     for (std::uint8_t byte : properties.pipelineCacheUUID) uuid += fmt::format("{:02x}", byte);
-    file_ = (dir.empty() ? default_dir() : dir) /
-            fmt::format("pipelines-{:04x}-{:04x}-{}.bin", properties.vendorID, properties.deviceID, uuid);
+    file_ = (dir.empty() ? default_dir() : dir) / fmt::format("pipelines-{:04x}-{:04x}-{}.bin",
+                                                              properties.vendorID,
+                                                              properties.deviceID, uuid);
     data = read_file(file_);
     if (!data.empty() && !header_matches(data, properties)) {
-      log::info("pipeline cache {} does not match this device and driver (or is damaged): ignored", file_.string());
+      log::info("pipeline cache {} does not match this device and driver (or is damaged): ignored",
+                file_.string());
       data.clear();
     }
   }
@@ -66,7 +70,9 @@ PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& 
   loaded_bytes_ = data.size();
 }
 
-PipelineCache::~PipelineCache() { vkDestroyPipelineCache(device_, cache_, nullptr); }
+PipelineCache::~PipelineCache() {
+  vkDestroyPipelineCache(device_, cache_, nullptr);
+}
 
 std::size_t PipelineCache::save() const {
   if (file_.empty()) return 0;

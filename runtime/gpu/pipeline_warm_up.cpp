@@ -8,12 +8,12 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "runtime/core/device.h"
+#include "runtime/core/vk_check.h"
 #include "runtime/gpu/bindings.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/image.h"
 #include "runtime/gpu/transfer.h"
-#include "runtime/core/vk_check.h"
 
 namespace lantern::runtime {
 
@@ -32,39 +32,49 @@ void warm_up(Device& device, std::span<const ComputePipeline* const> pipelines) 
       switch (binding.type) {
         case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
         case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
-          b.buffer(binding.name, buffers.emplace_back(device, BufferDesc{
-              .size = 4096,
-              .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-              .name = "warm_up." + binding.name}));
+          b.buffer(
+              binding.name,
+              buffers.emplace_back(device, BufferDesc{.size = 4096,
+                                                      .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                               VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                                      .name = "warm_up." + binding.name}));
           break;
         case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
         case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
         case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: {
           const bool storage = binding.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-          const VkFormat format = binding.image_format != VK_FORMAT_UNDEFINED ? binding.image_format
-                                                                               : VK_FORMAT_R32G32B32A32_SFLOAT;
-          Image& image = images.emplace_back(device, ImageDesc{
-              .width = 1, .height = 1, .format = format,
-              .usage = static_cast<VkImageUsageFlags>(storage ? VK_IMAGE_USAGE_STORAGE_BIT : VK_IMAGE_USAGE_SAMPLED_BIT),
-              .name = "warm_up." + binding.name});
+          const VkFormat format = binding.image_format != VK_FORMAT_UNDEFINED
+                                      ? binding.image_format
+                                      : VK_FORMAT_R32G32B32A32_SFLOAT;
+          Image& image = images.emplace_back(
+              device,
+              ImageDesc{.width = 1,
+                        .height = 1,
+                        .format = format,
+                        .usage = static_cast<VkImageUsageFlags>(
+                            storage ? VK_IMAGE_USAGE_STORAGE_BIT : VK_IMAGE_USAGE_SAMPLED_BIT),
+                        .name = "warm_up." + binding.name});
           if (storage) {
             b.storage_image(binding.name, image, VK_IMAGE_LAYOUT_GENERAL);
           } else {
-            if (sampler == VK_NULL_HANDLE) VK_CHECK(vkCreateSampler(device.handle(), &sampler_info, nullptr, &sampler));
+            if (sampler == VK_NULL_HANDLE)
+              VK_CHECK(vkCreateSampler(device.handle(), &sampler_info, nullptr, &sampler));
             b.sampled_image(binding.name, image, sampler, VK_IMAGE_LAYOUT_GENERAL);
           }
           break;
         }
         default:
-          throw RuntimeError(fmt::format("warm_up: pipeline '{}' binding '{}' ({}) has no dummy resource", p->name(),
-                                         binding.name, descriptor_type_name(binding.type)));
+          throw RuntimeError(
+              fmt::format("warm_up: pipeline '{}' binding '{}' ({}) has no dummy resource",
+                          p->name(), binding.name, descriptor_type_name(binding.type)));
       }
     }
   }
 
   std::vector<std::byte> zeros(device.caps().max_push_constant_bytes);
   device.submit_and_wait([&](VkCommandBuffer cmd) {
-    for (const Image& image : images) transition_image(device, cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    for (const Image& image : images)
+      transition_image(device, cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     for (std::size_t i = 0; i < pipelines.size(); ++i) {
       const ComputePipeline& p = *pipelines[i];
       p.bind(cmd, bindings[i]);

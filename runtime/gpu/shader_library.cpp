@@ -25,7 +25,8 @@ std::vector<std::uint32_t> read_spirv_file(const std::filesystem::path& path) {
 }
 
 std::filesystem::path ShaderLibrary::default_dir() {
-  if (const char* env = std::getenv("LANTERN_SHADER_DIR"); env != nullptr && *env != '\0') return env;
+  if (const char* env = std::getenv("LANTERN_SHADER_DIR"); env != nullptr && *env != '\0')
+    return env;
 #ifdef LANTERN_SHADER_DIR
   if (std::filesystem::is_directory(LANTERN_SHADER_DIR)) return LANTERN_SHADER_DIR;
 #endif
@@ -35,23 +36,28 @@ std::filesystem::path ShaderLibrary::default_dir() {
   return "shaders";
 }
 
-ShaderLibrary::ShaderLibrary(std::filesystem::path dir) : dir_(dir.empty() ? default_dir() : std::move(dir)) {}
+ShaderLibrary::ShaderLibrary(std::filesystem::path dir)
+    : dir_(dir.empty() ? default_dir() : std::move(dir)) {}
 
-std::filesystem::path ShaderLibrary::spirv_path(std::string_view relpath, std::string_view variant) const {
+std::filesystem::path ShaderLibrary::spirv_path(std::string_view relpath,
+                                                std::string_view variant) const {
   std::string file(relpath);
   if (!variant.empty()) file += fmt::format(".{}", variant);
   return dir_ / (file + ".spv");
 }
 
-std::shared_ptr<const ShaderCode> ShaderLibrary::load(std::string_view relpath, std::string_view variant) {
-  const std::string name = variant.empty() ? std::string(relpath) : fmt::format("{}.{}", relpath, variant);
+std::shared_ptr<const ShaderCode> ShaderLibrary::load(std::string_view relpath,
+                                                      std::string_view variant) {
+  const std::string name =
+      variant.empty() ? std::string(relpath) : fmt::format("{}.{}", relpath, variant);
   std::lock_guard lock(mutex_);
   if (auto it = cache_.find(name); it != cache_.end()) return it->second;
   const auto path = spirv_path(relpath, variant);
   if (!std::filesystem::exists(path))
-    throw RuntimeError(fmt::format("shader '{}' not found: {} does not exist (shader dir {}; set "
-                                   "LANTERN_SHADER_DIR or rebuild the lantern_shaders target)",
-                                   name, path.string(), dir_.string()));
+    throw RuntimeError(
+        fmt::format("shader '{}' not found: {} does not exist (shader dir {}; set "
+                    "LANTERN_SHADER_DIR or rebuild the lantern_shaders target)",
+                    name, path.string(), dir_.string()));
   auto code = std::make_shared<ShaderCode>();
   code->name = name;
   code->spirv = read_spirv_file(path);

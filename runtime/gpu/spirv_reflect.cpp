@@ -17,7 +17,7 @@ namespace lantern::runtime {
 namespace {
 
 struct Id {
-  SpvOp op = SpvOpNop;                 // the defining instruction
+  SpvOp op = SpvOpNop;                  // the defining instruction
   std::vector<std::uint32_t> operands;  // words after the result id (types) or after result type
   std::uint32_t type = 0;               // result type (constants, variables)
   std::string name;
@@ -40,44 +40,67 @@ std::string read_string(std::span<const std::uint32_t> words) {
 
 VkFormat format_of(std::uint32_t spv_format) {
   switch (spv_format) {
-    case SpvImageFormatRgba32f: return VK_FORMAT_R32G32B32A32_SFLOAT;
-    case SpvImageFormatRgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
-    case SpvImageFormatR32f: return VK_FORMAT_R32_SFLOAT;
-    case SpvImageFormatRgba8: return VK_FORMAT_R8G8B8A8_UNORM;
-    case SpvImageFormatRg32f: return VK_FORMAT_R32G32_SFLOAT;
-    case SpvImageFormatRg16f: return VK_FORMAT_R16G16_SFLOAT;
-    case SpvImageFormatR11fG11fB10f: return VK_FORMAT_B10G11R11_UFLOAT_PACK32;
-    case SpvImageFormatR16f: return VK_FORMAT_R16_SFLOAT;
-    case SpvImageFormatRgba32ui: return VK_FORMAT_R32G32B32A32_UINT;
-    case SpvImageFormatRg32ui: return VK_FORMAT_R32G32_UINT;
-    case SpvImageFormatR32ui: return VK_FORMAT_R32_UINT;
-    default: return VK_FORMAT_UNDEFINED;
+    case SpvImageFormatRgba32f:
+      return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case SpvImageFormatRgba16f:
+      return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case SpvImageFormatR32f:
+      return VK_FORMAT_R32_SFLOAT;
+    case SpvImageFormatRgba8:
+      return VK_FORMAT_R8G8B8A8_UNORM;
+    case SpvImageFormatRg32f:
+      return VK_FORMAT_R32G32_SFLOAT;
+    case SpvImageFormatRg16f:
+      return VK_FORMAT_R16G16_SFLOAT;
+    case SpvImageFormatR11fG11fB10f:
+      return VK_FORMAT_B10G11R11_UFLOAT_PACK32;
+    case SpvImageFormatR16f:
+      return VK_FORMAT_R16_SFLOAT;
+    case SpvImageFormatRgba32ui:
+      return VK_FORMAT_R32G32B32A32_UINT;
+    case SpvImageFormatRg32ui:
+      return VK_FORMAT_R32G32_UINT;
+    case SpvImageFormatR32ui:
+      return VK_FORMAT_R32_UINT;
+    default:
+      return VK_FORMAT_UNDEFINED;
   }
 }
 
 VkShaderStageFlagBits stage_of(std::uint32_t model) {
   switch (model) {
-    case SpvExecutionModelVertex: return VK_SHADER_STAGE_VERTEX_BIT;
-    case SpvExecutionModelFragment: return VK_SHADER_STAGE_FRAGMENT_BIT;
-    case SpvExecutionModelGLCompute: return VK_SHADER_STAGE_COMPUTE_BIT;
-    case SpvExecutionModelRayGenerationKHR: return VK_SHADER_STAGE_RAYGEN_BIT_KHR;
-    case SpvExecutionModelMissKHR: return VK_SHADER_STAGE_MISS_BIT_KHR;
-    case SpvExecutionModelClosestHitKHR: return VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR;
-    case SpvExecutionModelAnyHitKHR: return VK_SHADER_STAGE_ANY_HIT_BIT_KHR;
-    default: return VK_SHADER_STAGE_ALL;
+    case SpvExecutionModelVertex:
+      return VK_SHADER_STAGE_VERTEX_BIT;
+    case SpvExecutionModelFragment:
+      return VK_SHADER_STAGE_FRAGMENT_BIT;
+    case SpvExecutionModelGLCompute:
+      return VK_SHADER_STAGE_COMPUTE_BIT;
+    case SpvExecutionModelRayGenerationKHR:
+      return VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+    case SpvExecutionModelMissKHR:
+      return VK_SHADER_STAGE_MISS_BIT_KHR;
+    case SpvExecutionModelClosestHitKHR:
+      return VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR;
+    case SpvExecutionModelAnyHitKHR:
+      return VK_SHADER_STAGE_ANY_HIT_BIT_KHR;
+    default:
+      return VK_SHADER_STAGE_ALL;
   }
 }
 
 class Parser {
  public:
-  Parser(std::span<const std::uint32_t> words, std::string_view what) : words_(words), what_(what) {}
+  Parser(std::span<const std::uint32_t> words, std::string_view what)
+      : words_(words), what_(what) {}
 
   ShaderReflection run() {
-    if (words_.size() < 5 || words_[0] != SpvMagicNumber) fail("not a SPIR-V module (bad magic number)");
+    if (words_.size() < 5 || words_[0] != SpvMagicNumber)
+      fail("not a SPIR-V module (bad magic number)");
     ids_.resize(words_[3]);  // id bound
     for (std::size_t at = 5; at < words_.size();) {
       const std::uint32_t count = words_[at] >> 16;
-      if (count == 0 || at + count > words_.size()) fail(fmt::format("truncated instruction at word {}", at));
+      if (count == 0 || at + count > words_.size())
+        fail(fmt::format("truncated instruction at word {}", at));
       instruction(static_cast<SpvOp>(words_[at] & 0xffff), words_.subspan(at + 1, count - 1));
       at += count;
     }
@@ -106,23 +129,43 @@ class Parser {
       case SpvOpExecutionModeId:
         if (w[1] == SpvExecutionModeLocalSizeId) local_size_ids_ = {w[2], w[3], w[4]};
         break;
-      case SpvOpName: id(w[0]).name = read_string(w.subspan(1)); break;
-      case SpvOpDecorate: decorate(id(w[0]), w[1], w.size() > 2 ? w[2] : 0); break;
+      case SpvOpName:
+        id(w[0]).name = read_string(w.subspan(1));
+        break;
+      case SpvOpDecorate:
+        decorate(id(w[0]), w[1], w.size() > 2 ? w[2] : 0);
+        break;
       case SpvOpMemberDecorate:
         if (w[2] == SpvDecorationOffset) id(w[0]).member_offsets[w[1]] = w[3];
         break;
-      case SpvOpTypeVoid: case SpvOpTypeBool: case SpvOpTypeInt: case SpvOpTypeFloat:
-      case SpvOpTypeVector: case SpvOpTypeMatrix: case SpvOpTypeImage: case SpvOpTypeSampler:
-      case SpvOpTypeSampledImage: case SpvOpTypeArray: case SpvOpTypeRuntimeArray:
-      case SpvOpTypeStruct: case SpvOpTypePointer: case SpvOpTypeAccelerationStructureKHR: {
+      case SpvOpTypeVoid:
+      case SpvOpTypeBool:
+      case SpvOpTypeInt:
+      case SpvOpTypeFloat:
+      case SpvOpTypeVector:
+      case SpvOpTypeMatrix:
+      case SpvOpTypeImage:
+      case SpvOpTypeSampler:
+      case SpvOpTypeSampledImage:
+      case SpvOpTypeArray:
+      case SpvOpTypeRuntimeArray:
+      case SpvOpTypeStruct:
+      case SpvOpTypePointer:
+      case SpvOpTypeAccelerationStructureKHR: {
         Id& t = id(w[0]);
         t.op = op;
         t.operands.assign(w.begin() + 1, w.end());
         break;
       }
-      case SpvOpConstant: case SpvOpSpecConstant: case SpvOpConstantComposite:
-      case SpvOpSpecConstantComposite: case SpvOpSpecConstantTrue: case SpvOpSpecConstantFalse:
-      case SpvOpConstantTrue: case SpvOpConstantFalse: case SpvOpVariable: {
+      case SpvOpConstant:
+      case SpvOpSpecConstant:
+      case SpvOpConstantComposite:
+      case SpvOpSpecConstantComposite:
+      case SpvOpSpecConstantTrue:
+      case SpvOpSpecConstantFalse:
+      case SpvOpConstantTrue:
+      case SpvOpConstantFalse:
+      case SpvOpVariable: {
         Id& c = id(w[1]);
         c.op = op;
         c.type = w[0];
@@ -132,20 +175,36 @@ class Parser {
           spec_constants_.push_back(w[1]);
         break;
       }
-      default: break;
+      default:
+        break;
     }
   }
 
   static void decorate(Id& target, std::uint32_t decoration, std::uint32_t value) {
     switch (decoration) {
-      case SpvDecorationDescriptorSet: target.set = value; break;
-      case SpvDecorationBinding: target.binding = value; break;
-      case SpvDecorationSpecId: target.spec_id = value; break;
-      case SpvDecorationBuiltIn: target.builtin = value; break;
-      case SpvDecorationArrayStride: target.array_stride = value; break;
-      case SpvDecorationBlock: target.block = true; break;
-      case SpvDecorationBufferBlock: target.buffer_block = true; break;
-      default: break;
+      case SpvDecorationDescriptorSet:
+        target.set = value;
+        break;
+      case SpvDecorationBinding:
+        target.binding = value;
+        break;
+      case SpvDecorationSpecId:
+        target.spec_id = value;
+        break;
+      case SpvDecorationBuiltIn:
+        target.builtin = value;
+        break;
+      case SpvDecorationArrayStride:
+        target.array_stride = value;
+        break;
+      case SpvDecorationBlock:
+        target.block = true;
+        break;
+      case SpvDecorationBufferBlock:
+        target.buffer_block = true;
+        break;
+      default:
+        break;
     }
   }
 
@@ -153,7 +212,8 @@ class Parser {
     const Id& k = id(c);
     if (k.op == SpvOpSpecConstantTrue || k.op == SpvOpConstantTrue) return 1;
     if (k.op == SpvOpSpecConstantFalse || k.op == SpvOpConstantFalse) return 0;
-    if ((k.op == SpvOpConstant || k.op == SpvOpSpecConstant) && !k.operands.empty()) return k.operands[0];
+    if ((k.op == SpvOpConstant || k.op == SpvOpSpecConstant) && !k.operands.empty())
+      return k.operands[0];
     fail(fmt::format("id {} is not a scalar constant", c));
   }
 
@@ -161,12 +221,18 @@ class Parser {
   std::uint32_t type_size(std::uint32_t t) {
     const Id& type = id(t);
     switch (type.op) {
-      case SpvOpTypeBool: return 4;
-      case SpvOpTypeInt: case SpvOpTypeFloat: return type.operands[0] / 8;
-      case SpvOpTypeVector: return type_size(type.operands[0]) * type.operands[1];
-      case SpvOpTypeMatrix: return type_size(type.operands[0]) * type.operands[1];
+      case SpvOpTypeBool:
+        return 4;
+      case SpvOpTypeInt:
+      case SpvOpTypeFloat:
+        return type.operands[0] / 8;
+      case SpvOpTypeVector:
+        return type_size(type.operands[0]) * type.operands[1];
+      case SpvOpTypeMatrix:
+        return type_size(type.operands[0]) * type.operands[1];
       case SpvOpTypeArray:
-        return constant_value(type.operands[1]) * type.array_stride.value_or(type_size(type.operands[0]));
+        return constant_value(type.operands[1]) *
+               type.array_stride.value_or(type_size(type.operands[0]));
       case SpvOpTypeStruct: {
         std::uint32_t size = 0;
         for (std::uint32_t m = 0; m < type.operands.size(); ++m) {
@@ -176,15 +242,18 @@ class Parser {
         }
         return size;
       }
-      default: return 0;  // runtime arrays and opaque types have no static size
+      default:
+        return 0;  // runtime arrays and opaque types have no static size
     }
   }
 
   void resolve_local_size_from(const std::array<std::uint32_t, 3>& components) {
     for (int axis = 0; axis < 3; ++axis) {
       const Id& c = id(components[static_cast<std::size_t>(axis)]);
-      out_.local_size[static_cast<std::size_t>(axis)] = constant_value(components[static_cast<std::size_t>(axis)]);
-      if (c.spec_id) out_.local_size_spec_id[static_cast<std::size_t>(axis)] = static_cast<int>(*c.spec_id);
+      out_.local_size[static_cast<std::size_t>(axis)] =
+          constant_value(components[static_cast<std::size_t>(axis)]);
+      if (c.spec_id)
+        out_.local_size_spec_id[static_cast<std::size_t>(axis)] = static_cast<int>(*c.spec_id);
     }
   }
 
@@ -195,7 +264,8 @@ class Parser {
     for (std::uint32_t i = 0; i < ids_.size(); ++i) {
       const Id& c = ids_[i];
       if (c.builtin == SpvBuiltInWorkgroupSize &&
-          (c.op == SpvOpSpecConstantComposite || c.op == SpvOpConstantComposite) && c.operands.size() == 3)
+          (c.op == SpvOpSpecConstantComposite || c.op == SpvOpConstantComposite) &&
+          c.operands.size() == 3)
         resolve_local_size_from({c.operands[0], c.operands[1], c.operands[2]});
     }
     for (std::uint32_t c : spec_constants_) {
@@ -240,24 +310,35 @@ class Parser {
     b.name = !var.name.empty() ? var.name : type->name;
     switch (type->op) {
       case SpvOpTypeStruct:
-        b.type = storage == SpvStorageClassStorageBuffer || type->buffer_block ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
-                                                                               : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        b.type = storage == SpvStorageClassStorageBuffer || type->buffer_block
+                     ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                     : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
         break;
       case SpvOpTypeImage: {
         const bool storage_image = type->operands[5] == 2;
         b.image_format = format_of(type->operands[6]);
         if (type->operands[1] == SpvDimBuffer)
-          b.type = storage_image ? VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+          b.type = storage_image ? VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER
+                                 : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
         else if (type->operands[1] == SpvDimSubpassData)
           b.type = VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT;
         else
-          b.type = storage_image ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+          b.type =
+              storage_image ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
         break;
       }
-      case SpvOpTypeSampledImage: b.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER; break;
-      case SpvOpTypeSampler: b.type = VK_DESCRIPTOR_TYPE_SAMPLER; break;
-      case SpvOpTypeAccelerationStructureKHR: b.type = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR; break;
-      default: fail(fmt::format("binding '{}' (set {}, binding {}) has an unsupported type", b.name, b.set, b.binding));
+      case SpvOpTypeSampledImage:
+        b.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        break;
+      case SpvOpTypeSampler:
+        b.type = VK_DESCRIPTOR_TYPE_SAMPLER;
+        break;
+      case SpvOpTypeAccelerationStructureKHR:
+        b.type = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+        break;
+      default:
+        fail(fmt::format("binding '{}' (set {}, binding {}) has an unsupported type", b.name, b.set,
+                         b.binding));
     }
     out_.bindings.push_back(std::move(b));
   }
@@ -294,37 +375,51 @@ std::vector<DescriptorBinding> merge_bindings(std::span<const ShaderReflection* 
   std::vector<DescriptorBinding> merged;
   for (const ShaderReflection* stage : stages) {
     for (const auto& b : stage->bindings) {
-      auto same = std::find_if(merged.begin(), merged.end(),
-                               [&](const auto& m) { return m.set == b.set && m.binding == b.binding; });
+      auto same = std::find_if(merged.begin(), merged.end(), [&](const auto& m) {
+        return m.set == b.set && m.binding == b.binding;
+      });
       if (same == merged.end()) {
         merged.push_back(b);
       } else if (same->type != b.type || same->count != b.count) {
-        throw RuntimeError(fmt::format("{}: set {} binding {} is '{}' ({}) in one stage and '{}' ({}) in another",
-                                       what, b.set, b.binding, same->name, descriptor_type_name(same->type),
-                                       b.name, descriptor_type_name(b.type)));
+        throw RuntimeError(
+            fmt::format("{}: set {} binding {} is '{}' ({}) in one stage and '{}' ({}) in another",
+                        what, b.set, b.binding, same->name, descriptor_type_name(same->type),
+                        b.name, descriptor_type_name(b.type)));
       } else {
         same->stages |= b.stages;
       }
     }
   }
-  std::sort(merged.begin(), merged.end(),
-            [](const auto& a, const auto& b) { return std::tie(a.set, a.binding) < std::tie(b.set, b.binding); });
+  std::sort(merged.begin(), merged.end(), [](const auto& a, const auto& b) {
+    return std::tie(a.set, a.binding) < std::tie(b.set, b.binding);
+  });
   return merged;
 }
 
 const char* descriptor_type_name(VkDescriptorType type) {
   switch (type) {
-    case VK_DESCRIPTOR_TYPE_SAMPLER: return "sampler";
-    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: return "combined image sampler";
-    case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE: return "sampled image";
-    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: return "storage image";
-    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER: return "uniform texel buffer";
-    case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER: return "storage texel buffer";
-    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: return "uniform buffer";
-    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: return "storage buffer";
-    case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT: return "input attachment";
-    case VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR: return "acceleration structure";
-    default: return "unknown descriptor";
+    case VK_DESCRIPTOR_TYPE_SAMPLER:
+      return "sampler";
+    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+      return "combined image sampler";
+    case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+      return "sampled image";
+    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+      return "storage image";
+    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+      return "uniform texel buffer";
+    case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
+      return "storage texel buffer";
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+      return "uniform buffer";
+    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+      return "storage buffer";
+    case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT:
+      return "input attachment";
+    case VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR:
+      return "acceleration structure";
+    default:
+      return "unknown descriptor";
   }
 }
 

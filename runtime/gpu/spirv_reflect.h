@@ -36,7 +36,7 @@ struct ShaderReflection {
   std::vector<DescriptorBinding> bindings;  // sorted by (set, binding)
   std::vector<SpecConstant> spec_constants;
   std::uint32_t push_constant_bytes = 0;
-  std::array<std::uint32_t, 3> local_size{1, 1, 1};    // compute only; defaults if specialised
+  std::array<std::uint32_t, 3> local_size{1, 1, 1};   // compute only; defaults if specialised
   std::array<int, 3> local_size_spec_id{-1, -1, -1};  // spec id that overrides each axis, or -1
 
   const DescriptorBinding* find_binding(std::string_view name) const;

@@ -17,11 +17,13 @@ namespace lantern::runtime {
 
 class Device;
 
-void upload_buffer(Device& device, Buffer& dst, std::span<const std::byte> data, VkDeviceSize offset = 0);
+void upload_buffer(Device& device, Buffer& dst, std::span<const std::byte> data,
+                   VkDeviceSize offset = 0);
 std::vector<std::byte> read_buffer_bytes(Device& device, const Buffer& src);
 
 template <class T>
-void upload_buffer(Device& device, Buffer& dst, std::span<const T> values, VkDeviceSize offset = 0) {
+void upload_buffer(Device& device, Buffer& dst, std::span<const T> values,
+                   VkDeviceSize offset = 0) {
   upload_buffer(device, dst, std::as_bytes(values), offset);
 }
 
@@ -35,12 +37,14 @@ std::vector<T> read_buffer(Device& device, const Buffer& src) {
 
 // Uploads tightly packed texels (width * height * texel_size bytes) and leaves the image in
 // `final_layout`. Previous contents are discarded.
-void upload_image(Device& device, Image& dst, std::span<const std::byte> texels, VkImageLayout final_layout);
+void upload_image(Device& device, Image& dst, std::span<const std::byte> texels,
+                  VkImageLayout final_layout);
 // Reads the whole image as tightly packed rows; the image is in `layout` before and after.
 std::vector<std::byte> read_image(Device& device, const Image& src, VkImageLayout layout);
 
 // Records a full-image layout transition (synchronization2, conservative ALL_COMMANDS scopes).
 // For one-shot helpers only: frame work gets its barriers from the render graph.
-void transition_image(Device& device, VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to);
+void transition_image(Device& device, VkCommandBuffer cmd, const Image& image, VkImageLayout from,
+                      VkImageLayout to);
 
 }  // namespace lantern::runtime

@@ -22,7 +22,8 @@ TEST(DeviceSelect, AutoPrefersDiscreteThenIntegratedThenCpu) {
   const std::vector<DeviceInfo> all = {make(0, "llvmpipe", "cpu"), make(1, "igpu", "integrated"),
                                        make(2, "dgpu", "discrete")};
   EXPECT_EQ(select_device(all, "auto"), 2u);
-  const std::vector<DeviceInfo> no_discrete = {make(0, "llvmpipe", "cpu"), make(1, "igpu", "integrated")};
+  const std::vector<DeviceInfo> no_discrete = {make(0, "llvmpipe", "cpu"),
+                                               make(1, "igpu", "integrated")};
   EXPECT_EQ(select_device(no_discrete, "auto"), 1u);
   const std::vector<DeviceInfo> cpu_only = {make(0, "llvmpipe", "cpu")};
   EXPECT_EQ(select_device(cpu_only, "auto"), 0u);

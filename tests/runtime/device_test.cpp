@@ -44,7 +44,8 @@ TEST(Device, BadSelectorsAreInputErrorsNamingDevices) {
   }
 }
 
-// The counter must really see errors, or "zero validation errors" in every other test means nothing.
+// The counter must really see errors, or "zero validation errors" in every other test means
+// nothing.
 TEST(Device, ValidationCountsAnInvalidCall) {
   Device device(test::test_device_options());
   ASSERT_TRUE(device.validation_enabled());
@@ -69,7 +70,8 @@ TEST_F(DeviceCapsTest, RequiredFeaturesAndSaneLimits) {
   EXPECT_GE(device.caps().max_push_descriptors, 8u);
   EXPECT_NE(device.fn().cmd_push_descriptor_set, nullptr);
   EXPECT_NE(device.fn().cmd_pipeline_barrier2, nullptr);
-  EXPECT_EQ(device.caps().ray_query, device.info().ray_query) << "enabled whenever the device offers it";
+  EXPECT_EQ(device.caps().ray_query, device.info().ray_query)
+      << "enabled whenever the device offers it";
   if (device.caps().ray_query) {
     EXPECT_TRUE(device.caps().buffer_device_address);
   }
@@ -77,7 +79,8 @@ TEST_F(DeviceCapsTest, RequiredFeaturesAndSaneLimits) {
 
 TEST_F(DeviceCapsTest, DebugNamesAndLabelsAreAccepted) {
   EXPECT_TRUE(device.caps().debug_utils);
-  Buffer buffer(device, {.size = 64, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.named"});
+  Buffer buffer(device,
+                {.size = 64, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.named"});
   device.set_name(buffer.handle(), "test.renamed");
   device.submit_and_wait([&](VkCommandBuffer cmd) {
     CommandLabel outer(device, cmd, "test.outer");

@@ -33,17 +33,28 @@ TEST_F(GpuRaster, TriangleWithColorAndDepth) {
   EXPECT_EQ(pipeline.push_constant_bytes(), 16u);
 
   const std::array<float, 6> triangle = {-0.5f, -0.5f, 0.5f, -0.5f, 0.0f, 0.5f};
-  Buffer vertices(device, {.size = sizeof(triangle), .usage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, .name = "test.vertices"});
+  Buffer vertices(device, {.size = sizeof(triangle),
+                           .usage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                           .name = "test.vertices"});
   upload_buffer<float>(device, vertices, triangle);
-  Image color(device, {.width = kSize, .height = kSize, .format = VK_FORMAT_R8G8B8A8_UNORM,
-                       .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, .name = "test.color"});
-  Image depth(device, {.width = kSize, .height = kSize, .format = VK_FORMAT_D32_SFLOAT,
-                       .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, .name = "test.depth"});
+  Image color(device, {.width = kSize,
+                       .height = kSize,
+                       .format = VK_FORMAT_R8G8B8A8_UNORM,
+                       .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                       .name = "test.color"});
+  Image depth(device, {.width = kSize,
+                       .height = kSize,
+                       .format = VK_FORMAT_D32_SFLOAT,
+                       .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                       .name = "test.depth"});
 
   device.submit_and_wait([&](VkCommandBuffer cmd) {
-    transition_image(device, cmd, color, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    transition_image(device, cmd, depth, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-    const ColorTarget target{.view = color.view(), .clear = VkClearColorValue{{0.0f, 0.0f, 1.0f, 1.0f}}};
+    transition_image(device, cmd, color, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    transition_image(device, cmd, depth, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    const ColorTarget target{.view = color.view(),
+                             .clear = VkClearColorValue{{0.0f, 0.0f, 1.0f, 1.0f}}};
     const DepthTarget depth_target{.view = depth.view(), .clear = 1.0f};
     begin_rendering(device, cmd, color.extent(), std::span(&target, 1), &depth_target);
     pipeline.bind(cmd);
@@ -62,8 +73,10 @@ TEST_F(GpuRaster, TriangleWithColorAndDepth) {
     std::memcpy(p.data(), pixels.data() + (y * kSize + x) * 4, 4);
     return p;
   };
-  EXPECT_EQ(pixel(16, 16), (std::array<std::uint8_t, 4>{255, 0, 0, 255})) << "centre is inside the triangle";
-  EXPECT_EQ(pixel(1, 1), (std::array<std::uint8_t, 4>{0, 0, 255, 255})) << "corner keeps the clear colour";
+  EXPECT_EQ(pixel(16, 16), (std::array<std::uint8_t, 4>{255, 0, 0, 255}))
+      << "centre is inside the triangle";
+  EXPECT_EQ(pixel(1, 1), (std::array<std::uint8_t, 4>{0, 0, 255, 255}))
+      << "corner keeps the clear colour";
 
   const auto depths = read_image(device, depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
   float centre_depth = 0.0f, corner_depth = 0.0f;

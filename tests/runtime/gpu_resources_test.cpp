@@ -20,8 +20,11 @@ namespace {
 using GpuResources = test::GpuTest;
 
 TEST_F(GpuResources, ImageUploadReadbackRoundTrip) {
-  Image image(device, {.width = 17, .height = 9, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
-                       .usage = VK_IMAGE_USAGE_STORAGE_BIT, .name = "test.image"});
+  Image image(device, {.width = 17,
+                       .height = 9,
+                       .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+                       .usage = VK_IMAGE_USAGE_STORAGE_BIT,
+                       .name = "test.image"});
   std::vector<float> texels(17 * 9 * 4);
   for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = static_cast<float>(i) * 0.25f;
   upload_image(device, image, std::as_bytes(std::span(texels)), VK_IMAGE_LAYOUT_GENERAL);
@@ -41,20 +44,35 @@ TEST_F(GpuResources, EveryBindingKindBoundByName) {
   desc.constants.set("kScale", 3.0f);
   const ComputePipeline pipeline(device, shaders.load("tests/runtime_reflect.comp"), desc);
 
-  Buffer frame(device, {.size = 16, .usage = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, .memory = MemoryUsage::Upload, .name = "frame"});
-  Buffer source(device, {.size = kW * kH * 16, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "source"});
-  Buffer reservoirs(device, {.size = kW * kH * 16, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "reservoirs"});
-  Image radiance(device, {.width = kW, .height = kH, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
-                          .usage = VK_IMAGE_USAGE_STORAGE_BIT, .name = "radiance"});
-  Image history(device, {.width = 1, .height = 1, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
-                         .usage = VK_IMAGE_USAGE_SAMPLED_BIT, .name = "history"});
+  Buffer frame(device, {.size = 16,
+                        .usage = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                        .memory = MemoryUsage::Upload,
+                        .name = "frame"});
+  Buffer source(
+      device,
+      {.size = kW * kH * 16, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "source"});
+  Buffer reservoirs(
+      device,
+      {.size = kW * kH * 16, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "reservoirs"});
+  Image radiance(device, {.width = kW,
+                          .height = kH,
+                          .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+                          .usage = VK_IMAGE_USAGE_STORAGE_BIT,
+                          .name = "radiance"});
+  Image history(device, {.width = 1,
+                         .height = 1,
+                         .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+                         .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
+                         .name = "history"});
   const glm::vec4 tint(1.0f, 2.0f, 0.5f, 1.0f);
   const glm::vec4 history_value(0.25f, 0.0f, 1.0f, 0.0f);
   upload_buffer<glm::vec4>(device, frame, std::span(&tint, 1));
   std::vector<glm::vec4> texels(kW * kH);
-  for (std::uint32_t i = 0; i < texels.size(); ++i) texels[i] = glm::vec4(float(i), 1.0f, -1.0f, 2.0f);
+  for (std::uint32_t i = 0; i < texels.size(); ++i)
+    texels[i] = glm::vec4(float(i), 1.0f, -1.0f, 2.0f);
   upload_buffer<glm::vec4>(device, source, texels);
-  upload_image(device, history, std::as_bytes(std::span(&history_value, 1)), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  upload_image(device, history, std::as_bytes(std::span(&history_value, 1)),
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 
   VkSamplerCreateInfo sampler_info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   VkSampler sampler = VK_NULL_HANDLE;
@@ -100,18 +118,21 @@ TEST_F(GpuResources, SubAllocatorSharesBlocksAndReleasesMemory) {
   {
     std::vector<Buffer> small;
     for (int i = 0; i < 32; ++i)
-      small.emplace_back(device, BufferDesc{.size = 256 << 10, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+      small.emplace_back(device, BufferDesc{.size = 256 << 10,
+                                            .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                             .name = "test.small" + std::to_string(i)});
     EXPECT_GE(total(&HeapStats::used), used_before + 32 * (256 << 10));
     EXPECT_LE(blocks(), blocks_before + 1) << "32 x 256 KiB must share one 64 MiB block";
     const VkDeviceSize big_size = device.memory().block_size();  // > half a block: dedicated
-    Buffer big(device, {.size = big_size, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.big"});
+    Buffer big(device,
+               {.size = big_size, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.big"});
     EXPECT_GE(total(&HeapStats::reserved), total(&HeapStats::used));
     EXPECT_NE(describe(device.memory().stats()).find("MiB used by"), std::string::npos);
     EXPECT_GE(total(&HeapStats::used), used_before + 32 * (256 << 10) + big_size);
   }
   EXPECT_EQ(total(&HeapStats::used), used_before) << "all bytes returned";
-  EXPECT_LE(blocks(), blocks_before + 1) << "dedicated memory freed; at most one cached empty block";
+  EXPECT_LE(blocks(), blocks_before + 1)
+      << "dedicated memory freed; at most one cached empty block";
 }
 
 }  // namespace

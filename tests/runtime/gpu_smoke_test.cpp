@@ -36,8 +36,10 @@ TEST_F(GpuSmoke, ComputePatternCheckedOnCpu) {
   constexpr std::uint32_t kCount = 100'003;  // not a multiple of the workgroup size
   const ComputePipeline fill = make_fill(64, 7);
   EXPECT_EQ(fill.local_size()[0], 64u);
-  Buffer out(device, {.size = kCount * 4 + 64, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                      .memory = MemoryUsage::Readback, .name = "test.fill.out"});
+  Buffer out(device, {.size = kCount * 4 + 64,
+                      .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                      .memory = MemoryUsage::Readback,
+                      .name = "test.fill.out"});
   std::vector<std::uint32_t> sentinel(out.size() / 4, 0xdeadbeefu);
   upload_buffer<std::uint32_t>(device, out, sentinel);
 
@@ -53,23 +55,29 @@ TEST_F(GpuSmoke, ComputePatternCheckedOnCpu) {
   std::uint32_t wrong = 0;
   for (std::uint32_t i = 0; i < kCount; ++i) wrong += values[i] != i * 7u + 11u;
   EXPECT_EQ(wrong, 0u) << "first values: " << values[0] << " " << values[1] << " " << values[2];
-  for (std::uint32_t i = kCount; i < values.size(); ++i) EXPECT_EQ(values[i], 0xdeadbeefu) << "wrote past count at " << i;
+  for (std::uint32_t i = kCount; i < values.size(); ++i)
+    EXPECT_EQ(values[i], 0xdeadbeefu) << "wrote past count at " << i;
 }
 
 TEST_F(GpuSmoke, DeviceLocalBufferRoundTrip) {
   std::vector<std::uint32_t> data(4096);
   std::iota(data.begin(), data.end(), 5u);
-  Buffer buffer(device, {.size = data.size() * 4, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.roundtrip"});
+  Buffer buffer(device, {.size = data.size() * 4,
+                         .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         .name = "test.roundtrip"});
   upload_buffer<std::uint32_t>(device, buffer, data);
   EXPECT_EQ(read_buffer<std::uint32_t>(device, buffer), data);
-  EXPECT_THROW(upload_buffer<std::uint32_t>(device, buffer, data, 4), RuntimeError) << "overflow must be rejected";
+  EXPECT_THROW(upload_buffer<std::uint32_t>(device, buffer, data, 4), RuntimeError)
+      << "overflow must be rejected";
 }
 
 TEST_F(GpuSmoke, TimestampsMeasureADispatch) {
   constexpr std::uint32_t kCount = 1 << 22;
   const ComputePipeline fill = make_fill(256, 3);
   fill.warm_up();
-  Buffer out(device, {.size = kCount * 4, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.timed"});
+  Buffer out(
+      device,
+      {.size = kCount * 4, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.timed"});
   GpuTimer timer(device, 8);
   device.submit_and_wait([&](VkCommandBuffer cmd) {
     timer.reset(cmd);
@@ -95,7 +103,8 @@ TEST_F(GpuSmoke, TimestampsMeasureADispatch) {
 
 TEST_F(GpuSmoke, BindingByNameRejectsMistakes) {
   const ComputePipeline fill = make_fill(64, 1);
-  Buffer out(device, {.size = 256, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.out"});
+  Buffer out(device,
+             {.size = 256, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = "test.out"});
   try {
     Bindings(fill).buffer("results", out);
     FAIL() << "misspelt binding accepted";
@@ -105,7 +114,8 @@ TEST_F(GpuSmoke, BindingByNameRejectsMistakes) {
   }
   Bindings empty(fill);
   EXPECT_THROW(empty.writes(), RuntimeError) << "unbound 'result' must be reported";
-  EXPECT_THROW(fill.push_constants(VkCommandBuffer{VK_NULL_HANDLE}, std::uint32_t{1}), RuntimeError) << "push constant size mismatch";
+  EXPECT_THROW(fill.push_constants(VkCommandBuffer{VK_NULL_HANDLE}, std::uint32_t{1}), RuntimeError)
+      << "push constant size mismatch";
   ComputePipelineDesc bad{.name = "test.bad"};
   bad.constants.set("kNoSuchConstant", 1u);
   EXPECT_THROW(ComputePipeline(device, shaders.load("tests/runtime_fill.comp"), bad), RuntimeError);

@@ -20,7 +20,8 @@ inline DeviceOptions test_device_options() {
 class GpuTest : public ::testing::Test {
  protected:
   void TearDown() override {
-    EXPECT_TRUE(device.validation_enabled()) << "validation layer unavailable: the test cannot vouch for API use";
+    EXPECT_TRUE(device.validation_enabled())
+        << "validation layer unavailable: the test cannot vouch for API use";
     EXPECT_EQ(device.validation_errors(), 0u);
   }
   Device device{test_device_options()};

@@ -24,17 +24,18 @@ TEST(OffsetAllocator, HonoursAlignment) {
 
 TEST(OffsetAllocator, BestFitPicksTheSmallestHole) {
   OffsetAllocator a(1000);
-  const auto x = a.allocate(100, 1);  // [0,100)
-  const auto gap_big = a.allocate(300, 1);  // [100,400)
-  const auto y = a.allocate(100, 1);  // [400,500)
+  const auto x = a.allocate(100, 1);         // [0,100)
+  const auto gap_big = a.allocate(300, 1);   // [100,400)
+  const auto y = a.allocate(100, 1);         // [400,500)
   const auto gap_small = a.allocate(50, 1);  // [500,550)
-  const auto z = a.allocate(100, 1);  // [550,650)
+  const auto z = a.allocate(100, 1);         // [550,650)
   ASSERT_TRUE(x && gap_big && y && gap_small && z);
   a.free(*gap_big);
   a.free(*gap_small);
   const auto fit = a.allocate(40, 1);
   ASSERT_TRUE(fit);
-  EXPECT_EQ(*fit, *gap_small) << "a 40-byte request belongs in the 50-byte hole, not the 300-byte one";
+  EXPECT_EQ(*fit, *gap_small)
+      << "a 40-byte request belongs in the 50-byte hole, not the 300-byte one";
 }
 
 TEST(OffsetAllocator, CoalescesNeighboursOnFree) {
@@ -66,7 +67,9 @@ TEST(OffsetAllocator, RandomizedAllocationsNeverOverlap) {
   constexpr std::uint64_t kCapacity = 1 << 20;
   OffsetAllocator a(kCapacity);
   std::mt19937 rng(7);
-  struct Live { std::uint64_t offset, size; };
+  struct Live {
+    std::uint64_t offset, size;
+  };
   std::vector<Live> live;
   for (int step = 0; step < 20000; ++step) {
     if (live.empty() || rng() % 3 != 0) {
@@ -83,12 +86,14 @@ TEST(OffsetAllocator, RandomizedAllocationsNeverOverlap) {
       live.erase(live.begin() + static_cast<std::ptrdiff_t>(i));
     }
   }
-  std::sort(live.begin(), live.end(), [](const Live& l, const Live& r) { return l.offset < r.offset; });
+  std::sort(live.begin(), live.end(),
+            [](const Live& l, const Live& r) { return l.offset < r.offset; });
   std::uint64_t used = 0;
   for (std::size_t i = 0; i < live.size(); ++i) {
     used += live[i].size;
     if (i > 0) {
-      ASSERT_LE(live[i - 1].offset + live[i - 1].size, live[i].offset) << "overlap at " << live[i].offset;
+      ASSERT_LE(live[i - 1].offset + live[i - 1].size, live[i].offset)
+          << "overlap at " << live[i].offset;
     }
   }
   EXPECT_EQ(a.used(), used);

@@ -1,4 +1,6 @@
 // The pipeline cache is written to disk when a device goes away and accepted by the next one.
+#include "runtime/gpu/pipeline_cache.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -6,7 +8,6 @@
 
 #include "gpu_test_support.h"
 #include "runtime/gpu/compute_pipeline.h"
-#include "runtime/gpu/pipeline_cache.h"
 #include "runtime/gpu/shader_library.h"
 
 namespace lantern::runtime {
@@ -14,7 +15,8 @@ namespace {
 
 TEST(PipelineCache, WrittenOnShutdownAndReloaded) {
   const auto dir = std::filesystem::temp_directory_path() /
-                   ("lantern_pipeline_cache_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+                   ("lantern_pipeline_cache_test_" +
+                    std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   std::filesystem::remove_all(dir);
   DeviceOptions options = test::test_device_options();
   options.cache_dir = dir;
@@ -22,7 +24,8 @@ TEST(PipelineCache, WrittenOnShutdownAndReloaded) {
   std::filesystem::path file;
   {
     Device device(options);
-    EXPECT_EQ(device.pipeline_cache_store().loaded_bytes(), 0u) << "fresh directory: nothing to load";
+    EXPECT_EQ(device.pipeline_cache_store().loaded_bytes(), 0u)
+        << "fresh directory: nothing to load";
     ComputePipelineDesc desc{.name = "test.cached"};
     desc.constants.set_id(0, 32);
     const ComputePipeline pipeline(device, shaders.load("tests/runtime_fill.comp"), desc);
@@ -44,7 +47,8 @@ TEST(PipelineCache, WrittenOnShutdownAndReloaded) {
     EXPECT_EQ(device.validation_errors(), 0u);
   }
   {  // A corrupted file is ignored, not fatal.
-    std::ofstream(file, std::ios::binary | std::ios::trunc) << "garbage that is not a pipeline cache header......";
+    std::ofstream(file, std::ios::binary | std::ios::trunc)
+        << "garbage that is not a pipeline cache header......";
     Device device(options);
     EXPECT_EQ(device.pipeline_cache_store().loaded_bytes(), 0u);
     EXPECT_EQ(device.validation_errors(), 0u);

@@ -47,7 +47,8 @@ bool spirv_val_passes(const std::filesystem::path& spv) {
 }
 
 TEST(ShaderCompile, EveryManifestShaderIsValidReflectsAndRecompiles) {
-  ASSERT_EQ(std::system("command -v spirv-val > /dev/null"), 0) << "spirv-val not on PATH (package spirv-tools)";
+  ASSERT_EQ(std::system("command -v spirv-val > /dev/null"), 0)
+      << "spirv-val not on PATH (package spirv-tools)";
   ShaderLibrary library;
   const auto entries = read_manifest(library.dir() / "manifest.txt");
   ASSERT_FALSE(entries.empty()) << "empty manifest in " << library.dir();
@@ -82,7 +83,8 @@ TEST(ShaderCompile, ErrorsNameFileAndLine) {
   const auto dir = std::filesystem::temp_directory_path() / "lantern_shader_compile_test";
   std::filesystem::create_directories(dir);
   const auto file = dir / "broken.comp";
-  std::ofstream(file) << "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {\n  undeclared_thing = 1;\n}\n";
+  std::ofstream(file)
+      << "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {\n  undeclared_thing = 1;\n}\n";
   const GlslResult result = compile_glsl(file);
   EXPECT_FALSE(result.ok());
   EXPECT_NE(result.log.find(file.string() + ":4"), std::string::npos) << result.log;

@@ -19,7 +19,11 @@ TEST(SpirvReflect, FindsNamedBindingsOfEveryKind) {
   EXPECT_EQ(r.stage, VK_SHADER_STAGE_COMPUTE_BIT);
   EXPECT_EQ(r.entry_point, "main");
   ASSERT_EQ(r.bindings.size(), 5u);
-  struct Expected { const char* name; std::uint32_t binding; VkDescriptorType type; };
+  struct Expected {
+    const char* name;
+    std::uint32_t binding;
+    VkDescriptorType type;
+  };
   const Expected expected[] = {
       {"frame", 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
       {"source", 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
