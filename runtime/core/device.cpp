@@ -128,7 +128,8 @@ Device::Device(const DeviceOptions& options)
 
   memory_ = std::make_unique<MemoryAllocator>(
       device_, memory_properties_,
-      MemoryAllocator::Options{.device_address = caps_.buffer_device_address});
+      MemoryAllocator::Options{.device_address = caps_.buffer_device_address,
+                               .map_device_local = !options.force_staging});
   pipeline_cache_ = std::make_unique<PipelineCache>(device_, properties_, options.cache_dir,
                                                     options.persist_pipeline_cache);
   set_name(queue_, "lantern.queue");
@@ -216,6 +217,17 @@ void Device::submit_and_wait(const std::function<void(VkCommandBuffer)>& record)
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
   record(cmd);
+  // The caller reads results on the host after this returns: make every device write visible to
+  // host reads (a fence alone does not; see the spec's "Host Write Ordering Guarantees").
+  VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  to_host.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  to_host.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+  to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+  to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &to_host;
+  fn_.cmd_pipeline_barrier2(cmd, &dependency);
   VK_CHECK(vkEndCommandBuffer(cmd));
 
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};

@@ -49,6 +49,10 @@ struct DeviceOptions {
   // Set LANTERN_CACHE_DIR to override it from the environment.
   std::filesystem::path cache_dir;
   bool persist_pipeline_cache = true;  // load at creation, save at destruction
+  // Never hand out host pointers to DeviceLocal memory, even where it is host-visible (lavapipe,
+  // integrated GPUs): uploads and readbacks then take the staging path a discrete GPU needs.
+  // For tests of that path; costs a copy.
+  bool force_staging = false;
 };
 
 // Device-level entry points that are extensions (or core only in 1.3), loaded once.
@@ -104,7 +108,8 @@ class Device {
   void begin_label(VkCommandBuffer cmd, std::string_view name) const;
   void end_label(VkCommandBuffer cmd) const;
 
-  // Records `record` into a fresh primary command buffer, submits it and waits for completion.
+  // Records `record` into a fresh primary command buffer, submits it and waits for completion;
+  // all device writes are then visible to host reads (mapped buffers, readbacks).
   void submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
   void wait_idle() const;
   // Writes the pipeline cache to disk now (also done on destruction when persist is on).

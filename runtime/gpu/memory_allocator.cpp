@@ -97,6 +97,11 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
     throw RuntimeError(fmt::format("no Vulkan memory type fits usage {} (type bits {:#x})",
                                    static_cast<int>(usage), req.memoryTypeBits));
   const auto type = static_cast<std::uint32_t>(type_index);
+  auto hide_mapping = [&](Allocation allocation) {
+    if (usage == MemoryUsage::DeviceLocal && !options_.map_device_local)
+      allocation.mapped = nullptr;
+    return allocation;
+  };
   std::lock_guard lock(mutex_);
 
   Allocation a;
@@ -109,7 +114,7 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
     s.used += req.size;
     ++s.blocks;
     ++s.allocations;
-    return a;
+    return hide_mapping(a);
   }
   for (auto& block : blocks_) {
     if (block->type != type || block->kind != kind) continue;
@@ -118,7 +123,7 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
       a.offset = *offset;
       a.mapped = block->mapped != nullptr ? block->mapped + *offset : nullptr;
       a.block = block.get();
-      return a;
+      return hide_mapping(a);
     }
   }
   std::byte* mapped = nullptr;
@@ -131,7 +136,7 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
   a.offset = *offset;
   a.mapped = mapped != nullptr ? mapped + *offset : nullptr;
   a.block = block.get();
-  return a;
+  return hide_mapping(a);
 }
 
 void MemoryAllocator::free(const Allocation& a) {

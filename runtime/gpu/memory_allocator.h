@@ -50,7 +50,8 @@ class MemoryAllocator {
  public:
   struct Options {
     VkDeviceSize block_size = 64ull << 20;
-    bool device_address = false;  // allocate with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT
+    bool device_address = false;   // allocate with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT
+    bool map_device_local = true;  // false: DeviceLocal allocations never expose a host pointer
   };
   MemoryAllocator(VkDevice device, const VkPhysicalDeviceMemoryProperties& properties,
                   Options options);

@@ -33,6 +33,30 @@ TEST_F(GpuResources, ImageUploadReadbackRoundTrip) {
   EXPECT_EQ(std::memcmp(bytes.data(), texels.data(), bytes.size()), 0);
 }
 
+// The discrete-GPU path: device-local memory without host pointers, uploads through staging.
+TEST(GpuStaging, BufferRoundTripThroughStaging) {
+  DeviceOptions options = test::test_device_options();
+  options.force_staging = true;
+  Device device(options);
+  std::vector<std::uint32_t> data(10'000);
+  for (std::uint32_t i = 0; i < data.size(); ++i) data[i] = i * 2654435761u;
+  Buffer buffer(device, {.size = data.size() * 4,
+                         .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         .name = "test.staged"});
+  EXPECT_EQ(buffer.mapped(), nullptr);
+  upload_buffer<std::uint32_t>(device, buffer, data, 0);
+  EXPECT_EQ(read_buffer<std::uint32_t>(device, buffer), data);
+  const std::vector<std::uint32_t> patch = {1, 2, 3};
+  upload_buffer<std::uint32_t>(device, buffer, patch, 8);
+  const auto patched = read_buffer<std::uint32_t>(device, buffer);
+  EXPECT_EQ(patched[1], data[1]);
+  EXPECT_EQ(patched[2], 1u);
+  EXPECT_EQ(patched[4], 3u);
+  EXPECT_EQ(patched[5], data[5]);
+  EXPECT_TRUE(device.validation_enabled());
+  EXPECT_EQ(device.validation_errors(), 0u);
+}
+
 TEST_F(GpuResources, EveryBindingKindBoundByName) {
   struct Push {
     glm::mat4 transform;
