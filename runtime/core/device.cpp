@@ -92,67 +92,78 @@ Device::Device(const DeviceOptions& options)
   info.enabledExtensionCount = static_cast<std::uint32_t>(features.extensions().size());
   info.ppEnabledExtensionNames = features.extensions().data();
   VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device_));
-  vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+  try {
+    vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 
-  const bool core13 = caps_.api_version >= VK_API_VERSION_1_3;
-  fn_.cmd_push_descriptor_set =
-      load<PFN_vkCmdPushDescriptorSetKHR>(device_, "vkCmdPushDescriptorSetKHR");
-  fn_.cmd_pipeline_barrier2 = load<PFN_vkCmdPipelineBarrier2KHR>(
-      device_, core13 ? "vkCmdPipelineBarrier2" : "vkCmdPipelineBarrier2KHR");
-  if (caps_.dynamic_rendering) {
-    fn_.cmd_begin_rendering = load<PFN_vkCmdBeginRenderingKHR>(
-        device_, core13 ? "vkCmdBeginRendering" : "vkCmdBeginRenderingKHR");
-    fn_.cmd_end_rendering = load<PFN_vkCmdEndRenderingKHR>(
-        device_, core13 ? "vkCmdEndRendering" : "vkCmdEndRenderingKHR");
+    const bool core13 = caps_.api_version >= VK_API_VERSION_1_3;
+    fn_.cmd_push_descriptor_set =
+        load<PFN_vkCmdPushDescriptorSetKHR>(device_, "vkCmdPushDescriptorSetKHR");
+    fn_.cmd_pipeline_barrier2 = load<PFN_vkCmdPipelineBarrier2KHR>(
+        device_, core13 ? "vkCmdPipelineBarrier2" : "vkCmdPipelineBarrier2KHR");
+    if (caps_.dynamic_rendering) {
+      fn_.cmd_begin_rendering = load<PFN_vkCmdBeginRenderingKHR>(
+          device_, core13 ? "vkCmdBeginRendering" : "vkCmdBeginRenderingKHR");
+      fn_.cmd_end_rendering = load<PFN_vkCmdEndRenderingKHR>(
+          device_, core13 ? "vkCmdEndRendering" : "vkCmdEndRenderingKHR");
+    }
+    if (caps_.debug_utils) {
+      VkInstance inst = instance_->handle();
+      fn_.set_object_name = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+          vkGetInstanceProcAddr(inst, "vkSetDebugUtilsObjectNameEXT"));
+      fn_.cmd_begin_label = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+          vkGetInstanceProcAddr(inst, "vkCmdBeginDebugUtilsLabelEXT"));
+      fn_.cmd_end_label = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+          vkGetInstanceProcAddr(inst, "vkCmdEndDebugUtilsLabelEXT"));
+    }
+    if (fn_.cmd_push_descriptor_set == nullptr || fn_.cmd_pipeline_barrier2 == nullptr)
+      throw RuntimeError(
+          "Vulkan driver did not return vkCmdPushDescriptorSetKHR / vkCmdPipelineBarrier2");
+
+    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool_info.flags =
+        VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool_info.queueFamilyIndex = queue_family_;
+    VK_CHECK(vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_));
+    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &submit_fence_));
+
+    memory_ = std::make_unique<MemoryAllocator>(
+        device_, memory_properties_,
+        MemoryAllocator::Options{.device_address = caps_.buffer_device_address,
+                                 .map_device_local = !options.force_staging});
+    pipeline_cache_ = std::make_unique<PipelineCache>(device_, properties_, options.cache_dir,
+                                                      options.persist_pipeline_cache);
+    set_name(queue_, "lantern.queue");
+    set_name(command_pool_, "lantern.one_shot_pool");
+
+    log::info(
+        "Vulkan device {}: {} ({}, Vulkan {}, {}); ray query {}, descriptor indexing {}, "
+        "validation "
+        "{}",
+        info_.index, info_.name, info_.type, info_.api_version, info_.driver,
+        caps_.ray_query ? "yes" : "no", caps_.descriptor_indexing ? "yes" : "no",
+        instance_->sync_validation_enabled() ? "on (+sync)"
+        : instance_->validation_enabled()    ? "on"
+                                             : "off");
+  } catch (...) {
+    release();  // the destructor does not run for a half-built object
+    throw;
   }
-  if (caps_.debug_utils) {
-    VkInstance inst = instance_->handle();
-    fn_.set_object_name = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
-        vkGetInstanceProcAddr(inst, "vkSetDebugUtilsObjectNameEXT"));
-    fn_.cmd_begin_label = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
-        vkGetInstanceProcAddr(inst, "vkCmdBeginDebugUtilsLabelEXT"));
-    fn_.cmd_end_label = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
-        vkGetInstanceProcAddr(inst, "vkCmdEndDebugUtilsLabelEXT"));
-  }
-  if (fn_.cmd_push_descriptor_set == nullptr || fn_.cmd_pipeline_barrier2 == nullptr)
-    throw RuntimeError(
-        "Vulkan driver did not return vkCmdPushDescriptorSetKHR / vkCmdPipelineBarrier2");
-
-  VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  pool_info.flags =
-      VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  pool_info.queueFamilyIndex = queue_family_;
-  VK_CHECK(vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_));
-  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &submit_fence_));
-
-  memory_ = std::make_unique<MemoryAllocator>(
-      device_, memory_properties_,
-      MemoryAllocator::Options{.device_address = caps_.buffer_device_address,
-                               .map_device_local = !options.force_staging});
-  pipeline_cache_ = std::make_unique<PipelineCache>(device_, properties_, options.cache_dir,
-                                                    options.persist_pipeline_cache);
-  set_name(queue_, "lantern.queue");
-  set_name(command_pool_, "lantern.one_shot_pool");
-
-  log::info(
-      "Vulkan device {}: {} ({}, Vulkan {}, {}); ray query {}, descriptor indexing {}, validation "
-      "{}",
-      info_.index, info_.name, info_.type, info_.api_version, info_.driver,
-      caps_.ray_query ? "yes" : "no", caps_.descriptor_indexing ? "yes" : "no",
-      instance_->sync_validation_enabled() ? "on (+sync)"
-      : instance_->validation_enabled()    ? "on"
-                                           : "off");
 }
 
 Device::~Device() {
   if (device_ != VK_NULL_HANDLE) vkDeviceWaitIdle(device_);
   if (pipeline_cache_ && persist_pipeline_cache_) pipeline_cache_->save();
+  release();
+}
+
+void Device::release() {
   pipeline_cache_.reset();
   memory_.reset();
   if (submit_fence_ != VK_NULL_HANDLE) vkDestroyFence(device_, submit_fence_, nullptr);
   if (command_pool_ != VK_NULL_HANDLE) vkDestroyCommandPool(device_, command_pool_, nullptr);
   if (device_ != VK_NULL_HANDLE) vkDestroyDevice(device_, nullptr);
+  device_ = VK_NULL_HANDLE;
 }
 
 VkInstance Device::instance() const {

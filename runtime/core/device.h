@@ -116,6 +116,8 @@ class Device {
   void save_pipeline_cache();
 
  private:
+  void release();  // destroys everything created so far (also for a failed constructor)
+
   std::unique_ptr<Instance> instance_;
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;

@@ -127,7 +127,6 @@ FeatureNegotiation::FeatureNegotiation(VkPhysicalDevice device,
       dynamic_rendering_.dynamicRendering = VK_TRUE;
     }
   }
-  if (core13) v13_.maintenance4 = VK_FALSE;
 
   caps_.ray_query = has(VK_KHR_RAY_QUERY_EXTENSION_NAME) &&
                     has(VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
