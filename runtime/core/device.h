@@ -2,23 +2,31 @@
 // physical device, logical device, graphics+compute queue, command pool, memory allocator and
 // on-disk pipeline cache.
 //
-// Usage:
-//   runtime::Device device({.selector = "auto"});          // logs the chosen device
+// clang-format off
+// Usage (headers under runtime/gpu/: buffer, shader_library, compute_pipeline, bindings,
+// gpu_timer, transfer):
+//   runtime::Device device({.selector = "auto"});   // logs the chosen device
+//   runtime::ShaderLibrary shaders;                 // compiled SPIR-V (LANTERN_SHADER_DIR)
+//   runtime::ComputePipelineDesc desc{.name = "test.fill"};
+//   desc.constants.set("kMultiplier", 7u);          // specialisation constants by name
+//   runtime::ComputePipeline fill(device, shaders.load("tests/runtime_fill.comp"), desc);
+//   fill.warm_up();                                 // JIT now, not in the first timed frame
 //   runtime::Buffer out(device, {.size = n * 4, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-//                                .memory = runtime::MemoryUsage::Readback, .name = "out"});
-//   runtime::ShaderLibrary shaders;                        // compiled SPIR-V under
-//   LANTERN_SHADER_DIR runtime::ComputePipeline fill(device, shaders.load("tests/fill.comp"),
-//   {.name = "test.fill"}); runtime::GpuTimer timer(device, 16);
+//                                .memory = runtime::MemoryUsage::Readback, .name = "fill.out"});
+//   runtime::GpuTimer timer(device);
 //   device.submit_and_wait([&](VkCommandBuffer cmd) {
 //     timer.reset(cmd);
-//     auto scope = timer.scope(cmd, "test.fill");        // timestamps + debug label
+//     auto pass = timer.scope(cmd, "test.fill");    // timestamps + debug label
 //     fill.bind(cmd, runtime::Bindings(fill).buffer("result", out));  // bind BY NAME
+//     fill.push_constants(cmd, Push{n, 11});
 //     fill.dispatch_threads(cmd, n);
 //   });
 //   auto values = runtime::read_buffer<std::uint32_t>(device, out);
-//   assert(device.validation_errors() == 0);
-// Errors: bad selectors throw lantern::InputError; Vulkan failures throw lantern::RuntimeError
-// via VK_CHECK. The device must outlive every resource made from it.
+//   double ms = timer.resolve()[0].ms;
+//   bool clean = device.validation_enabled() && device.validation_errors() == 0;
+// clang-format on
+// Errors: bad selectors throw lantern::InputError (exit 2); Vulkan failures throw
+// lantern::RuntimeError via VK_CHECK. The device must outlive every resource made from it.
 #pragma once
 
 #include <vulkan/vulkan.h>
