@@ -2,6 +2,7 @@
 // as (v0, e1, e2) in leaf order, and refits after vertices move.
 #include "lighting/bvh/mesh_bvh.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -19,11 +20,18 @@ void check_positions(std::span<const glm::vec3> positions, const char* what) {
   }
 }
 
+// Box of a triangle, widened by a few ulps of its largest coordinate: the traversal tests the
+// stored (v0, v1 - v0, v2 - v0), whose rounding can move the edges of a triangle with a far-off
+// vertex by an ulp of that vertex, beyond a box taken from the exact vertices.
 Aabb triangle_bounds(std::span<const glm::vec3> positions, const std::uint32_t* tri) {
   Aabb box;
   box.grow(positions[tri[0]]);
   box.grow(positions[tri[1]]);
   box.grow(positions[tri[2]]);
+  const glm::vec3 magnitude = glm::max(glm::abs(box.min), glm::abs(box.max));
+  const float pad = std::max(magnitude.x, std::max(magnitude.y, magnitude.z)) * (1.0f / (1 << 21));
+  box.min -= pad;
+  box.max += pad;
   return box;
 }
 
@@ -46,13 +54,14 @@ MeshBvh::MeshBvh(std::span<const glm::vec3> positions, std::span<const std::uint
   BvhBuildOutput built = build_bvh(bounds, options);
   nodes_ = std::move(built.nodes);
   order_ = std::move(built.primitive_order);
-  set_triangles(positions);
+  set_triangles(positions, {});
 }
 
-void MeshBvh::set_triangles(std::span<const glm::vec3> positions) {
+void MeshBvh::set_triangles(std::span<const glm::vec3> positions, std::span<Aabb> slot_bounds) {
   triangles_.resize(order_.size());
   for (std::size_t slot = 0; slot < order_.size(); ++slot) {
     const std::uint32_t t = order_[slot];
+    if (!slot_bounds.empty()) slot_bounds[slot] = triangle_bounds(positions, &indices_[3 * t]);
     const glm::vec3 v0 = positions[indices_[3 * t]];
     const glm::vec3 v1 = positions[indices_[3 * t + 1]];
     const glm::vec3 v2 = positions[indices_[3 * t + 2]];
@@ -68,10 +77,8 @@ void MeshBvh::refit(std::span<const glm::vec3> positions) {
     throw InputError(fmt::format("mesh BVH refit: {} vertices given, the mesh was built with {}",
                                  positions.size(), vertex_count_));
   check_positions(positions, "mesh BVH refit");
-  set_triangles(positions);
   std::vector<Aabb> slot_bounds(order_.size());
-  for (std::size_t slot = 0; slot < order_.size(); ++slot)
-    slot_bounds[slot] = triangle_bounds(positions, &indices_[3 * order_[slot]]);
+  set_triangles(positions, slot_bounds);
   refit_bvh(nodes_, slot_bounds);
 }
 

@@ -34,7 +34,8 @@ class MeshBvh {
   Aabb bounds() const;
 
  private:
-  void set_triangles(std::span<const glm::vec3> positions);
+  // Writes triangles_ in leaf order and, when slot_bounds is not empty, each slot's box.
+  void set_triangles(std::span<const glm::vec3> positions, std::span<Aabb> slot_bounds);
 
   std::vector<std::uint32_t> indices_;
   std::size_t vertex_count_ = 0;

@@ -16,7 +16,7 @@ glm::mat4 random_transform(std::mt19937& rng) {
   return glm::scale(m, glm::vec3(scale(rng), scale(rng), scale(rng)));
 }
 
-class TwoLevel : public testing::Test {
+class BvhTwoLevel : public testing::Test {
  protected:
   void SetUp() override {
     meshes_ = {test::random_soup(400, 1.0f, 0.3f, 1), test::grid_mesh(12, 2), test::random_soup(200, 0.5f, 0.2f, 3)};
@@ -76,14 +76,14 @@ class TwoLevel : public testing::Test {
   SceneBvh bvh_;
 };
 
-TEST_F(TwoLevel, ClosestHitEqualsBruteForceOverRotatedScaledInstances) {
+TEST_F(BvhTwoLevel, ClosestHitEqualsBruteForceOverRotatedScaledInstances) {
   place(5, 30);
   EXPECT_EQ(bvh_.header().instance_count, 30u);
   EXPECT_EQ(bvh_.header().tlas_node_count, 2u * 30u - 1u);
   EXPECT_GT(check_exact(40), 200u);
 }
 
-TEST_F(TwoLevel, AgreesWithWorldSpaceTrianglesWithinRounding) {
+TEST_F(BvhTwoLevel, AgreesWithWorldSpaceTrianglesWithinRounding) {
   place(6, 20);
   // Independent reference: the triangles moved into world space, tested with untransformed rays.
   std::vector<test::TestMesh> world(descs_.size());
@@ -109,14 +109,14 @@ TEST_F(TwoLevel, AgreesWithWorldSpaceTrianglesWithinRounding) {
   EXPECT_GT(hits, 100);
 }
 
-TEST_F(TwoLevel, TlasRebuiltEachFrameFollowsMovingInstances) {
+TEST_F(BvhTwoLevel, TlasRebuiltEachFrameFollowsMovingInstances) {
   for (std::uint32_t frame = 0; frame < 4; ++frame) {
     place(100 + frame, 12 + 5 * frame);
     EXPECT_GT(check_exact(200 + frame), 50u) << "frame " << frame;
   }
 }
 
-TEST_F(TwoLevel, RefitDeformingMeshStillEqualsBruteForce) {
+TEST_F(BvhTwoLevel, RefitDeformingMeshStillEqualsBruteForce) {
   place(7, 24);
   for (int step = 1; step <= 3; ++step) {
     for (glm::vec3& p : meshes_[0].positions)
@@ -127,7 +127,7 @@ TEST_F(TwoLevel, RefitDeformingMeshStillEqualsBruteForce) {
   }
 }
 
-TEST_F(TwoLevel, RejectsUnknownMeshAndSingularTransform) {
+TEST_F(BvhTwoLevel, RejectsUnknownMeshAndSingularTransform) {
   BvhInstanceDesc d;
   d.mesh = 99;
   EXPECT_THROW(bvh_.set_instances({&d, 1}), InputError);

@@ -65,6 +65,23 @@ TEST(BvhTraverse, ClosestHitEqualsBruteForceOnAGridMeshWithLeafSizes) {
   }
 }
 
+TEST(BvhTraverse, LongSliversWithAFarVertexAreNotCulled) {
+  // Each triangle has one vertex ~1000 units away and two near the origin: the rounding of the
+  // stored edges is an ulp of 1000, far more than an ulp of the near vertices' coordinates.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> near(-1.0f, 1.0f), far(-1000.0f, 1000.0f);
+  test::TestMesh slivers;
+  for (std::uint32_t t = 0; t < 600; ++t) {
+    slivers.positions.emplace_back(far(rng), far(rng), far(rng));
+    slivers.positions.emplace_back(near(rng), near(rng), near(rng));
+    slivers.positions.emplace_back(near(rng), near(rng), near(rng));
+    slivers.indices.insert(slivers.indices.end(), {3 * t + 1, 3 * t + 2, 3 * t});  // far vertex last
+  }
+  const SceneBvh bvh = test::single_mesh_scene(slivers);
+  const std::vector<test::PlacedMesh> reference = {{&slivers, glm::mat4(1.0f)}};
+  EXPECT_GT(expect_matches_brute_force(bvh, reference, test::random_rays(2000, 1.0f, 18)), 500u);
+}
+
 TEST(BvhTraverse, BoundedSegmentsStopAtTmax) {
   const test::TestMesh soup = test::random_soup(1000, 3.0f, 0.5f, 9);
   const SceneBvh bvh = test::single_mesh_scene(soup);
