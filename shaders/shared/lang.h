@@ -2,6 +2,8 @@
 // Rules for shared headers (std430 layout, see STYLE.md): 4-byte scalars, vec4/uvec4/mat4 members
 // only (no vec3, no bool), named padding, and a LANTERN_STATIC_SIZE check after each struct.
 // Functions use GLSL spelling; in C++ the GLSL built-ins come from GLM.
+// C++ leaves the order of argument evaluation unspecified (GLSL: left to right): never draw
+// two random numbers (rng_next_*) or make other side effects inside one call's arguments.
 #ifndef LANTERN_SHARED_LANG_H
 #define LANTERN_SHARED_LANG_H
 

@@ -83,7 +83,9 @@ TEST(Brdf, Reciprocal) {
     float n_dot_v = dot(kNormal, v);
     float n_dot_l = dot(kNormal, l);
     if (n_dot_v < 1e-3f || n_dot_l < 1e-3f) continue;
-    vec3 albedo(rng_next_float(rng), rng_next_float(rng), rng_next_float(rng));
+    float red = rng_next_float(rng);
+    float green = rng_next_float(rng);
+    vec3 albedo(red, green, rng_next_float(rng));
     float roughness = rng_next_float(rng);
     float metallic = rng_next_float(rng);
     float specular = rng_next_float(rng);
