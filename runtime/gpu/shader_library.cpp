@@ -24,6 +24,15 @@ std::vector<std::uint32_t> read_spirv_file(const std::filesystem::path& path) {
   return words;
 }
 
+std::shared_ptr<const ShaderCode> make_shader_code(std::string name,
+                                                   std::vector<std::uint32_t> spirv) {
+  auto code = std::make_shared<ShaderCode>();
+  code->reflection = reflect_spirv(spirv, name);
+  code->name = std::move(name);
+  code->spirv = std::move(spirv);
+  return code;
+}
+
 std::filesystem::path ShaderLibrary::default_dir() {
   if (const char* env = std::getenv("LANTERN_SHADER_DIR"); env != nullptr && *env != '\0')
     return env;
@@ -58,10 +67,7 @@ std::shared_ptr<const ShaderCode> ShaderLibrary::load(std::string_view relpath,
         fmt::format("shader '{}' not found: {} does not exist (shader dir {}; set "
                     "LANTERN_SHADER_DIR or rebuild the lantern_shaders target)",
                     name, path.string(), dir_.string()));
-  auto code = std::make_shared<ShaderCode>();
-  code->name = name;
-  code->spirv = read_spirv_file(path);
-  code->reflection = reflect_spirv(code->spirv, path.string());
+  auto code = make_shader_code(name, read_spirv_file(path));
   cache_.emplace(name, code);
   return code;
 }

@@ -40,6 +40,10 @@ class ShaderLibrary {
   std::map<std::string, std::shared_ptr<const ShaderCode>, std::less<>> cache_;
 };
 
+// Wraps SPIR-V produced elsewhere (e.g. compile_glsl for hot reload) with its reflection.
+std::shared_ptr<const ShaderCode> make_shader_code(std::string name,
+                                                   std::vector<std::uint32_t> spirv);
+
 // Reads a .spv file into words; throws lantern::RuntimeError if missing or of odd size.
 std::vector<std::uint32_t> read_spirv_file(const std::filesystem::path& path);
 

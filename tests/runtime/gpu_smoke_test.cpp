@@ -2,6 +2,7 @@
 // push-constant count/offset); every element is checked on the CPU. Timestamps and warm-up too.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <numeric>
 #include <string>
 
@@ -10,6 +11,7 @@
 #include "runtime/gpu/bindings.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/gpu/compute_pipeline.h"
+#include "runtime/gpu/glsl_compiler.h"
 #include "runtime/gpu/gpu_timer.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/gpu/transfer.h"
@@ -57,6 +59,29 @@ TEST_F(GpuSmoke, ComputePatternCheckedOnCpu) {
   EXPECT_EQ(wrong, 0u) << "first values: " << values[0] << " " << values[1] << " " << values[2];
   for (std::uint32_t i = kCount; i < values.size(); ++i)
     EXPECT_EQ(values[i], 0xdeadbeefu) << "wrote past count at " << i;
+}
+
+// The hot-reload path: GLSL compiled at run time by the glslang library, then dispatched.
+TEST_F(GpuSmoke, RuntimeCompiledShaderRuns) {
+  const auto source = std::filesystem::path(LANTERN_SOURCE_DIR) / "shaders/tests/runtime_fill.comp";
+  GlslResult compiled = compile_glsl(source);
+  ASSERT_TRUE(compiled.ok()) << compiled.log;
+  ComputePipelineDesc desc{.name = "test.fill.hot"};
+  desc.constants.set_id(0, 32).set("kMultiplier", 5u);
+  const ComputePipeline fill(device,
+                             make_shader_code("hot:runtime_fill", std::move(compiled.spirv)), desc);
+  constexpr std::uint32_t kCount = 1000;
+  Buffer out(device, {.size = kCount * 4,
+                      .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                      .memory = MemoryUsage::Readback,
+                      .name = "test.hot.out"});
+  device.submit_and_wait([&](VkCommandBuffer cmd) {
+    fill.bind(cmd, Bindings(fill).buffer("result", out));
+    fill.push_constants(cmd, FillPush{kCount, 2});
+    fill.dispatch_threads(cmd, kCount);
+  });
+  const auto values = read_buffer<std::uint32_t>(device, out);
+  for (std::uint32_t i = 0; i < kCount; ++i) ASSERT_EQ(values[i], i * 5u + 2u) << i;
 }
 
 TEST_F(GpuSmoke, DeviceLocalBufferRoundTrip) {
