@@ -2,9 +2,8 @@
 // the same min/max corners in shaders/shared/bvh.h).
 #pragma once
 
-#include <limits>
-
 #include <glm/glm.hpp>
+#include <limits>
 
 namespace lantern::lighting {
 

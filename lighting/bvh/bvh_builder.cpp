@@ -4,14 +4,14 @@
 // result does not depend on which thread built what.
 #include "lighting/bvh/bvh_builder.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
 #include <future>
 #include <thread>
-
-#include <fmt/format.h>
 
 #include "engine/core/error.h"
 
@@ -49,7 +49,7 @@ gpu::BvhNode make_node(const Aabb& box, std::uint32_t index, std::uint32_t count
 }
 
 struct Split {
-  int axis = -1;  // -1: no usable plane (all centroids coincide)
+  int axis = -1;          // -1: no usable plane (all centroids coincide)
   std::uint32_t bin = 0;  // primitives in bins [0, bin) go left
   float cost = std::numeric_limits<float>::max();
 };
@@ -64,11 +64,13 @@ struct PrimRef {
 
 class Builder {
  public:
-  Builder(std::span<const Aabb> bounds, const BvhBuildOptions& options) : options_(options), refs_(bounds.size()) {
+  Builder(std::span<const Aabb> bounds, const BvhBuildOptions& options)
+      : options_(options), refs_(bounds.size()) {
     for (std::size_t i = 0; i < bounds.size(); ++i)
       refs_[i] = PrimRef{bounds[i], bounds[i].centroid(), static_cast<std::uint32_t>(i)};
-    std::uint32_t threads = options.thread_count != 0 ? options.thread_count
-                                                      : std::max(1u, std::thread::hardware_concurrency());
+    std::uint32_t threads = options.thread_count != 0
+                                ? options.thread_count
+                                : std::max(1u, std::thread::hardware_concurrency());
     spare_threads_.store(static_cast<int>(threads) - 1);
   }
 
@@ -81,7 +83,8 @@ class Builder {
 
   // Appends the subtree over slots [begin, end) to `out` in depth-first order; child indices are
   // relative to out[0].
-  void build(std::uint32_t begin, std::uint32_t end, std::uint32_t depth, std::vector<gpu::BvhNode>& out) {
+  void build(std::uint32_t begin, std::uint32_t end, std::uint32_t depth,
+             std::vector<gpu::BvhNode>& out) {
     Aabb box, centroid_box;
     for (std::uint32_t i = begin; i < end; ++i) {
       box.grow(refs_[i].box);
@@ -127,7 +130,8 @@ class Builder {
 
  private:
   // Appends a subtree built into its own array, shifting its child indices.
-  static void append_subtree(std::vector<gpu::BvhNode>& out, const std::vector<gpu::BvhNode>& subtree) {
+  static void append_subtree(std::vector<gpu::BvhNode>& out,
+                             const std::vector<gpu::BvhNode>& subtree) {
     const auto base = static_cast<std::uint32_t>(out.size());
     for (gpu::BvhNode node : subtree) {
       if (!gpu::bvh_node_is_leaf(node))
@@ -247,7 +251,9 @@ class Builder {
   std::atomic<int> spare_threads_{0};
 };
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 }  // namespace
 
@@ -261,7 +267,8 @@ Aabb node_bounds(const gpu::BvhNode& node) {
 BvhBuildOutput build_bvh(std::span<const Aabb> primitive_bounds, const BvhBuildOptions& options) {
   if (options.max_leaf_size == 0) throw InputError("BVH build: max_leaf_size must be at least 1");
   if (options.bin_count < 2 || options.bin_count > kMaxBins)
-    throw InputError(fmt::format("BVH build: bin_count {} is outside [2, {}]", options.bin_count, kMaxBins));
+    throw InputError(
+        fmt::format("BVH build: bin_count {} is outside [2, {}]", options.bin_count, kMaxBins));
   if (primitive_bounds.size() >= std::numeric_limits<std::uint32_t>::max() / 2)
     throw InputError(fmt::format("BVH build: {} primitives is too many", primitive_bounds.size()));
   for (std::size_t i = 0; i < primitive_bounds.size(); ++i) {

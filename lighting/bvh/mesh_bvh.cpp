@@ -2,10 +2,10 @@
 // as (v0, e1, e2) in leaf order, and refits after vertices move.
 #include "lighting/bvh/mesh_bvh.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "engine/core/error.h"
 
@@ -16,7 +16,8 @@ void check_positions(std::span<const glm::vec3> positions, const char* what) {
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const glm::vec3& p = positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw InputError(fmt::format("{}: vertex {} is not finite ({}, {}, {})", what, i, p.x, p.y, p.z));
+      throw InputError(
+          fmt::format("{}: vertex {} is not finite ({}, {}, {})", what, i, p.x, p.y, p.z));
   }
 }
 
@@ -44,13 +45,14 @@ MeshBvh::MeshBvh(std::span<const glm::vec3> positions, std::span<const std::uint
     throw InputError(fmt::format("mesh BVH: {} indices is not a multiple of 3", indices.size()));
   for (std::size_t i = 0; i < indices.size(); ++i) {
     if (indices[i] >= positions.size())
-      throw InputError(fmt::format("mesh BVH: index {} (at {}) is out of range for {} vertices", indices[i],
-                                   i, positions.size()));
+      throw InputError(fmt::format("mesh BVH: index {} (at {}) is out of range for {} vertices",
+                                   indices[i], i, positions.size()));
   }
   check_positions(positions, "mesh BVH");
   const std::size_t triangle_count = indices.size() / 3;
   std::vector<Aabb> bounds(triangle_count);
-  for (std::size_t t = 0; t < triangle_count; ++t) bounds[t] = triangle_bounds(positions, &indices_[3 * t]);
+  for (std::size_t t = 0; t < triangle_count; ++t)
+    bounds[t] = triangle_bounds(positions, &indices_[3 * t]);
   BvhBuildOutput built = build_bvh(bounds, options);
   nodes_ = std::move(built.nodes);
   order_ = std::move(built.primitive_order);
@@ -82,6 +84,8 @@ void MeshBvh::refit(std::span<const glm::vec3> positions) {
   refit_bvh(nodes_, slot_bounds);
 }
 
-Aabb MeshBvh::bounds() const { return nodes_.empty() ? Aabb{} : node_bounds(nodes_[0]); }
+Aabb MeshBvh::bounds() const {
+  return nodes_.empty() ? Aabb{} : node_bounds(nodes_[0]);
+}
 
 }  // namespace lantern::lighting

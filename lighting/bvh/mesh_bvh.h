@@ -3,10 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "lighting/bvh/bvh_builder.h"
 #include "shared/bvh.h"
@@ -22,7 +21,8 @@ class MeshBvh {
           const BvhBuildOptions& options = {});
 
   // Moves the vertices (same count, same triangles) and updates triangles and node boxes bottom up
-  // without changing the tree. Cheap, but the tree degrades if the mesh deforms a lot: rebuild then.
+  // without changing the tree. Cheap, but the tree degrades if the mesh deforms a lot: rebuild
+  // then.
   void refit(std::span<const glm::vec3> positions);
 
   const std::vector<gpu::BvhNode>& nodes() const { return nodes_; }

@@ -2,10 +2,10 @@
 // world boxes, and answers CPU ray queries through the shared traversal.
 #include "lighting/bvh/scene_bvh.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "engine/core/error.h"
 
@@ -43,11 +43,13 @@ std::uint32_t SceneBvh::add_mesh(MeshBvh mesh) {
 
 void SceneBvh::refit_mesh(std::uint32_t id, std::span<const glm::vec3> positions) {
   if (id >= meshes_.size())
-    throw InputError(fmt::format("scene BVH refit: unknown mesh id {} ({} meshes)", id, meshes_.size()));
+    throw InputError(
+        fmt::format("scene BVH refit: unknown mesh id {} ({} meshes)", id, meshes_.size()));
   MeshBvh& mesh = meshes_[id];
   mesh.refit(positions);
   std::copy(mesh.nodes().begin(), mesh.nodes().end(), nodes_.begin() + mesh_node_offset_[id]);
-  std::copy(mesh.triangles().begin(), mesh.triangles().end(), triangles_.begin() + mesh_triangle_offset_[id]);
+  std::copy(mesh.triangles().begin(), mesh.triangles().end(),
+            triangles_.begin() + mesh_triangle_offset_[id]);
 }
 
 void SceneBvh::set_instances(std::span<const BvhInstanceDesc> instances) {
@@ -58,11 +60,13 @@ void SceneBvh::set_instances(std::span<const BvhInstanceDesc> instances) {
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const BvhInstanceDesc& desc = instances[i];
     if (desc.mesh >= meshes_.size())
-      throw InputError(
-          fmt::format("scene BVH: instance {} uses unknown mesh id {} ({} meshes)", i, desc.mesh, meshes_.size()));
+      throw InputError(fmt::format("scene BVH: instance {} uses unknown mesh id {} ({} meshes)", i,
+                                   desc.mesh, meshes_.size()));
     const glm::mat4 inverse = glm::inverse(desc.object_to_world);
-    if (!finite(desc.object_to_world) || !finite(inverse) || glm::determinant(desc.object_to_world) == 0.0f)
-      throw InputError(fmt::format("scene BVH: instance {} has a non-finite or singular transform", i));
+    if (!finite(desc.object_to_world) || !finite(inverse) ||
+        glm::determinant(desc.object_to_world) == 0.0f)
+      throw InputError(
+          fmt::format("scene BVH: instance {} has a non-finite or singular transform", i));
     gpu::BvhInstance inst{};
     inst.object_to_world = desc.object_to_world;
     inst.world_to_object = inverse;
@@ -80,7 +84,8 @@ void SceneBvh::set_instances(std::span<const BvhInstanceDesc> instances) {
   // Leaves hold one primitive: point them straight at the instance.
   for (gpu::BvhNode& node : tlas.nodes) {
     if (gpu::bvh_node_is_leaf(node))
-      node.bounds_min.w = glm::uintBitsToFloat(placed[tlas.primitive_order[gpu::bvh_node_index(node)]]);
+      node.bounds_min.w =
+          glm::uintBitsToFloat(placed[tlas.primitive_order[gpu::bvh_node_index(node)]]);
   }
   nodes_.resize(blas_node_count_);
   nodes_.insert(nodes_.end(), tlas.nodes.begin(), tlas.nodes.end());
@@ -102,7 +107,9 @@ bool SceneBvh::trace_closest(const gpu::BvhRay& ray, gpu::BvhHit& hit) const {
   return gpu::bvh_trace_closest(view(), ray, hit);
 }
 
-bool SceneBvh::trace_any(const gpu::BvhRay& ray) const { return gpu::bvh_trace_any(view(), ray); }
+bool SceneBvh::trace_any(const gpu::BvhRay& ray) const {
+  return gpu::bvh_trace_any(view(), ray);
+}
 
 bool SceneBvh::visible(const glm::vec3& origin, const glm::vec3& target) const {
   return gpu::bvh_visible(view(), origin, target);

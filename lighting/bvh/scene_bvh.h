@@ -4,10 +4,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "lighting/bvh/mesh_bvh.h"
 #include "shared/bvh_traverse.h"
@@ -15,9 +14,9 @@
 namespace lantern::lighting {
 
 struct BvhInstanceDesc {
-  std::uint32_t mesh = 0;  // id returned by SceneBvh::add_mesh
+  std::uint32_t mesh = 0;           // id returned by SceneBvh::add_mesh
   glm::mat4 object_to_world{1.0f};  // must be invertible (affine)
-  std::uint32_t user_id = 0;  // returned in hits (e.g. the ECS entity)
+  std::uint32_t user_id = 0;        // returned in hits (e.g. the ECS entity)
 };
 
 class SceneBvh {

@@ -80,8 +80,8 @@ LANTERN_STATIC_SIZE(BvhHit, 32);
 
 // Binding slots of the BVH buffers, relative to the base binding a pass gives them
 // (shaders/lib/bvh_traverse.glsl: BVH_DESCRIPTOR_SET, BVH_BINDING_BASE).
-LANTERN_CONST uint kBvhBindingHeader = 0u;     // BvhSceneHeader (storage buffer)
-LANTERN_CONST uint kBvhBindingNodes = 1u;      // BvhNode[] (storage buffer or rgba32ui texel buffer)
+LANTERN_CONST uint kBvhBindingHeader = 0u;  // BvhSceneHeader (storage buffer)
+LANTERN_CONST uint kBvhBindingNodes = 1u;   // BvhNode[] (storage buffer or rgba32ui texel buffer)
 LANTERN_CONST uint kBvhBindingTriangles = 2u;  // BvhTriangle[] (same)
 LANTERN_CONST uint kBvhBindingInstances = 3u;  // BvhInstance[] (same)
 LANTERN_CONST uint kBvhBindingCount = 4u;
@@ -110,9 +110,15 @@ LANTERN_FUNC BvhRay bvh_make_ray(vec3 origin, vec3 direction, float tmin, float 
   return ray;
 }
 
-LANTERN_FUNC bool bvh_node_is_leaf(BvhNode node) { return floatBitsToUint(node.bounds_max.w) != 0u; }
-LANTERN_FUNC uint bvh_node_index(BvhNode node) { return floatBitsToUint(node.bounds_min.w); }
-LANTERN_FUNC uint bvh_node_count(BvhNode node) { return floatBitsToUint(node.bounds_max.w); }
+LANTERN_FUNC bool bvh_node_is_leaf(BvhNode node) {
+  return floatBitsToUint(node.bounds_max.w) != 0u;
+}
+LANTERN_FUNC uint bvh_node_index(BvhNode node) {
+  return floatBitsToUint(node.bounds_min.w);
+}
+LANTERN_FUNC uint bvh_node_count(BvhNode node) {
+  return floatBitsToUint(node.bounds_max.w);
+}
 
 // 1/direction with tiny components clamped to +-kBvhMinDirection: always finite, never NaN.
 LANTERN_FUNC vec3 bvh_safe_reciprocal(vec3 d) {
@@ -121,8 +127,8 @@ LANTERN_FUNC vec3 bvh_safe_reciprocal(vec3 d) {
 }
 
 // Slab test: the ray parameter where the ray enters the box within [tmin, tmax], or kBvhMiss.
-LANTERN_FUNC float bvh_ray_box(vec3 origin, vec3 inv_direction, float tmin, float tmax, vec3 box_min,
-                               vec3 box_max) {
+LANTERN_FUNC float bvh_ray_box(vec3 origin, vec3 inv_direction, float tmin, float tmax,
+                               vec3 box_min, vec3 box_max) {
   vec3 t0 = (box_min - origin) * inv_direction;
   vec3 t1 = (box_max - origin) * inv_direction;
   vec3 t_lo = min(t0, t1);
@@ -134,8 +140,8 @@ LANTERN_FUNC float bvh_ray_box(vec3 origin, vec3 inv_direction, float tmin, floa
 
 // Möller–Trumbore. On a hit with tmin < t < tmax writes tuv = (t, u, v). Degenerate triangles and
 // NaN inputs miss: every comparison is written so that NaN fails it.
-LANTERN_FUNC bool bvh_ray_triangle(vec3 origin, vec3 direction, BvhTriangle tri, float tmin, float tmax,
-                                   LANTERN_OUT(vec3) tuv) {
+LANTERN_FUNC bool bvh_ray_triangle(vec3 origin, vec3 direction, BvhTriangle tri, float tmin,
+                                   float tmax, LANTERN_OUT(vec3) tuv) {
   vec3 e1 = vec3(tri.e1);
   vec3 e2 = vec3(tri.e2);
   vec3 p = cross(direction, e2);

@@ -18,9 +18,15 @@ struct BvhSceneView {
   const BvhInstance* instances = nullptr;
   BvhSceneHeader header{};
 };
-inline BvhSceneHeader bvh_fetch_header(const BvhSceneView& scene) { return scene.header; }
-inline BvhNode bvh_fetch_node(const BvhSceneView& scene, uint i) { return scene.nodes[i]; }
-inline BvhTriangle bvh_fetch_triangle(const BvhSceneView& scene, uint i) { return scene.triangles[i]; }
+inline BvhSceneHeader bvh_fetch_header(const BvhSceneView& scene) {
+  return scene.header;
+}
+inline BvhNode bvh_fetch_node(const BvhSceneView& scene, uint i) {
+  return scene.nodes[i];
+}
+inline BvhTriangle bvh_fetch_triangle(const BvhSceneView& scene, uint i) {
+  return scene.triangles[i];
+}
 inline mat4 bvh_fetch_world_to_object(const BvhSceneView& scene, uint instance) {
   return scene.instances[instance].world_to_object;
 }
@@ -31,7 +37,7 @@ inline uvec4 bvh_fetch_instance_offsets(const BvhSceneView& scene, uint instance
 }  // namespace lantern::gpu
 
 #define LANTERN_BVH_SCENE_PARAM const BvhSceneView &scene,
-#define LANTERN_BVH_SCENE_ONLY_PARAM const BvhSceneView &scene
+#define LANTERN_BVH_SCENE_ONLY_PARAM const BvhSceneView& scene
 #define LANTERN_BVH_SCENE scene,
 #define LANTERN_BVH_SCENE_ONLY scene
 #else
@@ -44,16 +50,16 @@ inline uvec4 bvh_fetch_instance_offsets(const BvhSceneView& scene, uint instance
 LANTERN_BEGIN_SHARED
 
 // Traverses one tree (the BLAS at node_offset) for the closest hit with t < hit.t, or stops at the
-// first hit when any_hit is set. Returns whether it found a hit (and then updated `hit`). The nearer
-// child is visited first; the farther one is pushed with its entry distance and skipped when popped
-// behind a closer hit. Used for BLASes only: their leaves hold triangles.
+// first hit when any_hit is set. Returns whether it found a hit (and then updated `hit`). The
+// nearer child is visited first; the farther one is pushed with its entry distance and skipped when
+// popped behind a closer hit. Used for BLASes only: their leaves hold triangles.
 LANTERN_FUNC bool bvh_traverse_blas(LANTERN_BVH_SCENE_PARAM uint node_offset, uint triangle_offset,
                                     vec3 origin, vec3 direction, float tmin, bool any_hit,
                                     LANTERN_INOUT(BvhHit) hit) {
   vec3 inv_direction = bvh_safe_reciprocal(direction);
   BvhNode root = bvh_fetch_node(LANTERN_BVH_SCENE node_offset);
-  if (bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(root.bounds_min), vec3(root.bounds_max)) ==
-      kBvhMiss)
+  if (bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(root.bounds_min),
+                  vec3(root.bounds_max)) == kBvhMiss)
     return false;
   uint stack_node[kBvhStackSize];
   float stack_t[kBvhStackSize];
@@ -82,10 +88,10 @@ LANTERN_FUNC bool bvh_traverse_blas(LANTERN_BVH_SCENE_PARAM uint node_offset, ui
       uint right_index = bvh_node_index(node);
       BvhNode left = bvh_fetch_node(LANTERN_BVH_SCENE node_offset + left_index);
       BvhNode right = bvh_fetch_node(LANTERN_BVH_SCENE node_offset + right_index);
-      float t_left =
-          bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(left.bounds_min), vec3(left.bounds_max));
-      float t_right =
-          bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(right.bounds_min), vec3(right.bounds_max));
+      float t_left = bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(left.bounds_min),
+                                 vec3(left.bounds_max));
+      float t_right = bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(right.bounds_min),
+                                  vec3(right.bounds_max));
       if (t_left <= t_right) {
         if (t_left != kBvhMiss) {
           if (t_right != kBvhMiss) {
@@ -131,8 +137,8 @@ LANTERN_FUNC bool bvh_traverse_instance(LANTERN_BVH_SCENE_PARAM uint instance, v
   uvec4 offsets = bvh_fetch_instance_offsets(LANTERN_BVH_SCENE instance);
   vec3 object_origin = vec3(world_to_object * vec4(origin, 1.0f));
   vec3 object_direction = vec3(world_to_object * vec4(direction, 0.0f));
-  if (!bvh_traverse_blas(LANTERN_BVH_SCENE offsets.x, offsets.y, object_origin, object_direction, tmin,
-                         any_hit, hit))
+  if (!bvh_traverse_blas(LANTERN_BVH_SCENE offsets.x, offsets.y, object_origin, object_direction,
+                         tmin, any_hit, hit))
     return false;
   hit.instance = instance;
   hit.user_id = offsets.z;
@@ -162,8 +168,8 @@ LANTERN_FUNC bool bvh_traverse_scene(LANTERN_BVH_SCENE_PARAM BvhRay ray, bool an
   vec3 inv_direction = bvh_safe_reciprocal(direction);
   uint tlas = header.tlas_node_offset;
   BvhNode node = bvh_fetch_node(LANTERN_BVH_SCENE tlas);
-  if (bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(node.bounds_min), vec3(node.bounds_max)) ==
-      kBvhMiss)
+  if (bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(node.bounds_min),
+                  vec3(node.bounds_max)) == kBvhMiss)
     return false;
   uint stack_node[kBvhStackSize];
   float stack_t[kBvhStackSize];
@@ -172,8 +178,8 @@ LANTERN_FUNC bool bvh_traverse_scene(LANTERN_BVH_SCENE_PARAM BvhRay ray, bool an
   bool found = false;
   while (true) {
     if (bvh_node_is_leaf(node)) {
-      if (bvh_traverse_instance(LANTERN_BVH_SCENE bvh_node_index(node), origin, direction, tmin, any_hit,
-                                hit)) {
+      if (bvh_traverse_instance(LANTERN_BVH_SCENE bvh_node_index(node), origin, direction, tmin,
+                                any_hit, hit)) {
         found = true;
         if (any_hit) return true;
       }
@@ -182,10 +188,10 @@ LANTERN_FUNC bool bvh_traverse_scene(LANTERN_BVH_SCENE_PARAM BvhRay ray, bool an
       uint right_index = bvh_node_index(node);
       BvhNode left = bvh_fetch_node(LANTERN_BVH_SCENE tlas + left_index);
       BvhNode right = bvh_fetch_node(LANTERN_BVH_SCENE tlas + right_index);
-      float t_left =
-          bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(left.bounds_min), vec3(left.bounds_max));
-      float t_right =
-          bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(right.bounds_min), vec3(right.bounds_max));
+      float t_left = bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(left.bounds_min),
+                                 vec3(left.bounds_max));
+      float t_right = bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(right.bounds_min),
+                                  vec3(right.bounds_max));
       if (t_left <= t_right) {
         if (t_left != kBvhMiss) {
           if (t_right != kBvhMiss) {
@@ -241,7 +247,8 @@ LANTERN_FUNC bool bvh_visible(LANTERN_BVH_SCENE_PARAM vec3 origin, vec3 target) 
   float epsilon = kBvhShadowEpsilon * max(1.0f, max(magnitude.x, max(magnitude.y, magnitude.z)));
   if (!(distance > 2.0f * epsilon)) return true;
   float t_epsilon = epsilon / distance;
-  return !bvh_trace_any(LANTERN_BVH_SCENE bvh_make_ray(origin, direction, t_epsilon, 1.0f - t_epsilon));
+  return !bvh_trace_any(
+      LANTERN_BVH_SCENE bvh_make_ray(origin, direction, t_epsilon, 1.0f - t_epsilon));
 }
 
 LANTERN_END_SHARED

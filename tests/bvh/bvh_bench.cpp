@@ -2,6 +2,8 @@
 // for coherent primary-like rays (640x360 pinhole camera, 8x8 tiles) and incoherent shadow rays
 // (from the primary hits toward random points), on 100k and 1M triangle scenes.
 // Usage: bvh_bench [--quick]   (--quick: 100k scenes only)
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -11,8 +13,6 @@
 #include <random>
 #include <thread>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "lighting/bvh/scene_bvh.h"
 
@@ -58,7 +58,8 @@ Mesh terrain(std::uint32_t count) {
     for (std::uint32_t x = 0; x <= n; ++x) {
       const float fx = -1.0f + 2.0f * static_cast<float>(x) / static_cast<float>(n);
       const float fz = -1.0f + 2.0f * static_cast<float>(z) / static_cast<float>(n);
-      const float h = 0.15f * std::sin(7.0f * fx) * std::cos(5.0f * fz) + 0.05f * std::sin(31.0f * fx + 17.0f * fz);
+      const float h = 0.15f * std::sin(7.0f * fx) * std::cos(5.0f * fz) +
+                      0.05f * std::sin(31.0f * fx + 17.0f * fz);
       m.positions.emplace_back(fx, h, fz);
     }
   for (std::uint32_t z = 0; z < n; ++z)
@@ -104,7 +105,9 @@ void bench_scene(const char* name, const Mesh& mesh) {
       const std::clock_t cpu_start = std::clock();
       blas = MeshBvh(mesh.positions, mesh.indices, options);
       const double wall = ms_since(start);
-      if (wall < best) build_cpu_ratio = 1e3 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC / wall;
+      if (wall < best)
+        build_cpu_ratio =
+            1e3 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC / wall;
       best = std::min(best, wall);
     }
     build_ms[threads - 1] = best;
@@ -128,10 +131,14 @@ void bench_scene(const char* name, const Mesh& mesh) {
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   auto primary_ray = [&](std::uint32_t i) {
     const std::uint32_t tile = i / 64, in_tile = i % 64, tiles_x = width / 8;
-    const std::uint32_t px = (tile % tiles_x) * 8 + in_tile % 8, py = (tile / tiles_x) * 8 + in_tile / 8;
-    const float sx = (2.0f * (static_cast<float>(px) + 0.5f) / static_cast<float>(width) - 1.0f) * tan_half * aspect;
-    const float sy = (1.0f - 2.0f * (static_cast<float>(py) + 0.5f) / static_cast<float>(height)) * tan_half;
-    return gpu::bvh_make_ray(mesh.eye, glm::normalize(forward + sx * right + sy * up), 0.0f, gpu::kBvhMiss);
+    const std::uint32_t px = (tile % tiles_x) * 8 + in_tile % 8,
+                        py = (tile / tiles_x) * 8 + in_tile / 8;
+    const float sx = (2.0f * (static_cast<float>(px) + 0.5f) / static_cast<float>(width) - 1.0f) *
+                     tan_half * aspect;
+    const float sy =
+        (1.0f - 2.0f * (static_cast<float>(py) + 0.5f) / static_cast<float>(height)) * tan_half;
+    return gpu::bvh_make_ray(mesh.eye, glm::normalize(forward + sx * right + sy * up), 0.0f,
+                             gpu::kBvhMiss);
   };
   std::vector<glm::vec3> hit_points(pixels);
   std::vector<std::uint8_t> hit_any(pixels, 0);
@@ -160,12 +167,14 @@ void bench_scene(const char* name, const Mesh& mesh) {
   }
   for (std::uint8_t h : hit_any) hits += h;
   const double mrays = static_cast<double>(pixels) * 1e-3;  // rays / ms -> Mrays/s factor
-  fmt::print("{:<8} {:>8} tris {:>8} nodes | build 1T {:7.1f} ms  2T {:7.1f} ms (cpu/wall {:.2f})  refit {:6.1f} ms | "
-             "primary 1T {:5.2f} 2T {:5.2f} Mrays/s ({:.0f}% hit) | shadow 1T {:5.2f} 2T {:5.2f} Mrays/s "
-             "({:.0f}% blocked)\n",
-             name, triangles, node_count, build_ms[0], build_ms[1], build_cpu_ratio, refit_ms, mrays / primary_ms[0],
-             mrays / primary_ms[1], 100.0 * hits / pixels, mrays / shadow_ms[0], mrays / shadow_ms[1],
-             100.0 * occluded / pixels);
+  fmt::print(
+      "{:<8} {:>8} tris {:>8} nodes | build 1T {:7.1f} ms  2T {:7.1f} ms (cpu/wall {:.2f})  refit "
+      "{:6.1f} ms | "
+      "primary 1T {:5.2f} 2T {:5.2f} Mrays/s ({:.0f}% hit) | shadow 1T {:5.2f} 2T {:5.2f} Mrays/s "
+      "({:.0f}% blocked)\n",
+      name, triangles, node_count, build_ms[0], build_ms[1], build_cpu_ratio, refit_ms,
+      mrays / primary_ms[0], mrays / primary_ms[1], 100.0 * hits / pixels, mrays / shadow_ms[0],
+      mrays / shadow_ms[1], 100.0 * occluded / pixels);
 }
 
 }  // namespace

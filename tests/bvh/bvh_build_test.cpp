@@ -1,10 +1,10 @@
 // SAH build: structural invariants of the emitted nodes, determinism across thread counts, refit,
 // option validation, and the GPU struct sizes.
+#include <gtest/gtest.h>
+
 #include <cstddef>
 #include <cstring>
 #include <functional>
-
-#include <gtest/gtest.h>
 
 #include "engine/core/error.h"
 #include "lighting/bvh/bvh_builder.h"
@@ -14,7 +14,8 @@ namespace lantern::lighting {
 namespace {
 
 bool contains(const Aabb& outer, const Aabb& inner) {
-  return glm::all(glm::lessThanEqual(outer.min, inner.min)) && glm::all(glm::greaterThanEqual(outer.max, inner.max));
+  return glm::all(glm::lessThanEqual(outer.min, inner.min)) &&
+         glm::all(glm::greaterThanEqual(outer.max, inner.max));
 }
 
 // Walks the tree checking: children inside parents, leaves within size, every slot used once.
@@ -23,7 +24,8 @@ void check_tree(const std::vector<gpu::BvhNode>& nodes, const std::vector<Aabb>&
   std::vector<int> slot_uses(slot_bounds.size(), 0);
   std::uint32_t max_depth = 0;
   std::size_t visited = 0;
-  std::function<void(std::uint32_t, std::uint32_t)> walk = [&](std::uint32_t n, std::uint32_t depth) {
+  std::function<void(std::uint32_t, std::uint32_t)> walk = [&](std::uint32_t n,
+                                                               std::uint32_t depth) {
     ASSERT_LT(n, nodes.size());
     ++visited;
     max_depth = std::max(max_depth, depth);
@@ -93,7 +95,9 @@ TEST(BvhBuild, IdenticalNodesForAnyThreadCount) {
     options.thread_count = threads;
     const BvhBuildOutput out = build_bvh(bounds, options);
     ASSERT_EQ(out.nodes.size(), reference.nodes.size()) << threads << " threads";
-    EXPECT_EQ(std::memcmp(out.nodes.data(), reference.nodes.data(), out.nodes.size() * sizeof(gpu::BvhNode)), 0)
+    EXPECT_EQ(std::memcmp(out.nodes.data(), reference.nodes.data(),
+                          out.nodes.size() * sizeof(gpu::BvhNode)),
+              0)
         << threads << " threads";
     EXPECT_EQ(out.primitive_order, reference.primitive_order) << threads << " threads";
   }
@@ -118,12 +122,15 @@ TEST(BvhBuild, RefitMatchesFreshBoundsAndKeepsTopology) {
   test::TestMesh mesh = test::random_soup(2000, 5.0f, 0.4f, 3);
   MeshBvh bvh(mesh.positions, mesh.indices);
   const std::vector<gpu::BvhNode> before = bvh.nodes();
-  for (glm::vec3& p : mesh.positions) p = p * 1.5f + glm::vec3(std::sin(p.y) * 2.0f, 0.0f, p.x * 0.3f);
+  for (glm::vec3& p : mesh.positions)
+    p = p * 1.5f + glm::vec3(std::sin(p.y) * 2.0f, 0.0f, p.x * 0.3f);
   bvh.refit(mesh.positions);
   ASSERT_EQ(bvh.nodes().size(), before.size());
   for (std::size_t n = 0; n < before.size(); ++n) {
-    EXPECT_EQ(gpu::floatBitsToUint(bvh.nodes()[n].bounds_min.w), gpu::floatBitsToUint(before[n].bounds_min.w));
-    EXPECT_EQ(gpu::floatBitsToUint(bvh.nodes()[n].bounds_max.w), gpu::floatBitsToUint(before[n].bounds_max.w));
+    EXPECT_EQ(gpu::floatBitsToUint(bvh.nodes()[n].bounds_min.w),
+              gpu::floatBitsToUint(before[n].bounds_min.w));
+    EXPECT_EQ(gpu::floatBitsToUint(bvh.nodes()[n].bounds_max.w),
+              gpu::floatBitsToUint(before[n].bounds_max.w));
   }
   std::vector<Aabb> slot_bounds;
   for (const gpu::BvhTriangle& tri : bvh.triangles()) {
@@ -146,7 +153,8 @@ TEST(BvhBuild, RejectsBadOptionsAndInput) {
   options.max_leaf_size = 0;
   EXPECT_THROW(build_bvh(one, options), InputError);
 
-  const std::vector<glm::vec3> positions = {glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)};
+  const std::vector<glm::vec3> positions = {glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f),
+                                            glm::vec3(0.0f, 1.0f, 0.0f)};
   const std::vector<std::uint32_t> bad_index = {0, 1, 3};
   EXPECT_THROW(MeshBvh(positions, bad_index), InputError);
   const std::vector<std::uint32_t> short_indices = {0, 1};

@@ -1,7 +1,8 @@
 // Two-level BVH: instances with rotation, non-uniform scale and translation; TLAS rebuilds per
 // frame; BLAS refit of a deforming mesh — each checked against brute force over all triangles.
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.h"
 #include "tests/bvh/bvh_test_scenes.h"
@@ -10,7 +11,8 @@ namespace lantern::lighting {
 namespace {
 
 glm::mat4 random_transform(std::mt19937& rng) {
-  std::uniform_real_distribution<float> pos(-8.0f, 8.0f), scale(0.3f, 2.0f), angle(0.0f, 6.2831853f);
+  std::uniform_real_distribution<float> pos(-8.0f, 8.0f), scale(0.3f, 2.0f),
+      angle(0.0f, 6.2831853f);
   glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(pos(rng), pos(rng), pos(rng)));
   m = glm::rotate(m, angle(rng), test::random_direction(rng));
   return glm::scale(m, glm::vec3(scale(rng), scale(rng), scale(rng)));
@@ -19,7 +21,8 @@ glm::mat4 random_transform(std::mt19937& rng) {
 class BvhTwoLevel : public testing::Test {
  protected:
   void SetUp() override {
-    meshes_ = {test::random_soup(400, 1.0f, 0.3f, 1), test::grid_mesh(12, 2), test::random_soup(200, 0.5f, 0.2f, 3)};
+    meshes_ = {test::random_soup(400, 1.0f, 0.3f, 1), test::grid_mesh(12, 2),
+               test::random_soup(200, 0.5f, 0.2f, 3)};
     for (const test::TestMesh& m : meshes_) bvh_.add_mesh(MeshBvh(m.positions, m.indices));
   }
 
@@ -55,8 +58,9 @@ class BvhTwoLevel : public testing::Test {
       EXPECT_EQ(bvh_.trace_any(ray), want_hit);
       if (got_hit != want_hit || (want_hit && got.t != want.t)) {
         if (++failures < 10)
-          ADD_FAILURE() << "bvh " << got_hit << " t=" << got.t << " inst " << got.instance << ", brute force "
-                        << want_hit << " t=" << want.t << " inst " << want.instance;
+          ADD_FAILURE() << "bvh " << got_hit << " t=" << got.t << " inst " << got.instance
+                        << ", brute force " << want_hit << " t=" << want.t << " inst "
+                        << want.instance;
         continue;
       }
       if (want_hit) {
@@ -90,7 +94,8 @@ TEST_F(BvhTwoLevel, AgreesWithWorldSpaceTrianglesWithinRounding) {
   std::vector<test::PlacedMesh> ref;
   for (std::size_t i = 0; i < descs_.size(); ++i) {
     world[i] = meshes_[descs_[i].mesh];
-    for (glm::vec3& p : world[i].positions) p = glm::vec3(descs_[i].object_to_world * glm::vec4(p, 1.0f));
+    for (glm::vec3& p : world[i].positions)
+      p = glm::vec3(descs_[i].object_to_world * glm::vec4(p, 1.0f));
     ref.push_back({&world[i], glm::mat4(1.0f)});
   }
   int agree = 0, hits = 0;
@@ -120,7 +125,8 @@ TEST_F(BvhTwoLevel, RefitDeformingMeshStillEqualsBruteForce) {
   place(7, 24);
   for (int step = 1; step <= 3; ++step) {
     for (glm::vec3& p : meshes_[0].positions)
-      p += 0.3f * glm::vec3(std::sin(3.0f * p.y + step), std::cos(2.0f * p.z), std::sin(p.x * step));
+      p +=
+          0.3f * glm::vec3(std::sin(3.0f * p.y + step), std::cos(2.0f * p.z), std::sin(p.x * step));
     bvh_.refit_mesh(0, meshes_[0].positions);
     bvh_.set_instances(descs_);
     EXPECT_GT(check_exact(300 + step), 100u) << "step " << step;

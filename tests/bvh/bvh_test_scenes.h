@@ -3,10 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <random>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "lighting/bvh/scene_bvh.h"
 
@@ -40,7 +39,8 @@ inline TestMesh grid_mesh(std::uint32_t n, std::uint32_t seed) {
   TestMesh mesh;
   for (std::uint32_t z = 0; z <= n; ++z)
     for (std::uint32_t x = 0; x <= n; ++x)
-      mesh.positions.emplace_back(-1.0f + 2.0f * static_cast<float>(x) / static_cast<float>(n), height(rng),
+      mesh.positions.emplace_back(-1.0f + 2.0f * static_cast<float>(x) / static_cast<float>(n),
+                                  height(rng),
                                   -1.0f + 2.0f * static_cast<float>(z) / static_cast<float>(n));
   for (std::uint32_t z = 0; z < n; ++z)
     for (std::uint32_t x = 0; x < n; ++x) {
@@ -62,8 +62,8 @@ inline std::vector<gpu::BvhRay> random_rays(std::uint32_t count, float extent, s
   std::uniform_real_distribution<float> pos(-extent, extent);
   std::vector<gpu::BvhRay> rays;
   for (std::uint32_t i = 0; i < count; ++i)
-    rays.push_back(gpu::bvh_make_ray(glm::vec3(pos(rng), pos(rng), pos(rng)), random_direction(rng), 0.0f,
-                                     gpu::kBvhMiss));
+    rays.push_back(gpu::bvh_make_ray(glm::vec3(pos(rng), pos(rng), pos(rng)), random_direction(rng),
+                                     0.0f, gpu::kBvhMiss));
   return rays;
 }
 
@@ -75,7 +75,8 @@ struct PlacedMesh {
 
 // Closest hit over every triangle of every placed mesh, testing in object space with the same
 // transform and triangle test as the traversal, so results must match it exactly.
-inline bool brute_force_closest(const std::vector<PlacedMesh>& scene, const gpu::BvhRay& ray, gpu::BvhHit& hit) {
+inline bool brute_force_closest(const std::vector<PlacedMesh>& scene, const gpu::BvhRay& ray,
+                                gpu::BvhHit& hit) {
   hit = gpu::BvhHit{};
   hit.t = ray.direction.w;
   bool found = false;

@@ -9,7 +9,8 @@ namespace {
 
 // Every ray: same hit/miss and bitwise the same t as brute force; a different triangle is only
 // accepted as an exact tie. Returns the number of hits (so callers can check the test saw some).
-std::size_t expect_matches_brute_force(const SceneBvh& bvh, const std::vector<test::PlacedMesh>& reference,
+std::size_t expect_matches_brute_force(const SceneBvh& bvh,
+                                       const std::vector<test::PlacedMesh>& reference,
                                        const std::vector<gpu::BvhRay>& rays) {
   std::size_t hits = 0, mismatches = 0;
   for (std::size_t i = 0; i < rays.size() && mismatches < 10; ++i) {
@@ -32,9 +33,9 @@ std::size_t expect_matches_brute_force(const SceneBvh& bvh, const std::vector<te
     hits += want_hit ? 1 : 0;
     if (!ok) {
       ++mismatches;
-      ADD_FAILURE() << "ray " << i << ": bvh " << got_hit << " t=" << got.t << " prim " << got.primitive
-                    << " inst " << got.instance << ", brute force " << want_hit << " t=" << want.t << " prim "
-                    << want.primitive << " inst " << want.instance;
+      ADD_FAILURE() << "ray " << i << ": bvh " << got_hit << " t=" << got.t << " prim "
+                    << got.primitive << " inst " << got.instance << ", brute force " << want_hit
+                    << " t=" << want.t << " prim " << want.primitive << " inst " << want.instance;
     }
     // Any hit must agree with closest hit on the same segment.
     EXPECT_EQ(bvh.trace_any(rays[i]), want_hit) << "ray " << i;
@@ -47,7 +48,8 @@ TEST(BvhTraverse, ClosestHitEqualsBruteForceOnRandomSoups) {
     const test::TestMesh soup = test::random_soup(1500, 4.0f, 0.6f, seed);
     const SceneBvh bvh = test::single_mesh_scene(soup);
     const std::vector<test::PlacedMesh> reference = {{&soup, glm::mat4(1.0f)}};
-    const std::size_t hits = expect_matches_brute_force(bvh, reference, test::random_rays(3000, 5.0f, seed + 100));
+    const std::size_t hits =
+        expect_matches_brute_force(bvh, reference, test::random_rays(3000, 5.0f, seed + 100));
     EXPECT_GT(hits, 300u) << "seed " << seed;
     EXPECT_LT(hits, 3000u) << "seed " << seed;
   }
@@ -60,7 +62,8 @@ TEST(BvhTraverse, ClosestHitEqualsBruteForceOnAGridMeshWithLeafSizes) {
     options.max_leaf_size = leaf;
     const SceneBvh bvh = test::single_mesh_scene(grid, options);
     const std::vector<test::PlacedMesh> reference = {{&grid, glm::mat4(1.0f)}};
-    const std::size_t hits = expect_matches_brute_force(bvh, reference, test::random_rays(2000, 1.5f, leaf));
+    const std::size_t hits =
+        expect_matches_brute_force(bvh, reference, test::random_rays(2000, 1.5f, leaf));
     EXPECT_GT(hits, 150u);
   }
 }
@@ -75,7 +78,8 @@ TEST(BvhTraverse, LongSliversWithAFarVertexAreNotCulled) {
     slivers.positions.emplace_back(far(rng), far(rng), far(rng));
     slivers.positions.emplace_back(near(rng), near(rng), near(rng));
     slivers.positions.emplace_back(near(rng), near(rng), near(rng));
-    slivers.indices.insert(slivers.indices.end(), {3 * t + 1, 3 * t + 2, 3 * t});  // far vertex last
+    slivers.indices.insert(slivers.indices.end(),
+                           {3 * t + 1, 3 * t + 2, 3 * t});  // far vertex last
   }
   const SceneBvh bvh = test::single_mesh_scene(slivers);
   const std::vector<test::PlacedMesh> reference = {{&slivers, glm::mat4(1.0f)}};
@@ -90,8 +94,8 @@ TEST(BvhTraverse, BoundedSegmentsStopAtTmax) {
   std::mt19937 rng(4);
   std::uniform_real_distribution<float> range(0.1f, 3.0f);
   for (gpu::BvhRay& ray : rays) {
-    ray.origin.w = range(rng) * 0.2f;   // tmin
-    ray.direction.w = range(rng);       // tmax
+    ray.origin.w = range(rng) * 0.2f;  // tmin
+    ray.direction.w = range(rng);      // tmax
   }
   const std::size_t hits = expect_matches_brute_force(bvh, reference, rays);
   EXPECT_GT(hits, 100u);
@@ -107,17 +111,21 @@ TEST(BvhTraverse, VisibleAgreesWithClosestHitOnTheSegment) {
   for (int i = 0; i < n; ++i) {
     const glm::vec3 a(pos(rng), pos(rng), pos(rng)), b(pos(rng), pos(rng), pos(rng));
     gpu::BvhHit hit;
-    // visible() trims less than 1e-3 of the segment at each end, so it sees every blocker this does.
-    const bool inner_blocked = bvh.trace_closest(gpu::bvh_make_ray(a, b - a, 1e-3f, 1.0f - 1e-3f), hit);
+    // visible() trims less than 1e-3 of the segment at each end, so it sees every blocker this
+    // does.
+    const bool inner_blocked =
+        bvh.trace_closest(gpu::bvh_make_ray(a, b - a, 1e-3f, 1.0f - 1e-3f), hit);
     const bool visible = bvh.visible(a, b);
     if (inner_blocked) {
       EXPECT_FALSE(visible) << "segment " << i << " blocked at t=" << hit.t;
     } else if (!visible) {
       // Then the blocker must sit within the trimmed ends.
-      ASSERT_TRUE(bvh.trace_closest(gpu::bvh_make_ray(a, b - a, 0.0f, 1.0f), hit)) << "segment " << i;
+      ASSERT_TRUE(bvh.trace_closest(gpu::bvh_make_ray(a, b - a, 0.0f, 1.0f), hit))
+          << "segment " << i;
       EXPECT_TRUE(hit.t < 1e-3f || hit.t > 1.0f - 1e-3f) << "segment " << i << " t=" << hit.t;
     }
-    EXPECT_EQ(bvh.trace_any(gpu::bvh_make_ray(a, b - a, 1e-3f, 1.0f - 1e-3f)), inner_blocked) << "segment " << i;
+    EXPECT_EQ(bvh.trace_any(gpu::bvh_make_ray(a, b - a, 1e-3f, 1.0f - 1e-3f)), inner_blocked)
+        << "segment " << i;
     blocked += visible ? 0 : 1;
   }
   EXPECT_GT(blocked, n / 10);
