@@ -16,13 +16,13 @@ VkImageSubresourceRange whole_image(const ImageDesc& desc) {
 }  // namespace
 
 VkPipelineStageFlags to_stage1(VkPipelineStageFlags2 stages, bool is_src) {
-  constexpr VkPipelineStageFlags2 kTransfer = VK_PIPELINE_STAGE_2_COPY_BIT |
-                                              VK_PIPELINE_STAGE_2_BLIT_BIT |
-                                              VK_PIPELINE_STAGE_2_RESOLVE_BIT |
-                                              VK_PIPELINE_STAGE_2_CLEAR_BIT;
+  constexpr VkPipelineStageFlags2 kTransfer =
+      VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_BLIT_BIT |
+      VK_PIPELINE_STAGE_2_RESOLVE_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT;
   VkPipelineStageFlags out = static_cast<VkPipelineStageFlags>(stages & 0xFFFFFFFFull & ~kTransfer);
   if ((stages & kTransfer) != 0) out |= VK_PIPELINE_STAGE_TRANSFER_BIT;
-  if (out == 0) out = is_src ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
+  if (out == 0)
+    out = is_src ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
   return out;
 }
 
@@ -100,9 +100,10 @@ void record_barriers(VkCommandBuffer cmd, PFN_vkCmdPipelineBarrier2KHR barrier2,
   for (const VkBufferMemoryBarrier2& b : buffers) {
     src |= b.srcStageMask;
     dst |= b.dstStageMask;
-    buffers1.push_back({VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER, nullptr, to_access1(b.srcAccessMask),
-                        to_access1(b.dstAccessMask), VK_QUEUE_FAMILY_IGNORED,
-                        VK_QUEUE_FAMILY_IGNORED, b.buffer, b.offset, b.size});
+    buffers1.push_back({VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER, nullptr,
+                        to_access1(b.srcAccessMask), to_access1(b.dstAccessMask),
+                        VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, b.buffer, b.offset,
+                        b.size});
   }
   for (const VkImageMemoryBarrier2& i : images) {
     src |= i.srcStageMask;

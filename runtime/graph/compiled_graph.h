@@ -40,14 +40,14 @@ struct MemoryRequirement {
 };
 
 struct CompiledGraph {
-  std::vector<CompiledPass> passes;        // execution order
-  std::vector<uint32_t> culled;            // pass indices removed (nobody reads their outputs)
-  BarrierBatch after;                      // final transitions of imported resources
-  std::vector<Lifetime> lifetimes;         // per resource
-  std::vector<AccessState> final_states;   // per resource, after the frame
-  std::vector<uint32_t> aliased;           // transient resource indices, in plan order
+  std::vector<CompiledPass> passes;       // execution order
+  std::vector<uint32_t> culled;           // pass indices removed (nobody reads their outputs)
+  BarrierBatch after;                     // final transitions of imported resources
+  std::vector<Lifetime> lifetimes;        // per resource
+  std::vector<AccessState> final_states;  // per resource, after the frame
+  std::vector<uint32_t> aliased;          // transient resource indices, in plan order
   std::vector<AliasRequest> alias_requests;
-  AliasPlan alias_plan;                    // offsets parallel to `aliased`
+  AliasPlan alias_plan;  // offsets parallel to `aliased`
 
   [[nodiscard]] size_t barrier_count() const;
   // Offset of a transient in the shared block, or kInvalidIndex-as-uint64 if not placed.

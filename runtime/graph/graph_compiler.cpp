@@ -121,11 +121,12 @@ std::vector<uint32_t> order_passes(const GraphDecl& d, const std::vector<std::se
   if (order.size() != live_count) {
     std::string names;
     for (uint32_t p = 0; p < d.passes.size(); ++p)
-      if (live[p] && indegree[p] > 0) names += fmt::format("{}'{}'", names.empty() ? "" : ", ",
-                                                           d.passes[p].name);
+      if (live[p] && indegree[p] > 0)
+        names += fmt::format("{}'{}'", names.empty() ? "" : ", ", d.passes[p].name);
     errors.push_back(fmt::format(
         "dependency cycle between passes {} (a pass reads a version that a pass it must "
-        "precede overwrites)", names));
+        "precede overwrites)",
+        names));
   }
   return order;
 }
@@ -173,7 +174,8 @@ void plan_memory(const GraphDecl& d, const CompileOptions& options, CompiledGrap
                                     ? options.memory_requirement(d.resources[r])
                                     : estimate_memory(d.resources[r]);
     out.aliased.push_back(r);
-    out.alias_requests.push_back({m.size, m.alignment, out.lifetimes[r].first, out.lifetimes[r].last});
+    out.alias_requests.push_back(
+        {m.size, m.alignment, out.lifetimes[r].first, out.lifetimes[r].last});
   }
   out.alias_plan = plan_aliasing(out.alias_requests);
 }
@@ -182,7 +184,7 @@ void plan_memory(const GraphDecl& d, const CompileOptions& options, CompiledGrap
 struct SyncState {
   VkPipelineStageFlags2 write_stages = 0;  // last write (or layout transition) to wait for
   VkAccessFlags2 write_access = 0;
-  VkPipelineStageFlags2 read_stages = 0;   // reads since that write (write-after-read waits)
+  VkPipelineStageFlags2 read_stages = 0;     // reads since that write (write-after-read waits)
   VkPipelineStageFlags2 visible_stages = 0;  // scopes the last write is already visible to
   VkAccessFlags2 visible_access = 0;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -225,13 +227,14 @@ std::optional<ResourceBarrier> derive_barrier(SyncState& state, const AccessStat
   }
   // Read in the current layout: wait for the last write unless already visible to this scope.
   const bool written = state.write_stages != 0 || state.write_access != 0;
-  const bool visible = (use.stages & ~state.visible_stages) == 0 &&
-                       (use.access & ~state.visible_access) == 0;
+  const bool visible =
+      (use.stages & ~state.visible_stages) == 0 && (use.access & ~state.visible_access) == 0;
   if (written && !visible) {
-    barrier = ResourceBarrier{kInvalidIndex,
-                              {state.write_stages | state.visible_stages, state.write_access,
-                               state.layout},
-                              use, false};
+    barrier = ResourceBarrier{
+        kInvalidIndex,
+        {state.write_stages | state.visible_stages, state.write_access, state.layout},
+        use,
+        false};
     state.visible_stages |= use.stages;
     state.visible_access |= use.access;
   }
@@ -305,16 +308,33 @@ std::string join_errors(const Errors& errors) {
 
 uint32_t bytes_per_texel(VkFormat format) {
   switch (format) {
-    case VK_FORMAT_R8_UNORM: case VK_FORMAT_R8_UINT: return 1;
-    case VK_FORMAT_R16_SFLOAT: case VK_FORMAT_R16_UINT: case VK_FORMAT_R8G8_UNORM: return 2;
-    case VK_FORMAT_R32_SFLOAT: case VK_FORMAT_R32_UINT: case VK_FORMAT_R8G8B8A8_UNORM:
-    case VK_FORMAT_R8G8B8A8_SRGB: case VK_FORMAT_B8G8R8A8_UNORM: case VK_FORMAT_B8G8R8A8_SRGB:
-    case VK_FORMAT_R16G16_SFLOAT: case VK_FORMAT_D32_SFLOAT: case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
-    case VK_FORMAT_B10G11R11_UFLOAT_PACK32: return 4;
-    case VK_FORMAT_R32G32_SFLOAT: case VK_FORMAT_R32G32_UINT: case VK_FORMAT_R16G16B16A16_SFLOAT:
+    case VK_FORMAT_R8_UNORM:
+    case VK_FORMAT_R8_UINT:
+      return 1;
+    case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_R16_UINT:
+    case VK_FORMAT_R8G8_UNORM:
+      return 2;
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_R16G16_SFLOAT:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
+    case VK_FORMAT_B10G11R11_UFLOAT_PACK32:
+      return 4;
+    case VK_FORMAT_R32G32_SFLOAT:
+    case VK_FORMAT_R32G32_UINT:
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
       return 8;
-    case VK_FORMAT_R32G32B32A32_SFLOAT: case VK_FORMAT_R32G32B32A32_UINT: return 16;
-    default: return 16;  // unknown: assume the widest common format
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+    case VK_FORMAT_R32G32B32A32_UINT:
+      return 16;
+    default:
+      return 16;  // unknown: assume the widest common format
   }
 }
 

@@ -22,6 +22,7 @@ struct CompileOptions {
 
 [[nodiscard]] MemoryRequirement estimate_memory(const ResourceDecl& resource);
 
-[[nodiscard]] CompiledGraph compile_graph(const GraphDecl& decl, const CompileOptions& options = {});
+[[nodiscard]] CompiledGraph compile_graph(const GraphDecl& decl,
+                                          const CompileOptions& options = {});
 
 }  // namespace lantern::runtime::graph

@@ -35,10 +35,10 @@ struct ResourceDecl {
   BufferDesc buffer;
   ImageDesc image;
   Origin origin = Origin::Transient;
-  ImportInfo import;             // Imported and History* (initial = last frame's final state)
-  uint32_t history_slot = 0;     // History*: physical slot of the persistent pair
-  uint32_t latest_version = 0;   // versions 1..latest were produced by writes
-  std::vector<uint32_t> writers; // writers[v-1] = pass producing version v
+  ImportInfo import;              // Imported and History* (initial = last frame's final state)
+  uint32_t history_slot = 0;      // History*: physical slot of the persistent pair
+  uint32_t latest_version = 0;    // versions 1..latest were produced by writes
+  std::vector<uint32_t> writers;  // writers[v-1] = pass producing version v
   VkBufferUsageFlags buffer_usage = 0;  // accumulated from declared uses
   VkImageUsageFlags image_usage = 0;
   VkBuffer imported_buffer = VK_NULL_HANDLE;

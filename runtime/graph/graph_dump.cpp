@@ -35,9 +35,9 @@ std::string RenderGraph::dump() const {
   const GraphDecl& d = decl_;
   const CompiledGraph& c = compiled_;
   if (!compiled_this_frame_) return "render graph: not baked\n";
-  std::string out = fmt::format(
-      "render graph, frame {}: {} passes ({} culled), {} resources, {} barriers\n", frame(),
-      c.passes.size(), c.culled.size(), d.resources.size(), c.barrier_count());
+  std::string out =
+      fmt::format("render graph, frame {}: {} passes ({} culled), {} resources, {} barriers\n",
+                  frame(), c.passes.size(), c.culled.size(), d.resources.size(), c.barrier_count());
   out += "passes:\n";
   for (size_t pos = 0; pos < c.passes.size(); ++pos) {
     const PassDecl& pass = d.passes[c.passes[pos].pass];

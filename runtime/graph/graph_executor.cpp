@@ -17,7 +17,9 @@ GraphExecutor::GraphExecutor(Device& device) : device_(device) {
   barrier2_ = device.fn().cmd_pipeline_barrier2;
 }
 
-GraphExecutor::~GraphExecutor() { release_transients(); }
+GraphExecutor::~GraphExecutor() {
+  release_transients();
+}
 
 void GraphExecutor::use_synchronization2(bool enabled) {
   barrier2_ = enabled ? device_.fn().cmd_pipeline_barrier2 : nullptr;
@@ -68,10 +70,10 @@ void GraphExecutor::realize_transients(const GraphDecl& decl, const CompiledGrap
   std::string signature = fmt::format("{}:", compiled.alias_plan.block_size);
   for (size_t i = 0; i < compiled.aliased.size(); ++i) {
     const ResourceDecl& r = decl.resources[compiled.aliased[i]];
-    signature += fmt::format("{}|{}|{}x{}x{}|{}|{}|{}|{};", r.is_image, r.buffer.size,
-                             r.image.extent.width, r.image.extent.height, r.image.extent.depth,
-                             static_cast<int>(r.image.format), r.buffer_usage, r.image_usage,
-                             compiled.alias_plan.offsets[i]);
+    signature +=
+        fmt::format("{}|{}|{}x{}x{}|{}|{}|{}|{};", r.is_image, r.buffer.size, r.image.extent.width,
+                    r.image.extent.height, r.image.extent.depth, static_cast<int>(r.image.format),
+                    r.buffer_usage, r.image_usage, compiled.alias_plan.offsets[i]);
   }
   if (signature == transient_signature_) {
     // Same objects, but resource indices may differ from last frame (e.g. a history read added).
@@ -110,22 +112,25 @@ void GraphExecutor::realize_transients(const GraphDecl& decl, const CompiledGrap
     transients_.push_back(t);
     transient_resources_.push_back(compiled.aliased[i]);
     if (req.size > compiled.alias_requests[i].size)
-      throw RenderGraphError(fmt::format(
-          "render graph: '{}' needs {} B but was planned with {} B (bake with "
-          "GraphExecutor::compile_options())", r.name, req.size, compiled.alias_requests[i].size));
+      throw RenderGraphError(
+          fmt::format("render graph: '{}' needs {} B but was planned with {} B (bake with "
+                      "GraphExecutor::compile_options())",
+                      r.name, req.size, compiled.alias_requests[i].size));
     block.alignment = std::max(block.alignment, req.alignment);
     block.memoryTypeBits &= req.memoryTypeBits;
   }
   if (block.memoryTypeBits == 0)
     throw RenderGraphError("render graph: transient resources have no common memory type");
-  transient_allocation_ = device_.memory().allocate(
-      block, MemoryUsage::DeviceLocal, any_image ? ResourceKind::OptimalImage : ResourceKind::Linear);
+  transient_allocation_ =
+      device_.memory().allocate(block, MemoryUsage::DeviceLocal,
+                                any_image ? ResourceKind::OptimalImage : ResourceKind::Linear);
   for (size_t i = 0; i < transients_.size(); ++i) {
     Transient& t = transients_[i];
     const VkDeviceSize offset = transient_allocation_.offset + compiled.alias_plan.offsets[i];
     if (t.image != VK_NULL_HANDLE) {
       VK_CHECK(vkBindImageMemory(device, t.image, transient_allocation_.memory, offset));
-      const VkImageViewCreateInfo view = transient_view_info(decl.resources[transient_resources_[i]], t.image);
+      const VkImageViewCreateInfo view =
+          transient_view_info(decl.resources[transient_resources_[i]], t.image);
       VK_CHECK(vkCreateImageView(device, &view, nullptr, &t.view));
     } else {
       VK_CHECK(vkBindBufferMemory(device, t.buffer, transient_allocation_.memory, offset));
@@ -137,8 +142,9 @@ void GraphExecutor::realize_transients(const GraphDecl& decl, const CompiledGrap
 PhysicalResource GraphExecutor::realize_history(const ResourceDecl& r) {
   const HistoryDesc desc = r.is_image ? HistoryDesc{r.image} : HistoryDesc{r.buffer};
   // Usage every history gets, plus whatever this frame declares; recreated if that grows.
-  const VkFlags usage = r.is_image ? (r.image_usage | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT)
-                                   : (r.buffer_usage | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  const VkFlags usage =
+      r.is_image ? (r.image_usage | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT)
+                 : (r.buffer_usage | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   const auto key = std::make_pair(r.name, r.history_slot);
   auto it = history_.find(key);
   if (it == history_.end() || !(it->second.desc == desc) || (it->second.usage & usage) != usage) {
@@ -148,12 +154,17 @@ PhysicalResource GraphExecutor::realize_history(const ResourceDecl& r) {
       if (r.image.extent.depth != 1 || r.image.mip_levels != 1 || r.image.array_layers != 1)
         throw RenderGraphError(fmt::format(
             "render graph: history image '{}' must be 2D with one mip and one layer", r.name));
-      Image image(device_, {.width = r.image.extent.width, .height = r.image.extent.height,
-                            .format = r.image.format, .usage = usage, .name = name});
+      Image image(device_, {.width = r.image.extent.width,
+                            .height = r.image.extent.height,
+                            .format = r.image.format,
+                            .usage = usage,
+                            .name = name});
       it = history_.insert_or_assign(key, HistorySlot{desc, usage, std::move(image)}).first;
     } else {
-      Buffer buffer(device_, {.size = r.buffer.size, .usage = usage,
-                              .memory = MemoryUsage::DeviceLocal, .name = name});
+      Buffer buffer(device_, {.size = r.buffer.size,
+                              .usage = usage,
+                              .memory = MemoryUsage::DeviceLocal,
+                              .name = name});
       it = history_.insert_or_assign(key, HistorySlot{desc, usage, std::move(buffer)}).first;
     }
   }
@@ -193,15 +204,19 @@ void GraphExecutor::record(RenderGraph& graph, VkCommandBuffer cmd, GpuTimer* ti
   // leaves `cmd` unusable anyway, so the open scope is not closed on that path.)
   for (const CompiledPass& compiled_pass : compiled.passes) {
     const PassDecl& pass = decl.passes[compiled_pass.pass];
-    if (timer != nullptr) timer->begin(cmd, pass.name);  // timestamps + debug label
-    else device_.begin_label(cmd, pass.name);
+    if (timer != nullptr)
+      timer->begin(cmd, pass.name);  // timestamps + debug label
+    else
+      device_.begin_label(cmd, pass.name);
     record_barriers(cmd, barrier2_, compiled_pass.before, decl, physical);
     if (pass.execute) {
       PassContext context(cmd, decl, compiled_pass.pass, physical);
       pass.execute(context);
     }
-    if (timer != nullptr) timer->end(cmd);
-    else device_.end_label(cmd);
+    if (timer != nullptr)
+      timer->end(cmd);
+    else
+      device_.end_label(cmd);
   }
   record_barriers(cmd, barrier2_, compiled.after, decl, physical);
 }

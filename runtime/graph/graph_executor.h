@@ -22,7 +22,7 @@
 namespace lantern::runtime {
 class Device;
 class GpuTimer;
-}
+}  // namespace lantern::runtime
 
 namespace lantern::runtime::graph {
 

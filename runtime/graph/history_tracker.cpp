@@ -49,7 +49,8 @@ AccessState HistoryTracker::slot_state(std::string_view name, uint32_t slot) con
   return it == entries_.end() || slot > 1 ? AccessState{} : it->second.state[slot];
 }
 
-void HistoryTracker::set_slot_state(std::string_view name, uint32_t slot, const AccessState& state) {
+void HistoryTracker::set_slot_state(std::string_view name, uint32_t slot,
+                                    const AccessState& state) {
   auto it = entries_.find(name);
   if (it != entries_.end() && slot <= 1) it->second.state[slot] = state;
 }

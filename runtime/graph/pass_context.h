@@ -28,7 +28,9 @@ class PassContext {
   [[nodiscard]] const std::string& pass_name() const { return decl_.passes[pass_].name; }
 
   [[nodiscard]] VkBuffer buffer(BufferHandle h) const { return resolve(h.index, false).buffer; }
-  [[nodiscard]] VkDeviceSize buffer_size(BufferHandle h) const { return resolve(h.index, false).size; }
+  [[nodiscard]] VkDeviceSize buffer_size(BufferHandle h) const {
+    return resolve(h.index, false).size;
+  }
   [[nodiscard]] VkImage image(ImageHandle h) const { return resolve(h.index, true).image; }
   [[nodiscard]] VkImageView view(ImageHandle h) const { return resolve(h.index, true).view; }
   [[nodiscard]] const ImageDesc& image_desc(ImageHandle h) const;

@@ -7,10 +7,14 @@ namespace lantern::runtime::graph {
 
 const char* origin_name(Origin origin) {
   switch (origin) {
-    case Origin::Transient: return "transient";
-    case Origin::Imported: return "imported";
-    case Origin::History: return "history";
-    case Origin::HistoryPrevious: return "history-previous";
+    case Origin::Transient:
+      return "transient";
+    case Origin::Imported:
+      return "imported";
+    case Origin::History:
+      return "history";
+    case Origin::HistoryPrevious:
+      return "history-previous";
   }
   return "?";
 }
@@ -21,12 +25,14 @@ bool PassBuilder::check(uint32_t resource, Access access, bool image) {
   GraphDecl& d = graph_.decl_;
   const std::string& pass = d.passes[pass_].name;
   if (resource >= d.resources.size()) {
-    d.errors.push_back(fmt::format("pass '{}' uses an invalid handle (no history this frame?)", pass));
+    d.errors.push_back(
+        fmt::format("pass '{}' uses an invalid handle (no history this frame?)", pass));
     return false;
   }
   const ResourceDecl& r = d.resources[resource];
   if (r.is_image != image) {
-    d.errors.push_back(fmt::format("pass '{}' uses '{}' through the wrong handle type", pass, r.name));
+    d.errors.push_back(
+        fmt::format("pass '{}' uses '{}' through the wrong handle type", pass, r.name));
     return false;
   }
   if (image ? !allowed_on_image(access) : !allowed_on_buffer(access)) {
@@ -57,7 +63,8 @@ void PassBuilder::declare_read(uint32_t resource, uint32_t version, Access acces
   d.passes[pass_].uses.push_back({resource, version, access});
 }
 
-uint32_t PassBuilder::declare_write(uint32_t resource, uint32_t version, Access access, bool image) {
+uint32_t PassBuilder::declare_write(uint32_t resource, uint32_t version, Access access,
+                                    bool image) {
   if (!check(resource, access, image)) return version;
   GraphDecl& d = graph_.decl_;
   ResourceDecl& r = d.resources[resource];
@@ -75,8 +82,8 @@ uint32_t PassBuilder::declare_write(uint32_t resource, uint32_t version, Access 
   if (version != r.latest_version) {
     const uint32_t other = version < r.writers.size() ? r.writers[version] : kInvalidIndex;
     d.errors.push_back(fmt::format(
-        "two writers of '{}' version {}: pass '{}' and pass '{}' (write the newest handle)",
-        r.name, version, other == kInvalidIndex ? "?" : d.passes[other].name, pass));
+        "two writers of '{}' version {}: pass '{}' and pass '{}' (write the newest handle)", r.name,
+        version, other == kInvalidIndex ? "?" : d.passes[other].name, pass));
     return version;
   }
   r.buffer_usage |= buffer_usage(access);
@@ -86,7 +93,9 @@ uint32_t PassBuilder::declare_write(uint32_t resource, uint32_t version, Access 
   return ++r.latest_version;
 }
 
-void PassBuilder::side_effect() { graph_.decl_.passes[pass_].side_effect = true; }
+void PassBuilder::side_effect() {
+  graph_.decl_.passes[pass_].side_effect = true;
+}
 
 // ---- RenderGraph ----
 
@@ -151,8 +160,10 @@ uint32_t RenderGraph::declare_history(std::string_view name, const HistoryDesc& 
   ResourceDecl r;
   r.name = name;
   r.is_image = std::holds_alternative<ImageDesc>(desc);
-  if (r.is_image) r.image = std::get<ImageDesc>(desc);
-  else r.buffer = std::get<BufferDesc>(desc);
+  if (r.is_image)
+    r.image = std::get<ImageDesc>(desc);
+  else
+    r.buffer = std::get<BufferDesc>(desc);
   r.origin = Origin::History;
   r.history_slot = slots.write;
   r.import.initial = history_.slot_state(name, slots.write);

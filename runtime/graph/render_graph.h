@@ -70,8 +70,12 @@ class RenderGraph {
   [[nodiscard]] ImageHandle create_history_image(std::string_view name, const ImageDesc& desc);
   // Last frame's version of a history resource; invalid on the first frame, after a resize,
   // after invalidate_history() and when last frame did not write it.
-  [[nodiscard]] BufferHandle history(BufferHandle current) { return {history_of(current.index, false), 0}; }
-  [[nodiscard]] ImageHandle history(ImageHandle current) { return {history_of(current.index, true), 0}; }
+  [[nodiscard]] BufferHandle history(BufferHandle current) {
+    return {history_of(current.index, false), 0};
+  }
+  [[nodiscard]] ImageHandle history(ImageHandle current) {
+    return {history_of(current.index, true), 0};
+  }
   // Camera cut: no pass gets history this frame (call before declaring history resources).
   void invalidate_history() { history_.invalidate_all(); }
 

@@ -18,7 +18,9 @@ bool is_write(Access a) {
   }
 }
 
-bool is_read(Access a) { return a == Access::StorageReadWrite || !is_write(a); }
+bool is_read(Access a) {
+  return a == Access::StorageReadWrite || !is_write(a);
+}
 
 bool allowed_on_buffer(Access a) {
   switch (a) {
@@ -46,28 +48,44 @@ bool allowed_on_image(Access a) {
 
 const char* access_name(Access a) {
   switch (a) {
-    case Access::StorageRead: return "storage-read";
-    case Access::StorageWrite: return "storage-write";
-    case Access::StorageReadWrite: return "storage-read-write";
-    case Access::UniformRead: return "uniform-read";
-    case Access::Sampled: return "sampled";
-    case Access::ColorAttachment: return "color-attachment";
-    case Access::DepthAttachment: return "depth-attachment";
-    case Access::DepthRead: return "depth-read";
-    case Access::TransferSrc: return "transfer-src";
-    case Access::TransferDst: return "transfer-dst";
-    case Access::VertexBuffer: return "vertex-buffer";
-    case Access::IndexBuffer: return "index-buffer";
-    case Access::IndirectBuffer: return "indirect-buffer";
+    case Access::StorageRead:
+      return "storage-read";
+    case Access::StorageWrite:
+      return "storage-write";
+    case Access::StorageReadWrite:
+      return "storage-read-write";
+    case Access::UniformRead:
+      return "uniform-read";
+    case Access::Sampled:
+      return "sampled";
+    case Access::ColorAttachment:
+      return "color-attachment";
+    case Access::DepthAttachment:
+      return "depth-attachment";
+    case Access::DepthRead:
+      return "depth-read";
+    case Access::TransferSrc:
+      return "transfer-src";
+    case Access::TransferDst:
+      return "transfer-dst";
+    case Access::VertexBuffer:
+      return "vertex-buffer";
+    case Access::IndexBuffer:
+      return "index-buffer";
+    case Access::IndirectBuffer:
+      return "indirect-buffer";
   }
   return "?";
 }
 
 const char* pass_kind_name(PassKind k) {
   switch (k) {
-    case PassKind::Compute: return "compute";
-    case PassKind::Graphics: return "graphics";
-    case PassKind::Transfer: return "transfer";
+    case PassKind::Compute:
+      return "compute";
+    case PassKind::Graphics:
+      return "graphics";
+    case PassKind::Transfer:
+      return "transfer";
   }
   return "?";
 }
@@ -76,10 +94,12 @@ namespace {
 
 VkPipelineStageFlags2 shader_stages(PassKind kind) {
   switch (kind) {
-    case PassKind::Compute: return VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    case PassKind::Compute:
+      return VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     case PassKind::Graphics:
       return VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-    case PassKind::Transfer: return VK_PIPELINE_STAGE_2_NONE;  // rejected by validation
+    case PassKind::Transfer:
+      return VK_PIPELINE_STAGE_2_NONE;  // rejected by validation
   }
   return VK_PIPELINE_STAGE_2_NONE;
 }
@@ -88,7 +108,8 @@ VkPipelineStageFlags2 shader_stages(PassKind kind) {
 
 AccessState access_state(Access a, PassKind kind, bool is_image) {
   const VkPipelineStageFlags2 shaders = shader_stages(kind);
-  const VkImageLayout storage_layout = is_image ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED;
+  const VkImageLayout storage_layout =
+      is_image ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED;
   switch (a) {
     case Access::StorageRead:
       return {shaders, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, storage_layout};
@@ -100,19 +121,23 @@ AccessState access_state(Access a, PassKind kind, bool is_image) {
     case Access::UniformRead:
       return {shaders, VK_ACCESS_2_UNIFORM_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
     case Access::Sampled:
-      return {shaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+      return {shaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     case Access::ColorAttachment:
       return {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
               VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     case Access::DepthAttachment:
-      return {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+      return {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                  VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL};
     case Access::DepthRead:
-      return {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
+      return {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                  VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
+              VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
     case Access::TransferSrc:
       return {VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
               is_image ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED};
@@ -137,14 +162,22 @@ VkBufferUsageFlags buffer_usage(Access a) {
   switch (a) {
     case Access::StorageRead:
     case Access::StorageWrite:
-    case Access::StorageReadWrite: return VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    case Access::UniformRead: return VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
-    case Access::TransferSrc: return VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
-    case Access::TransferDst: return VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    case Access::VertexBuffer: return VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
-    case Access::IndexBuffer: return VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
-    case Access::IndirectBuffer: return VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-    default: return 0;
+    case Access::StorageReadWrite:
+      return VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    case Access::UniformRead:
+      return VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+    case Access::TransferSrc:
+      return VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    case Access::TransferDst:
+      return VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    case Access::VertexBuffer:
+      return VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+    case Access::IndexBuffer:
+      return VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
+    case Access::IndirectBuffer:
+      return VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+    default:
+      return 0;
   }
 }
 
@@ -152,14 +185,21 @@ VkImageUsageFlags image_usage(Access a) {
   switch (a) {
     case Access::StorageRead:
     case Access::StorageWrite:
-    case Access::StorageReadWrite: return VK_IMAGE_USAGE_STORAGE_BIT;
-    case Access::Sampled: return VK_IMAGE_USAGE_SAMPLED_BIT;
-    case Access::ColorAttachment: return VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    case Access::StorageReadWrite:
+      return VK_IMAGE_USAGE_STORAGE_BIT;
+    case Access::Sampled:
+      return VK_IMAGE_USAGE_SAMPLED_BIT;
+    case Access::ColorAttachment:
+      return VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
     case Access::DepthAttachment:
-    case Access::DepthRead: return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    case Access::TransferSrc: return VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    case Access::TransferDst: return VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    default: return 0;
+    case Access::DepthRead:
+      return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    case Access::TransferSrc:
+      return VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    case Access::TransferDst:
+      return VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    default:
+      return 0;
   }
 }
 
@@ -226,16 +266,26 @@ std::string access_names(VkAccessFlags2 access) {
 
 const char* layout_name(VkImageLayout layout) {
   switch (layout) {
-    case VK_IMAGE_LAYOUT_UNDEFINED: return "UNDEFINED";
-    case VK_IMAGE_LAYOUT_GENERAL: return "GENERAL";
-    case VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL: return "COLOR_ATTACHMENT";
-    case VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL: return "DEPTH_ATTACHMENT";
-    case VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL: return "DEPTH_READ_ONLY";
-    case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL: return "SHADER_READ_ONLY";
-    case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: return "TRANSFER_SRC";
-    case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL: return "TRANSFER_DST";
-    case VK_IMAGE_LAYOUT_PRESENT_SRC_KHR: return "PRESENT_SRC";
-    default: return "OTHER";
+    case VK_IMAGE_LAYOUT_UNDEFINED:
+      return "UNDEFINED";
+    case VK_IMAGE_LAYOUT_GENERAL:
+      return "GENERAL";
+    case VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL:
+      return "COLOR_ATTACHMENT";
+    case VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL:
+      return "DEPTH_ATTACHMENT";
+    case VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL:
+      return "DEPTH_READ_ONLY";
+    case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL:
+      return "SHADER_READ_ONLY";
+    case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL:
+      return "TRANSFER_SRC";
+    case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL:
+      return "TRANSFER_DST";
+    case VK_IMAGE_LAYOUT_PRESENT_SRC_KHR:
+      return "PRESENT_SRC";
+    default:
+      return "OTHER";
   }
 }
 

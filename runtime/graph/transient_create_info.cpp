@@ -32,7 +32,7 @@ VkImageCreateInfo transient_image_info(const ResourceDecl& r) {
 VkImageViewCreateInfo transient_view_info(const ResourceDecl& r, VkImage image) {
   VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   view.image = image;
-  view.viewType = r.image.extent.depth > 1     ? VK_IMAGE_VIEW_TYPE_3D
+  view.viewType = r.image.extent.depth > 1   ? VK_IMAGE_VIEW_TYPE_3D
                   : r.image.array_layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                                              : VK_IMAGE_VIEW_TYPE_2D;
   view.format = r.image.format;

@@ -10,6 +10,7 @@ namespace lantern::runtime::graph {
 
 [[nodiscard]] VkBufferCreateInfo transient_buffer_info(const ResourceDecl& resource);
 [[nodiscard]] VkImageCreateInfo transient_image_info(const ResourceDecl& resource);
-[[nodiscard]] VkImageViewCreateInfo transient_view_info(const ResourceDecl& resource, VkImage image);
+[[nodiscard]] VkImageViewCreateInfo transient_view_info(const ResourceDecl& resource,
+                                                        VkImage image);
 
 }  // namespace lantern::runtime::graph

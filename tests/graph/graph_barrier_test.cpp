@@ -15,19 +15,27 @@ using test::kNoExecute;
 constexpr ImageDesc kImage{{64, 32, 1}, VK_FORMAT_R32G32B32A32_SFLOAT};
 
 // Keeps a pass alive by making it write an imported buffer.
-BufferHandle sink(RenderGraph& g) { return g.import_buffer("sink", VK_NULL_HANDLE, {64}); }
+BufferHandle sink(RenderGraph& g) {
+  return g.import_buffer("sink", VK_NULL_HANDLE, {64});
+}
 
 TEST(GraphBarriers, ReadAfterWriteMakesComputeWritesVisibleToReaders) {
   RenderGraph g;
   const BufferHandle out = sink(g);
   const BufferHandle data = g.create_buffer("data", {1024});
-  struct W { BufferHandle v; };
-  const W& w = g.add_pass<W>("test.produce", PassKind::Compute,
+  struct W {
+    BufferHandle v;
+  };
+  const W& w = g.add_pass<W>(
+      "test.produce", PassKind::Compute,
       [&](PassBuilder& b, W& d) { d.v = b.write(data, Access::StorageWrite); }, kNoExecute);
-  g.add_pass<Empty>("test.consume", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "test.consume", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(w.v, Access::StorageRead);
         (void)b.write(out, Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
   g.bake();
 
   EXPECT_FALSE(barrier_before(g, "test.produce", data.index)) << g.dump();
@@ -44,18 +52,23 @@ TEST(GraphBarriers, WriteAfterReadNeedsOnlyAnExecutionDependency) {
   RenderGraph g;
   // Imported with nothing pending: the only hazard is the graphics read before the copy.
   const BufferHandle buf = g.import_buffer("lights", VK_NULL_HANDLE, {256});
-  g.add_pass<Empty>("test.draw", PassKind::Graphics, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "test.draw", PassKind::Graphics,
+      [&](PassBuilder& b, Empty&) {
         b.read(buf, Access::StorageRead);
         b.side_effect();
-      }, kNoExecute);
-  g.add_pass<Empty>("test.upload", PassKind::Transfer,
+      },
+      kNoExecute);
+  g.add_pass<Empty>(
+      "test.upload", PassKind::Transfer,
       [&](PassBuilder& b, Empty&) { (void)b.write(buf, Access::TransferDst); }, kNoExecute);
   g.bake();
 
   EXPECT_FALSE(barrier_before(g, "test.draw", buf.index)) << g.dump();
   const auto b = barrier_before(g, "test.upload", buf.index);
   ASSERT_TRUE(b) << g.dump();
-  EXPECT_EQ(b->src.stages, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+  EXPECT_EQ(b->src.stages,
+            VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
   EXPECT_EQ(b->src.access, VK_ACCESS_2_NONE);
   EXPECT_EQ(b->dst.access, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   EXPECT_NE(b->dst.stages & VK_PIPELINE_STAGE_2_COPY_BIT, 0u);
@@ -65,22 +78,30 @@ TEST(GraphBarriers, WriteAfterWriteMakesTheFirstWriteAvailable) {
   RenderGraph g;
   const BufferHandle out = sink(g);
   const BufferHandle acc = g.create_buffer("accum", {4096});
-  struct H { BufferHandle v; };
-  const H& first = g.add_pass<H>("test.clear", PassKind::Transfer,
+  struct H {
+    BufferHandle v;
+  };
+  const H& first = g.add_pass<H>(
+      "test.clear", PassKind::Transfer,
       [&](PassBuilder& b, H& d) { d.v = b.write(acc, Access::TransferDst); }, kNoExecute);
-  const H& second = g.add_pass<H>("test.accumulate", PassKind::Compute,
+  const H& second = g.add_pass<H>(
+      "test.accumulate", PassKind::Compute,
       [&](PassBuilder& b, H& d) { d.v = b.write(first.v, Access::StorageReadWrite); }, kNoExecute);
-  g.add_pass<Empty>("test.resolve", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "test.resolve", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(second.v, Access::StorageRead);
         (void)b.write(out, Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
   g.bake();
 
   const auto b = barrier_before(g, "test.accumulate", acc.index);
   ASSERT_TRUE(b) << g.dump();
   EXPECT_NE(b->src.stages & VK_PIPELINE_STAGE_2_COPY_BIT, 0u);
   EXPECT_EQ(b->src.access, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-  EXPECT_EQ(b->dst.access, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  EXPECT_EQ(b->dst.access,
+            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   const auto r = barrier_before(g, "test.resolve", acc.index);
   ASSERT_TRUE(r) << g.dump();
   EXPECT_EQ(r->src.access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -89,15 +110,23 @@ TEST(GraphBarriers, WriteAfterWriteMakesTheFirstWriteAvailable) {
 TEST(GraphBarriers, ReadersInAnAlreadyVisibleScopeShareOneBarrier) {
   RenderGraph g;
   const BufferHandle out = sink(g);
-  struct H { BufferHandle v; };
-  const H& w = g.add_pass<H>("test.produce", PassKind::Compute, [&](PassBuilder& b, H& d) {
+  struct H {
+    BufferHandle v;
+  };
+  const H& w = g.add_pass<H>(
+      "test.produce", PassKind::Compute,
+      [&](PassBuilder& b, H& d) {
         d.v = b.write(g.create_buffer("data", {64}), Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
   for (const char* name : {"test.read_a", "test.read_b"})
-    g.add_pass<Empty>(name, PassKind::Compute, [&](PassBuilder& b, Empty&) {
+    g.add_pass<Empty>(
+        name, PassKind::Compute,
+        [&](PassBuilder& b, Empty&) {
           b.read(w.v, Access::StorageRead);
           b.side_effect();
-        }, kNoExecute);
+        },
+        kNoExecute);
   (void)out;
   g.bake();
   EXPECT_TRUE(barrier_before(g, "test.read_a", w.v.index)) << g.dump();
@@ -107,16 +136,26 @@ TEST(GraphBarriers, ReadersInAnAlreadyVisibleScopeShareOneBarrier) {
 TEST(GraphBarriers, ImageLayoutsFollowEachUse) {
   RenderGraph g;
   ImportInfo present;
-  present.final = AccessState{VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR};
-  const ImageHandle target = g.import_image("swapchain", VK_NULL_HANDLE, VK_NULL_HANDLE, kImage, present);
-  struct I { ImageHandle v; };
-  const I& lit = g.add_pass<I>("test.light", PassKind::Compute, [&](PassBuilder& b, I& d) {
+  present.final =
+      AccessState{VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR};
+  const ImageHandle target =
+      g.import_image("swapchain", VK_NULL_HANDLE, VK_NULL_HANDLE, kImage, present);
+  struct I {
+    ImageHandle v;
+  };
+  const I& lit = g.add_pass<I>(
+      "test.light", PassKind::Compute,
+      [&](PassBuilder& b, I& d) {
         d.v = b.write(g.create_image("radiance", kImage), Access::StorageWrite);
-      }, kNoExecute);
-  g.add_pass<Empty>("test.tonemap", PassKind::Graphics, [&](PassBuilder& b, Empty&) {
+      },
+      kNoExecute);
+  g.add_pass<Empty>(
+      "test.tonemap", PassKind::Graphics,
+      [&](PassBuilder& b, Empty&) {
         b.read(lit.v, Access::Sampled);
         (void)b.write(target, Access::ColorAttachment);
-      }, kNoExecute);
+      },
+      kNoExecute);
   g.bake();
 
   const auto first = barrier_before(g, "test.light", lit.v.index);
@@ -148,9 +187,11 @@ TEST(GraphBarriers, ImageLayoutsFollowEachUse) {
 TEST(GraphBarriers, ReadbackBufferEndsWithAHostReadBarrier) {
   RenderGraph g;
   ImportInfo host;
-  host.final = AccessState{VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+  host.final = AccessState{VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT,
+                           VK_IMAGE_LAYOUT_UNDEFINED};
   const BufferHandle readback = g.import_buffer("readback", VK_NULL_HANDLE, {16}, host);
-  g.add_pass<Empty>("test.reduce", PassKind::Compute,
+  g.add_pass<Empty>(
+      "test.reduce", PassKind::Compute,
       [&](PassBuilder& b, Empty&) { (void)b.write(readback, Access::StorageWrite); }, kNoExecute);
   g.bake();
   ASSERT_EQ(g.compiled().after.barriers.size(), 1u) << g.dump();
@@ -163,19 +204,28 @@ TEST(GraphBarriers, ReadbackBufferEndsWithAHostReadBarrier) {
 TEST(GraphBarriers, DumpListsPassesBarriersAndResources) {
   RenderGraph g;
   const BufferHandle out = sink(g);
-  struct H { BufferHandle v; };
-  const H& w = g.add_pass<H>("test.produce", PassKind::Compute, [&](PassBuilder& b, H& d) {
+  struct H {
+    BufferHandle v;
+  };
+  const H& w = g.add_pass<H>(
+      "test.produce", PassKind::Compute,
+      [&](PassBuilder& b, H& d) {
         d.v = b.write(g.create_buffer("data", {64}), Access::StorageWrite);
-      }, kNoExecute);
-  g.add_pass<Empty>("test.consume", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+      },
+      kNoExecute);
+  g.add_pass<Empty>(
+      "test.consume", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(w.v, Access::StorageRead);
         (void)b.write(out, Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
   g.bake();
   const std::string text = g.dump();
-  for (const char* needle : {"test.produce", "test.consume", "barrier data",
-                             "COMPUTE_SHADER/SHADER_STORAGE_WRITE -> COMPUTE_SHADER/SHADER_STORAGE_READ",
-                             "sink buffer 64 B (imported)", "transient memory"})
+  for (const char* needle :
+       {"test.produce", "test.consume", "barrier data",
+        "COMPUTE_SHADER/SHADER_STORAGE_WRITE -> COMPUTE_SHADER/SHADER_STORAGE_READ",
+        "sink buffer 64 B (imported)", "transient memory"})
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
 }
 
@@ -186,7 +236,8 @@ namespace lantern::runtime::graph {
 namespace {
 
 TEST(GraphBarriers, Vulkan10MappingKeepsScopes) {
-  EXPECT_EQ(to_stage1(VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, true), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+  EXPECT_EQ(to_stage1(VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, true),
+            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
   EXPECT_EQ(to_stage1(VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, true),
             VK_PIPELINE_STAGE_TRANSFER_BIT);
   EXPECT_EQ(to_stage1(VK_PIPELINE_STAGE_2_NONE, true), VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);

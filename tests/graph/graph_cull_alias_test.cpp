@@ -14,21 +14,29 @@ using test::Empty;
 using test::kNoExecute;
 using test::position;
 
-struct Out { BufferHandle v; };
+struct Out {
+  BufferHandle v;
+};
 
 // A compute pass reading `in` (if valid) and writing a new transient of `bytes`.
 const Out& chain(RenderGraph& g, const char* name, BufferHandle in, uint64_t bytes) {
-  return g.add_pass<Out>(name, PassKind::Compute, [&, name](PassBuilder& b, Out& d) {
+  return g.add_pass<Out>(
+      name, PassKind::Compute,
+      [&, name](PassBuilder& b, Out& d) {
         if (in) b.read(in, Access::StorageRead);
         d.v = b.write(g.create_buffer(std::string(name) + ".out", {bytes}), Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
 }
 
 void consume(RenderGraph& g, const char* name, BufferHandle in, BufferHandle sink) {
-  g.add_pass<Empty>(name, PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      name, PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(in, Access::StorageRead);
         (void)b.write(sink, Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
 }
 
 TEST(GraphCulling, PassesWhoseOutputsNobodyReadsAreCulledTransitively) {
@@ -38,10 +46,13 @@ TEST(GraphCulling, PassesWhoseOutputsNobodyReadsAreCulledTransitively) {
   const Out& unused_1 = chain(g, "test.unused_1", a.v, 256);
   chain(g, "test.unused_2", unused_1.v, 256);
   consume(g, "test.b", a.v, sink);
-  g.add_pass<Empty>("test.debug", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "test.debug", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(a.v, Access::StorageRead);
         b.side_effect();
-      }, kNoExecute);
+      },
+      kNoExecute);
   g.bake();
 
   EXPECT_TRUE(position(g, "test.a"));
@@ -57,9 +68,11 @@ TEST(GraphCulling, AWriteThatIsOverwrittenUnreadIsCulled) {
   RenderGraph g;
   const BufferHandle sink = g.import_buffer("sink", VK_NULL_HANDLE, {16});
   const BufferHandle buf = g.create_buffer("buf", {64});
-  const Out& first = g.add_pass<Out>("test.first", PassKind::Compute,
+  const Out& first = g.add_pass<Out>(
+      "test.first", PassKind::Compute,
       [&](PassBuilder& b, Out& d) { d.v = b.write(buf, Access::StorageWrite); }, kNoExecute);
-  const Out& second = g.add_pass<Out>("test.second", PassKind::Transfer,
+  const Out& second = g.add_pass<Out>(
+      "test.second", PassKind::Transfer,
       [&](PassBuilder& b, Out& d) { d.v = b.write(first.v, Access::TransferDst); }, kNoExecute);
   consume(g, "test.use", second.v, sink);
   g.bake();
@@ -74,10 +87,13 @@ TEST(GraphOrder, DeclarationOrderIsKeptWhenValid) {
   const Out& y = chain(g, "test.y", {}, 64);  // independent of x
   const Out& z = chain(g, "test.z", y.v, 64);
   consume(g, "test.sink_x", x.v, sink);
-  g.add_pass<Empty>("test.sink_z", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "test.sink_z", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(z.v, Access::StorageRead);
         b.side_effect();
-      }, kNoExecute);
+      },
+      kNoExecute);
   g.bake();
   const char* expected[] = {"test.x", "test.y", "test.z", "test.sink_x", "test.sink_z"};
   for (size_t i = 0; i < 5; ++i) EXPECT_EQ(position(g, expected[i]), i) << g.dump();
@@ -86,13 +102,17 @@ TEST(GraphOrder, DeclarationOrderIsKeptWhenValid) {
 TEST(GraphOrder, AStaleReadRunsBeforeTheOverwrite) {
   RenderGraph g;
   const BufferHandle buf = g.import_buffer("state", VK_NULL_HANDLE, {64});
-  const Out& update = g.add_pass<Out>("test.update", PassKind::Compute,
+  const Out& update = g.add_pass<Out>(
+      "test.update", PassKind::Compute,
       [&](PassBuilder& b, Out& d) { d.v = b.write(buf, Access::StorageReadWrite); }, kNoExecute);
   // Declared later but reads the version before the update: must run first.
-  g.add_pass<Empty>("test.old_reader", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "test.old_reader", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(buf, Access::StorageRead);
         b.side_effect();
-      }, kNoExecute);
+      },
+      kNoExecute);
   (void)update;
   g.bake();
   EXPECT_EQ(position(g, "test.old_reader"), 0u) << g.dump();

@@ -43,11 +43,16 @@ struct Fixture {
   ShaderLibrary shaders;
   Pipelines pipes{
       ComputePipeline(device, shaders.load("tests/graph_fill.comp"), {.name = "test.fill"}),
-      ComputePipeline(device, shaders.load("tests/graph_transform.comp"), {.name = "test.transform"}),
+      ComputePipeline(device, shaders.load("tests/graph_transform.comp"),
+                      {.name = "test.transform"}),
       ComputePipeline(device, shaders.load("tests/graph_reduce.comp"), {.name = "test.reduce"}),
-      ComputePipeline(device, shaders.load("tests/graph_accumulate.comp"), {.name = "test.accumulate"})};
-  Buffer readback{device, {.size = kHeight * sizeof(uint32_t), .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                           .memory = MemoryUsage::Readback, .name = "test.readback"}};
+      ComputePipeline(device, shaders.load("tests/graph_accumulate.comp"),
+                      {.name = "test.accumulate"})};
+  Buffer readback{device,
+                  {.size = kHeight * sizeof(uint32_t),
+                   .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                   .memory = MemoryUsage::Readback,
+                   .name = "test.readback"}};
   GraphExecutor executor{device};
   GpuTimer timer{device, 16};
   RenderGraph graph;
@@ -60,63 +65,82 @@ struct Fixture {
     ImportInfo host_read;
     host_read.final = AccessState{VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT,
                                   VK_IMAGE_LAYOUT_UNDEFINED};
-    const BufferHandle out = graph.import_buffer("test.readback", readback.handle(),
-                                                 {readback.size()}, host_read);
-    const BufferHandle running = graph.create_history_buffer("test.running", {kHeight * sizeof(uint32_t)});
+    const BufferHandle out =
+        graph.import_buffer("test.readback", readback.handle(), {readback.size()}, host_read);
+    const BufferHandle running =
+        graph.create_history_buffer("test.running", {kHeight * sizeof(uint32_t)});
     const BufferHandle previous = graph.history(running);
 
-    struct Values { BufferHandle values; };
-    const Values& fill = graph.add_pass<Values>("test.fill", PassKind::Compute,
+    struct Values {
+      BufferHandle values;
+    };
+    const Values& fill = graph.add_pass<Values>(
+        "test.fill", PassKind::Compute,
         [&](PassBuilder& b, Values& d) {
           d.values = b.write(graph.create_buffer("test.values", {kCount * sizeof(uint32_t)}),
                              Access::StorageWrite);
         },
         [this, seed](PassContext& ctx, const Values& d) {
-          pipes.fill.bind(ctx.cmd(), Bindings(pipes.fill).buffer("values", ctx.buffer(d.values), 0, VK_WHOLE_SIZE));
+          pipes.fill.bind(
+              ctx.cmd(),
+              Bindings(pipes.fill).buffer("values", ctx.buffer(d.values), 0, VK_WHOLE_SIZE));
           pipes.fill.push_constants(ctx.cmd(), Push2{kCount, seed});
           pipes.fill.dispatch_threads(ctx.cmd(), kCount);
         });
 
     // Reads the values but nobody reads its output: culled, never executed.
-    graph.add_pass<Values>("test.unused", PassKind::Compute,
+    graph.add_pass<Values>(
+        "test.unused", PassKind::Compute,
         [&](PassBuilder& b, Values& d) {
           b.read(fill.values, Access::StorageRead);
           d.values = b.write(graph.create_buffer("test.junk", {1024}), Access::StorageWrite);
         },
         [this](PassContext&, const Values&) { unused_pass_ran = true; });
 
-    struct Img { ImageHandle image; };
-    const Img& transform = graph.add_pass<Img>("test.transform", PassKind::Compute,
+    struct Img {
+      ImageHandle image;
+    };
+    const Img& transform = graph.add_pass<Img>(
+        "test.transform", PassKind::Compute,
         [&](PassBuilder& b, Img& d) {
           b.read(fill.values, Access::StorageRead);
-          d.image = b.write(graph.create_image("test.image", {{kWidth, kHeight, 1}, VK_FORMAT_R32_UINT}),
-                            Access::StorageWrite);
+          d.image =
+              b.write(graph.create_image("test.image", {{kWidth, kHeight, 1}, VK_FORMAT_R32_UINT}),
+                      Access::StorageWrite);
         },
         [this, values = fill.values](PassContext& ctx, const Img& d) {
-          pipes.transform.bind(ctx.cmd(), Bindings(pipes.transform)
-                                              .buffer("values", ctx.buffer(values), 0, VK_WHOLE_SIZE)
-                                              .image_view("image", ctx.view(d.image), VK_IMAGE_LAYOUT_GENERAL));
+          pipes.transform.bind(
+              ctx.cmd(), Bindings(pipes.transform)
+                             .buffer("values", ctx.buffer(values), 0, VK_WHOLE_SIZE)
+                             .image_view("image", ctx.view(d.image), VK_IMAGE_LAYOUT_GENERAL));
           pipes.transform.push_constants(ctx.cmd(), Push2{kWidth, kHeight});
           pipes.transform.dispatch_threads(ctx.cmd(), kWidth, kHeight);
         });
 
-    struct Sums { BufferHandle sums; };
-    const Sums& reduce = graph.add_pass<Sums>("test.reduce", PassKind::Compute,
+    struct Sums {
+      BufferHandle sums;
+    };
+    const Sums& reduce = graph.add_pass<Sums>(
+        "test.reduce", PassKind::Compute,
         [&](PassBuilder& b, Sums& d) {
           b.read(transform.image, Access::StorageRead);
           d.sums = b.write(graph.create_buffer("test.sums", {kHeight * sizeof(uint32_t)}),
                            Access::StorageWrite);
         },
         [this, image = transform.image](PassContext& ctx, const Sums& d) {
-          pipes.reduce.bind(ctx.cmd(), Bindings(pipes.reduce)
-                                           .image_view("image", ctx.view(image), VK_IMAGE_LAYOUT_GENERAL)
-                                           .buffer("sums", ctx.buffer(d.sums), 0, VK_WHOLE_SIZE));
+          pipes.reduce.bind(ctx.cmd(),
+                            Bindings(pipes.reduce)
+                                .image_view("image", ctx.view(image), VK_IMAGE_LAYOUT_GENERAL)
+                                .buffer("sums", ctx.buffer(d.sums), 0, VK_WHOLE_SIZE));
           pipes.reduce.push_constants(ctx.cmd(), Push2{kWidth, kHeight});
           pipes.reduce.dispatch_threads(ctx.cmd(), kHeight);
         });
 
-    struct Acc { BufferHandle sums, previous, running, out; };
-    graph.add_pass<Acc>("test.accumulate", PassKind::Compute,
+    struct Acc {
+      BufferHandle sums, previous, running, out;
+    };
+    graph.add_pass<Acc>(
+        "test.accumulate", PassKind::Compute,
         [&](PassBuilder& b, Acc& d) {
           d.sums = reduce.sums;
           d.previous = previous;
@@ -126,13 +150,15 @@ struct Fixture {
           d.out = b.write(out, Access::StorageWrite);
         },
         [this](PassContext& ctx, const Acc& d) {
-          // Without history the shader ignores `previous`; bind the sums there (declared, same size).
+          // Without history the shader ignores `previous`; bind the sums there (declared, same
+          // size).
           const VkBuffer previous_buffer = d.previous ? ctx.buffer(d.previous) : ctx.buffer(d.sums);
-          pipes.accumulate.bind(ctx.cmd(), Bindings(pipes.accumulate)
-                                               .buffer("sums", ctx.buffer(d.sums), 0, VK_WHOLE_SIZE)
-                                               .buffer("previous", previous_buffer, 0, VK_WHOLE_SIZE)
-                                               .buffer("running", ctx.buffer(d.running), 0, VK_WHOLE_SIZE)
-                                               .buffer("readback", ctx.buffer(d.out), 0, VK_WHOLE_SIZE));
+          pipes.accumulate.bind(ctx.cmd(),
+                                Bindings(pipes.accumulate)
+                                    .buffer("sums", ctx.buffer(d.sums), 0, VK_WHOLE_SIZE)
+                                    .buffer("previous", previous_buffer, 0, VK_WHOLE_SIZE)
+                                    .buffer("running", ctx.buffer(d.running), 0, VK_WHOLE_SIZE)
+                                    .buffer("readback", ctx.buffer(d.out), 0, VK_WHOLE_SIZE));
           pipes.accumulate.push_constants(ctx.cmd(), Push2{kHeight, d.previous ? 1u : 0u});
           pipes.accumulate.dispatch_threads(ctx.cmd(), kHeight);
         });
@@ -149,7 +175,8 @@ struct Fixture {
   }
 
   void run_frames_and_check() {
-    ASSERT_TRUE(device.validation_enabled()) << "validation layer missing: install vulkan-validationlayers";
+    ASSERT_TRUE(device.validation_enabled())
+        << "validation layer missing: install vulkan-validationlayers";
     ASSERT_TRUE(device.sync_validation_enabled());
     const std::vector<uint32_t> sums = expected_sums(5);
     EXPECT_EQ(frame(5), sums) << "frame 1: no history";
@@ -168,7 +195,8 @@ struct Fixture {
     const auto timings = timer.resolve();
     std::vector<std::string> names;
     for (const auto& t : timings) names.push_back(t.name);
-    EXPECT_EQ(names, (std::vector<std::string>{"test.fill", "test.transform", "test.reduce", "test.accumulate"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"test.fill", "test.transform", "test.reduce",
+                                               "test.accumulate"}));
     EXPECT_EQ(device.validation_errors(), 0u) << graph.dump();
   }
 };

@@ -15,7 +15,9 @@ struct TemporalData {
   ImageHandle current;
 };
 
-constexpr ImageDesc desc_of(uint32_t width) { return {{width, 90, 1}, VK_FORMAT_R16G16B16A16_SFLOAT}; }
+constexpr ImageDesc desc_of(uint32_t width) {
+  return {{width, 90, 1}, VK_FORMAT_R16G16B16A16_SFLOAT};
+}
 
 // One frame of a temporal pass: reads last frame's image if any, writes this frame's.
 TemporalData temporal_frame(RenderGraph& g, uint32_t width = 160, bool camera_cut = false) {
@@ -23,12 +25,14 @@ TemporalData temporal_frame(RenderGraph& g, uint32_t width = 160, bool camera_cu
   if (camera_cut) g.invalidate_history();
   const ImageHandle current = g.create_history_image("taa.color", desc_of(width));
   const ImageHandle previous = g.history(current);
-  const TemporalData& d = g.add_pass<TemporalData>("taa.resolve", PassKind::Compute,
+  const TemporalData& d = g.add_pass<TemporalData>(
+      "taa.resolve", PassKind::Compute,
       [&](PassBuilder& b, TemporalData& data) {
         data.previous = previous;
         if (previous) b.read(previous, Access::StorageRead);  // the pass copes without history
         data.current = b.write(current, Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
   const TemporalData result = d;
   g.bake();
   g.end_frame();

@@ -11,7 +11,9 @@ namespace {
 using test::Empty;
 using test::kNoExecute;
 
-struct Out { BufferHandle v; };
+struct Out {
+  BufferHandle v;
+};
 
 // Bakes and checks the error message mentions every needle.
 void expect_bake_error(RenderGraph& g, std::initializer_list<const char*> needles) {
@@ -21,17 +23,21 @@ void expect_bake_error(RenderGraph& g, std::initializer_list<const char*> needle
   } catch (const RenderGraphError& e) {
     const std::string message = e.what();
     for (const char* needle : needles)
-      EXPECT_NE(message.find(needle), std::string::npos) << "missing '" << needle << "' in:\n" << message;
+      EXPECT_NE(message.find(needle), std::string::npos) << "missing '" << needle << "' in:\n"
+                                                         << message;
   }
 }
 
 TEST(GraphValidation, ReadOfANeverWrittenTransient) {
   RenderGraph g;
   const BufferHandle buf = g.create_buffer("restir.candidates", {64});
-  g.add_pass<Empty>("restir.spatial", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "restir.spatial", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(buf, Access::StorageRead);
         b.side_effect();
-      }, kNoExecute);
+      },
+      kNoExecute);
   expect_bake_error(g, {"restir.spatial", "restir.candidates", "before any pass wrote it"});
 }
 
@@ -40,7 +46,8 @@ TEST(GraphValidation, WriteToAReadOnlyImport) {
   ImportInfo info;
   info.read_only = true;
   const BufferHandle lights = g.import_buffer("scene.lights", VK_NULL_HANDLE, {64}, info);
-  g.add_pass<Out>("test.bad", PassKind::Compute,
+  g.add_pass<Out>(
+      "test.bad", PassKind::Compute,
       [&](PassBuilder& b, Out& d) { d.v = b.write(lights, Access::StorageWrite); }, kNoExecute);
   expect_bake_error(g, {"test.bad", "scene.lights", "read-only"});
 }
@@ -51,15 +58,19 @@ TEST(GraphValidation, WriteToHistoryOfLastFrame) {
     g.begin_frame();
     const BufferHandle cur = g.create_history_buffer("restir.reservoirs", {256});
     const BufferHandle prev = g.history(cur);
-    g.add_pass<Out>("restir.temporal", PassKind::Compute, [&](PassBuilder& b, Out& d) {
+    g.add_pass<Out>(
+        "restir.temporal", PassKind::Compute,
+        [&](PassBuilder& b, Out& d) {
           d.v = b.write(cur, Access::StorageWrite);
           if (prev) (void)b.write(prev, Access::StorageWrite);
-        }, kNoExecute);
+        },
+        kNoExecute);
     if (frame == 0) {
       g.bake();
       g.end_frame();
     } else {
-      expect_bake_error(g, {"restir.temporal", "restir.reservoirs", "read-only", "history-previous"});
+      expect_bake_error(g,
+                        {"restir.temporal", "restir.reservoirs", "read-only", "history-previous"});
     }
   }
 }
@@ -67,9 +78,11 @@ TEST(GraphValidation, WriteToHistoryOfLastFrame) {
 TEST(GraphValidation, TwoWritersOfTheSameVersion) {
   RenderGraph g;
   const BufferHandle buf = g.create_buffer("gbuffer.ids", {64});
-  g.add_pass<Out>("test.first", PassKind::Compute,
+  g.add_pass<Out>(
+      "test.first", PassKind::Compute,
       [&](PassBuilder& b, Out& d) { d.v = b.write(buf, Access::StorageWrite); }, kNoExecute);
-  g.add_pass<Out>("test.second", PassKind::Compute,
+  g.add_pass<Out>(
+      "test.second", PassKind::Compute,
       [&](PassBuilder& b, Out& d) { d.v = b.write(buf, Access::StorageWrite); }, kNoExecute);
   expect_bake_error(g, {"two writers", "gbuffer.ids", "test.first", "test.second"});
 }
@@ -78,51 +91,69 @@ TEST(GraphValidation, CycleThroughAStaleRead) {
   RenderGraph g;
   const BufferHandle sink = g.import_buffer("sink", VK_NULL_HANDLE, {16});
   const BufferHandle x = g.create_buffer("x", {64});
-  const Out& a = g.add_pass<Out>("test.a", PassKind::Compute,
+  const Out& a = g.add_pass<Out>(
+      "test.a", PassKind::Compute,
       [&](PassBuilder& b, Out& d) { d.v = b.write(x, Access::StorageWrite); }, kNoExecute);
-  struct Two { BufferHandle x, y; };
-  const Two& bp = g.add_pass<Two>("test.b", PassKind::Compute, [&](PassBuilder& b, Two& d) {
+  struct Two {
+    BufferHandle x, y;
+  };
+  const Two& bp = g.add_pass<Two>(
+      "test.b", PassKind::Compute,
+      [&](PassBuilder& b, Two& d) {
         d.x = b.write(a.v, Access::StorageReadWrite);
         d.y = b.write(g.create_buffer("y", {64}), Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
   // Reads y (after test.b) and x version 1 (before test.b overwrites it): impossible.
-  g.add_pass<Empty>("test.c", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "test.c", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(bp.y, Access::StorageRead);
         b.read(a.v, Access::StorageRead);
         (void)b.write(sink, Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
   expect_bake_error(g, {"cycle", "test.b", "test.c"});
 }
 
 TEST(GraphValidation, ReadingOwnOutputIsACycle) {
   RenderGraph g;
   const BufferHandle x = g.create_buffer("x", {64});
-  g.add_pass<Out>("test.self", PassKind::Compute, [&](PassBuilder& b, Out& d) {
+  g.add_pass<Out>(
+      "test.self", PassKind::Compute,
+      [&](PassBuilder& b, Out& d) {
         d.v = b.write(x, Access::StorageWrite);
         b.read(d.v, Access::StorageRead);
         b.side_effect();
-      }, kNoExecute);
+      },
+      kNoExecute);
   expect_bake_error(g, {"test.self", "cycle"});
 }
 
 TEST(GraphValidation, AccessKindMustFitTheResource) {
   RenderGraph g;
   const BufferHandle buf = g.import_buffer("buf", VK_NULL_HANDLE, {64});
-  g.add_pass<Empty>("test.sample_buffer", PassKind::Graphics, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "test.sample_buffer", PassKind::Graphics,
+      [&](PassBuilder& b, Empty&) {
         b.read(buf, Access::Sampled);
         b.side_effect();
-      }, kNoExecute);
+      },
+      kNoExecute);
   expect_bake_error(g, {"test.sample_buffer", "buf", "sampled"});
 }
 
 TEST(GraphValidation, OneLayoutPerImagePerPass) {
   RenderGraph g;
-  const ImageHandle img = g.import_image("img", VK_NULL_HANDLE, VK_NULL_HANDLE,
-                                         {{8, 8, 1}, VK_FORMAT_R8G8B8A8_UNORM});
-  g.add_pass<Empty>("test.mixed", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  const ImageHandle img =
+      g.import_image("img", VK_NULL_HANDLE, VK_NULL_HANDLE, {{8, 8, 1}, VK_FORMAT_R8G8B8A8_UNORM});
+  g.add_pass<Empty>(
+      "test.mixed", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(img, Access::Sampled);
         (void)b.write(img, Access::StorageWrite);
-      }, kNoExecute);
+      },
+      kNoExecute);
   expect_bake_error(g, {"test.mixed", "img", "two layouts"});
 }
 
@@ -137,10 +168,13 @@ TEST(GraphValidation, ExecuteMayResolveOnlyDeclaredResources) {
   RenderGraph g;
   const BufferHandle declared = g.import_buffer("declared", VK_NULL_HANDLE, {64});
   const BufferHandle other = g.import_buffer("other", VK_NULL_HANDLE, {64});
-  g.add_pass<Empty>("test.sneaky", PassKind::Compute, [&](PassBuilder& b, Empty&) {
+  g.add_pass<Empty>(
+      "test.sneaky", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
         b.read(declared, Access::StorageRead);
         b.side_effect();
-      }, kNoExecute);
+      },
+      kNoExecute);
   g.bake();
   const std::vector<PhysicalResource> physical(g.decl().resources.size());
   PassContext ctx(VK_NULL_HANDLE, g.decl(), 0, physical);
