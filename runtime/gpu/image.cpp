@@ -33,6 +33,7 @@ std::uint32_t texel_size(VkFormat format) {
       return 1;
     case VK_FORMAT_R16_SFLOAT:
     case VK_FORMAT_R16_UINT:
+    case VK_FORMAT_R8G8_UNORM:
     case VK_FORMAT_D16_UNORM:
       return 2;
     case VK_FORMAT_R8G8B8A8_UNORM:

@@ -1,6 +1,8 @@
 // The render-graph compiler. Each step is a small function; compile_graph() runs them in order.
 #include "runtime/graph/graph_compiler.h"
 
+#include "runtime/gpu/image.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -306,37 +308,6 @@ std::string join_errors(const Errors& errors) {
   return text;
 }
 
-uint32_t bytes_per_texel(VkFormat format) {
-  switch (format) {
-    case VK_FORMAT_R8_UNORM:
-    case VK_FORMAT_R8_UINT:
-      return 1;
-    case VK_FORMAT_R16_SFLOAT:
-    case VK_FORMAT_R16_UINT:
-    case VK_FORMAT_R8G8_UNORM:
-      return 2;
-    case VK_FORMAT_R32_SFLOAT:
-    case VK_FORMAT_R32_UINT:
-    case VK_FORMAT_R8G8B8A8_UNORM:
-    case VK_FORMAT_R8G8B8A8_SRGB:
-    case VK_FORMAT_B8G8R8A8_UNORM:
-    case VK_FORMAT_B8G8R8A8_SRGB:
-    case VK_FORMAT_R16G16_SFLOAT:
-    case VK_FORMAT_D32_SFLOAT:
-    case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
-    case VK_FORMAT_B10G11R11_UFLOAT_PACK32:
-      return 4;
-    case VK_FORMAT_R32G32_SFLOAT:
-    case VK_FORMAT_R32G32_UINT:
-    case VK_FORMAT_R16G16B16A16_SFLOAT:
-      return 8;
-    case VK_FORMAT_R32G32B32A32_SFLOAT:
-    case VK_FORMAT_R32G32B32A32_UINT:
-      return 16;
-    default:
-      return 16;  // unknown: assume the widest common format
-  }
-}
 
 }  // namespace
 
@@ -347,7 +318,7 @@ MemoryRequirement estimate_memory(const ResourceDecl& r) {
   for (uint32_t mip = 0; mip < i.mip_levels; ++mip)
     bytes += uint64_t{std::max(1u, i.extent.width >> mip)} * std::max(1u, i.extent.height >> mip) *
              std::max(1u, i.extent.depth >> mip);
-  return {bytes * bytes_per_texel(i.format) * i.array_layers, 4096};
+  return {bytes * texel_size(i.format) * i.array_layers, 4096};
 }
 
 size_t CompiledGraph::barrier_count() const {
