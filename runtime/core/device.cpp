@@ -32,20 +32,27 @@ std::vector<DeviceInfo> describe(const std::vector<VkPhysicalDevice>& devices) {
   return infos;
 }
 
-// The first queue family with graphics and compute (graphics implies transfer).
-std::uint32_t find_queue_family(VkPhysicalDevice device, std::uint32_t* timestamp_bits) {
+// The first queue family with graphics and compute (graphics implies transfer) that passes the
+// presentation check when one is given.
+std::uint32_t find_queue_family(VkInstance instance, VkPhysicalDevice device,
+                                const DeviceOptions& options, std::uint32_t* timestamp_bits) {
   std::uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
   std::vector<VkQueueFamilyProperties> families(count);
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
   for (std::uint32_t i = 0; i < count; ++i) {
     const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-    if ((families[i].queueFlags & need) == need) {
+    const bool presents =
+        !options.presentation_support || options.presentation_support(instance, device, i);
+    if ((families[i].queueFlags & need) == need && presents) {
       *timestamp_bits = families[i].timestampValidBits;
       return i;
     }
   }
-  throw RuntimeError("Vulkan device has no queue family with both graphics and compute");
+  throw RuntimeError(options.presentation_support
+                         ? "Vulkan device has no queue family with graphics, compute and present "
+                           "support for this window system"
+                         : "Vulkan device has no queue family with both graphics and compute");
 }
 
 template <class Fn>
@@ -65,7 +72,8 @@ std::vector<DeviceInfo> Device::enumerate() {
 Device::Device(const DeviceOptions& options)
     : persist_pipeline_cache_(options.persist_pipeline_cache) {
   instance_ = std::make_unique<Instance>(
-      resolve_validation_request(options.validation, options.sync_validation));
+      resolve_validation_request(options.validation, options.sync_validation),
+      options.instance_extensions);
   const auto devices = physical_devices(instance_->handle());
   const auto infos = describe(devices);
   const std::uint32_t index = select_device(infos, options.selector);
@@ -75,7 +83,7 @@ Device::Device(const DeviceOptions& options)
   vkGetPhysicalDeviceMemoryProperties(physical_, &memory_properties_);
 
   std::uint32_t timestamp_bits = 0;
-  queue_family_ = find_queue_family(physical_, &timestamp_bits);
+  queue_family_ = find_queue_family(instance_->handle(), physical_, options, &timestamp_bits);
   FeatureNegotiation features(physical_, timestamp_bits);
   caps_ = features.caps();
   caps_.debug_utils = instance_->debug_utils();
@@ -89,8 +97,10 @@ Device::Device(const DeviceOptions& options)
   info.pNext = features.chain();
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue_info;
-  info.enabledExtensionCount = static_cast<std::uint32_t>(features.extensions().size());
-  info.ppEnabledExtensionNames = features.extensions().data();
+  std::vector<const char*> extensions = features.extensions();
+  if (options.presentation_support) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device_));
   try {
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);

@@ -61,6 +61,12 @@ struct DeviceOptions {
   // integrated GPUs): uploads and readbacks then take the staging path a discrete GPU needs.
   // For tests of that path; costs a copy.
   bool force_staging = false;
+  // Extra instance extensions, e.g. the window system's surface extensions.
+  std::vector<const char*> instance_extensions;
+  // Set for a device that presents (runtime/window/presentation.h fills both fields): enables
+  // VK_KHR_swapchain and requires the chosen queue family to pass this check.
+  std::function<bool(VkInstance, VkPhysicalDevice, std::uint32_t queue_family)>
+      presentation_support;
 };
 
 // Device-level entry points that are extensions (or core only in 1.3), loaded once.

@@ -1,9 +1,12 @@
 // Instance creation: layer/extension discovery, validation features, debug messenger.
 #include "runtime/core/instance.h"
 
+#include <fmt/format.h>
+
 #include <cstring>
 #include <vector>
 
+#include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "runtime/core/vk_check.h"
 
@@ -34,7 +37,7 @@ bool has_extension(const char* layer, const char* name) {
 
 }  // namespace
 
-Instance::Instance(ValidationRequest request) {
+Instance::Instance(ValidationRequest request, std::span<const char* const> extra) {
   std::vector<const char*> layers;
   std::vector<const char*> extensions;
   if (request.validation) {
@@ -59,6 +62,12 @@ Instance::Instance(ValidationRequest request) {
   // The portability extension lets the loader list non-conformant (e.g. MoltenVK) devices too.
   const bool portability = has_extension(nullptr, VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME);
   if (portability) extensions.push_back(VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME);
+
+  for (const char* name : extra) {
+    if (!has_extension(nullptr, name))
+      throw RuntimeError(fmt::format("Vulkan instance extension {} is not available", name));
+    extensions.push_back(name);
+  }
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "lantern";

@@ -5,6 +5,7 @@
 #include <vulkan/vulkan.h>
 
 #include <memory>
+#include <span>
 
 #include "runtime/core/validation.h"
 
@@ -12,7 +13,8 @@ namespace lantern::runtime {
 
 class Instance {
  public:
-  explicit Instance(ValidationRequest request);
+  // `extensions`: extra instance extensions (e.g. surface extensions); missing ones are errors.
+  explicit Instance(ValidationRequest request, std::span<const char* const> extensions = {});
   ~Instance();
   Instance(const Instance&) = delete;
   Instance& operator=(const Instance&) = delete;
