@@ -27,5 +27,6 @@ void add_common_flags(CLI::App& cmd, CommonOptions& options);
 
 void add_devices_command(CLI::App& root, CommonOptions& options);
 void add_info_command(CLI::App& root, CommonOptions& options);
+void add_render_command(CLI::App& root, CommonOptions& options);
 
 }  // namespace lantern::app

@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   app::CommonOptions options;
   app::add_devices_command(root, options);
   app::add_info_command(root, options);
+  app::add_render_command(root, options);
 
   try {
     root.parse(argc, argv);

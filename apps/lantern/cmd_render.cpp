@@ -1,0 +1,109 @@
+// `lantern render LEVEL --integrator restir|baseline|reference [--frames N] [--average] --out PATH`
+// (CLI.md): renders frames on the level's camera headless and writes them: one .exr/.png file
+// when one image results, else a directory of frame_NNNN.exr.
+#include <fmt/format.h>
+
+#include <charconv>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "apps/lantern/commands.h"
+#include "engine/core/error.h"
+#include "engine/core/log.h"
+#include "engine/level/level_loader.h"
+#include "lighting/integrators/offline_render.h"
+#include "runtime/core/device.h"
+#include "runtime/gpu/shader_library.h"
+#include "runtime/image/image_io.h"
+
+namespace lantern::app {
+namespace {
+
+struct RenderOptions {
+  std::string level;
+  std::string integrator;
+  bool average = false;
+  std::string out;
+};
+
+std::uint32_t parse_dimension(std::string_view text, std::string_view size) {
+  std::uint32_t value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || value == 0 || value > 16384) {
+    throw InputError(fmt::format("--size {}: expected WxH with W and H in 1..16384", size));
+  }
+  return value;
+}
+
+// "640x360" -> (640, 360).
+std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {
+  const std::size_t x = size.find('x');
+  if (x == std::string_view::npos) {
+    throw InputError(fmt::format("--size {}: expected WxH, e.g. 640x360", size));
+  }
+  return {parse_dimension(size.substr(0, x), size), parse_dimension(size.substr(x + 1), size)};
+}
+
+void write_images(const std::filesystem::path& out,
+                  const std::vector<runtime::ImageRGBA32F>& images) {
+  const std::string ext = out.extension().string();
+  if (ext == ".exr" || ext == ".png") {
+    if (images.size() != 1) {
+      throw InputError(fmt::format("--out {}: {} frames result; give a directory or --average",
+                                   out.string(), images.size()));
+    }
+    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+    runtime::write_image(out, images[0]);
+    return;
+  }
+  if (!ext.empty()) {
+    throw InputError(fmt::format("--out {}: expected a directory, a .exr or a .png file",
+                                 out.string()));
+  }
+  std::filesystem::create_directories(out);
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    runtime::write_image(out / fmt::format("frame_{:04}.exr", i), images[i]);
+  }
+}
+
+void run_render(const RenderOptions& o, const CommonOptions& common) {
+  lighting::OfflineRenderRequest request;
+  request.integrator = lighting::parse_integrator(o.integrator);
+  const auto [width, height] = parse_size(common.size);
+  request.width = width;
+  request.height = height;
+  request.frames = common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 1u;
+  request.average = o.average;
+  request.seed = common.seed;
+  const Level level = load_level_argument(o.level);
+
+  runtime::Device device({.selector = common.device});
+  runtime::ShaderLibrary shaders;
+  const lighting::OfflineRenderResult result =
+      lighting::render_offline(device, shaders, level, request);
+  write_images(o.out, result.images);
+  log::info("{} {} frame(s) at {}x{}: median {:.2f} ms/frame (GPU); wrote {}",
+            lighting::integrator_name(request.integrator), request.frames, width, height,
+            result.median_frame_ms(), o.out);
+  if (device.validation_enabled() && device.validation_errors() > 0) {
+    throw RuntimeError(fmt::format("{} Vulkan validation error(s)", device.validation_errors()));
+  }
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& root, CommonOptions& options) {
+  auto opts = std::make_shared<RenderOptions>();
+  auto* cmd = root.add_subcommand("render", "Render frames of a level headless to EXR/PNG");
+  add_common_flags(*cmd, options);
+  cmd->add_option("LEVEL", opts->level,
+                  "Level: a .json/.gltf/.glb file or a name under content/levels/")
+      ->required();
+  cmd->add_option("--integrator", opts->integrator, "restir|baseline|reference")->required();
+  cmd->add_flag("--average", opts->average, "Write the mean of the frames as one image");
+  cmd->add_option("--out", opts->out, "Output directory, or one .exr/.png file")->required();
+  cmd->callback([opts, &options] { run_render(*opts, options); });
+}
+
+}  // namespace lantern::app

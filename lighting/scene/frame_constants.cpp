@@ -1,0 +1,33 @@
+// Camera -> FrameConstants (frame_constants.h).
+#include "lighting/scene/frame_constants.h"
+
+#include <algorithm>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace lantern::lighting {
+
+glm::mat4 camera_view_proj(const Camera& camera, std::uint32_t width, std::uint32_t height) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1u));
+  const float znear = std::max(camera.znear, 1e-6f);
+  const float zfar = camera.zfar > znear ? camera.zfar : 1e4f * znear;
+  glm::mat4 proj = glm::perspectiveRH_ZO(camera.yfov, aspect, znear, zfar);
+  proj[1][1] = -proj[1][1];  // Vulkan: +y points down in NDC
+  return proj * camera.view_matrix();
+}
+
+gpu::FrameConstants make_frame_constants(const Camera& camera, std::uint32_t width,
+                                         std::uint32_t height, std::uint32_t frame_index,
+                                         std::uint32_t seed, const FrameCounts& counts) {
+  gpu::FrameConstants fc{};
+  fc.view_proj = camera_view_proj(camera, width, height);
+  fc.prev_view_proj = fc.view_proj;
+  fc.inv_view_proj = glm::inverse(fc.view_proj);
+  fc.camera_position = glm::vec4(camera.position, camera.yfov);
+  fc.prev_camera_position = fc.camera_position;
+  fc.frame = glm::uvec4(width, height, frame_index, seed);
+  fc.counts = glm::uvec4(counts.lights, counts.instances, counts.emissive_triangles, 1u);
+  fc.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  return fc;
+}
+
+}  // namespace lantern::lighting

@@ -1,0 +1,27 @@
+// FrameConstants (shaders/shared/scene.h) for a camera: Vulkan clip conventions (y down in NDC,
+// depth 0..1), so pixel (0,0) is the top-left and pixel centres sit at half-integers.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/scene/camera.h"
+#include "shared/scene.h"
+
+namespace lantern::lighting {
+
+struct FrameCounts {
+  std::uint32_t lights = 0;
+  std::uint32_t instances = 0;
+  std::uint32_t emissive_triangles = 0;
+};
+
+// World -> clip for `camera` rendering a width x height image (the image's aspect ratio wins
+// over camera.aspect so pixels stay square; an infinite far plane becomes a finite 1e4 * znear).
+glm::mat4 camera_view_proj(const Camera& camera, std::uint32_t width, std::uint32_t height);
+
+// Constants for a static camera (previous = current, camera-cut flag set).
+gpu::FrameConstants make_frame_constants(const Camera& camera, std::uint32_t width,
+                                         std::uint32_t height, std::uint32_t frame_index,
+                                         std::uint32_t seed, const FrameCounts& counts);
+
+}  // namespace lantern::lighting

@@ -1,0 +1,170 @@
+// Level -> GPU records (scene_data.h): meshes to vertex/index arrays and BLASes, instances to
+// GpuInstance + TLAS, materials to GpuMaterial, emitters to the light table.
+#include "lighting/scene/scene_data.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/core/error.h"
+#include "shared/color.h"
+#include "shared/common_math.h"
+#include "shared/sampling.h"
+
+namespace lantern::lighting {
+namespace {
+
+gpu::GpuMaterial to_gpu_material(const Material& m) {
+  gpu::GpuMaterial g{};
+  g.base_color = m.base_color;
+  g.emission = glm::vec4(m.emitted_radiance(), 0.0f);
+  g.params = glm::vec4(m.roughness, m.metallic, m.specular_factor, 0.0f);
+  g.textures = glm::uvec4(gpu::kNoTexture);
+  return g;
+}
+
+// World-space triangle t of a mesh under `world`, wound so that cross(p1 - p0, p2 - p0) is the
+// front normal (glTF: a negative determinant mirrors the winding).
+void world_triangle(const Mesh& mesh, const glm::mat4& world, std::size_t t, glm::vec3 p[3]) {
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec3& v = mesh.positions[mesh.indices[3 * t + static_cast<std::size_t>(k)]];
+    p[k] = glm::vec3(world * glm::vec4(v, 1.0f));
+  }
+  if (glm::determinant(glm::mat3(world)) < 0.0f) std::swap(p[1], p[2]);
+}
+
+float light_luminance(const Light& light) {
+  return gpu::luminance(light.color * light.intensity);
+}
+
+}  // namespace
+
+float SceneData::scene_radius() const {
+  return std::max(0.5f * glm::length(bounds_max - bounds_min), 1e-3f);
+}
+
+std::vector<LightEmitter> extract_light_emitters(const Level& level, float scene_radius) {
+  std::vector<LightEmitter> emitters;
+  for (std::size_t i = 0; i < level.instances.size(); ++i) {
+    const Instance& inst = level.instances[i];
+    const Material& material = level.materials.at(inst.material);
+    if (!material.emissive()) continue;
+    const Mesh& mesh = level.meshes.at(inst.mesh);
+    const glm::vec3 radiance = material.emitted_radiance();
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      glm::vec3 p[3];
+      world_triangle(mesh, inst.world, t, p);
+      const float area = gpu::triangle_area(p[0], p[1], p[2]);
+      LightEmitter e;
+      e.stable_id = (static_cast<std::uint64_t>(i) << 32) | t;
+      e.light.p0 = glm::vec4(p[0], glm::uintBitsToFloat(gpu::kLightTriangle));
+      e.light.p1 = glm::vec4(p[1] - p[0], 0.0f);
+      e.light.p2 = glm::vec4(p[2] - p[0], 0.0f);
+      e.light.radiance = glm::vec4(radiance, 0.0f);
+      e.power = gpu::finite_positive_or_zero(gpu::luminance(radiance) * area * gpu::kPi);
+      emitters.push_back(e);
+    }
+  }
+  for (std::size_t k = 0; k < level.lights.size(); ++k) {
+    const Light& light = level.lights[k];
+    LightEmitter e;
+    e.stable_id = kAnalyticLightIdBase | k;
+    e.light.radiance = glm::vec4(light.color * light.intensity, 0.0f);
+    const glm::vec3 dir = glm::normalize(light.direction());
+    switch (light.type) {
+      case LightType::Point:
+        e.light.p0 = glm::vec4(light.position, glm::uintBitsToFloat(gpu::kLightPoint));
+        e.power = 4.0f * gpu::kPi * light_luminance(light);
+        break;
+      case LightType::Spot:
+        e.light.p0 = glm::vec4(light.position, glm::uintBitsToFloat(gpu::kLightSpot));
+        e.light.p1 = glm::vec4(dir, 0.0f);
+        e.light.p2 = glm::vec4(std::cos(light.outer_cone), std::cos(light.inner_cone), 0.0f, 0.0f);
+        e.power = 4.0f * gpu::kPi * light_luminance(light);
+        break;
+      case LightType::Directional:
+        e.light.p0 = glm::vec4(0.0f, 0.0f, 0.0f, glm::uintBitsToFloat(gpu::kLightDirectional));
+        e.light.p1 = glm::vec4(dir, 0.0f);
+        e.power = light_luminance(light) * gpu::kPi * scene_radius * scene_radius;
+        break;
+    }
+    e.power = gpu::finite_positive_or_zero(e.power);
+    emitters.push_back(e);
+  }
+  return emitters;
+}
+
+SceneData build_scene_data(const Level& level) {
+  SceneData scene;
+  for (const Material& m : level.materials) scene.materials.push_back(to_gpu_material(m));
+  if (scene.materials.empty()) scene.materials.push_back(to_gpu_material(Material{}));
+
+  // Meshes: concatenated vertex/index arrays and one BLAS each.
+  std::vector<std::uint32_t> first_vertex;
+  std::vector<std::uint32_t> first_index;
+  for (const Mesh& mesh : level.meshes) {
+    first_vertex.push_back(static_cast<std::uint32_t>(scene.vertices.size()));
+    first_index.push_back(static_cast<std::uint32_t>(scene.indices.size()));
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f);
+      const glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0.0f);
+      scene.vertices.push_back({glm::vec4(mesh.positions[v], uv.x), glm::vec4(n, uv.y)});
+    }
+    scene.indices.insert(scene.indices.end(), mesh.indices.begin(), mesh.indices.end());
+    scene.bvh.add_mesh(MeshBvh(mesh.positions, mesh.indices));
+  }
+
+  // Instances: GpuInstance records, BVH instances and the world box.
+  std::vector<BvhInstanceDesc> descs;
+  glm::vec3 lo(std::numeric_limits<float>::max());
+  glm::vec3 hi(-std::numeric_limits<float>::max());
+  for (std::size_t i = 0; i < level.instances.size(); ++i) {
+    const Instance& inst = level.instances[i];
+    if (inst.mesh >= level.meshes.size() || inst.material >= scene.materials.size()) {
+      throw InputError(fmt::format("{}: instance '{}' references mesh {} / material {} of {} / {}",
+                                   level.source.string(), inst.name, inst.mesh, inst.material,
+                                   level.meshes.size(), scene.materials.size()));
+    }
+    const Mesh& mesh = level.meshes[inst.mesh];
+    descs.push_back({inst.mesh, inst.world, static_cast<std::uint32_t>(i)});
+    gpu::GpuInstance g{};
+    g.object_to_world = inst.world;
+    g.prev_object_to_world = inst.world;
+    g.world_to_object = glm::inverse(inst.world);
+    g.geometry = glm::uvec4(inst.material, first_index[inst.mesh],
+                            static_cast<std::uint32_t>(mesh.indices.size()),
+                            first_vertex[inst.mesh]);
+    g.bvh = glm::uvec4(0u, gpu::kInvalidLight, 0u, 0u);
+    scene.instances.push_back(g);
+    for (const glm::vec3& p : mesh.positions) {
+      const glm::vec3 w = glm::vec3(inst.world * glm::vec4(p, 1.0f));
+      lo = glm::min(lo, w);
+      hi = glm::max(hi, w);
+    }
+  }
+  scene.bvh.set_instances(descs);
+  if (lo.x <= hi.x) {
+    scene.bounds_min = lo;
+    scene.bounds_max = hi;
+  }
+
+  // Lights: the table keeps the order of the emitters, so each instance's first emissive
+  // triangle light is found by counting.
+  const std::vector<LightEmitter> emitters = extract_light_emitters(level, scene.scene_radius());
+  std::uint32_t light_index = 0;
+  for (std::size_t i = 0; i < level.instances.size(); ++i) {
+    const Instance& inst = level.instances[i];
+    if (!level.materials.empty() && level.materials[inst.material].emissive()) {
+      const auto count = static_cast<std::uint32_t>(level.meshes[inst.mesh].triangle_count());
+      scene.instances[i].bvh.y = count > 0 ? light_index : gpu::kInvalidLight;
+      light_index += count;
+      scene.emissive_triangles += count;
+    }
+  }
+  scene.lights.update(emitters);
+  return scene;
+}
+
+}  // namespace lantern::lighting

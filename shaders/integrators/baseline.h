@@ -1,0 +1,23 @@
+// Push constants of integrators.baseline (shaders/integrators/baseline.comp), shared with
+// lighting/integrators/baseline_integrator.cpp.
+#ifndef LANTERN_INTEGRATORS_BASELINE_H
+#define LANTERN_INTEGRATORS_BASELINE_H
+
+#include "shared/lang.h"
+
+LANTERN_BEGIN_SHARED
+
+struct BaselinePush {
+  uint frame_index;    // seeds this frame's random numbers (with FrameConstants.frame.w)
+  uint light_count;    // lights in the alias table; 0 = no light can be sampled
+  float scene_radius;  // world bounding-sphere radius: directional shadow ray length
+  uint pad0;
+};
+LANTERN_STATIC_SIZE(BaselinePush, 16);
+
+// RNG stream of the baseline pass (rng_init's `pass`).
+LANTERN_CONST uint kBaselineRngPass = 0x62u;
+
+LANTERN_END_SHARED
+
+#endif
