@@ -9,13 +9,15 @@
 namespace lantern {
 
 glm::quat rotate_at(const RotateBehaviour& b, const glm::quat& base, double t) {
-  const auto angle = static_cast<float>(std::fmod(static_cast<double>(b.speed) * t, 2.0 * glm::pi<double>()));
+  const auto angle =
+      static_cast<float>(std::fmod(static_cast<double>(b.speed) * t, 2.0 * glm::pi<double>()));
   return glm::normalize(base * glm::angleAxis(angle, glm::normalize(b.axis)));
 }
 
 glm::vec3 orbit_at(const OrbitBehaviour& b, double t) {
   const glm::vec3 axis = glm::normalize(b.axis);
-  const glm::vec3 ref = std::abs(axis.x) > 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 ref =
+      std::abs(axis.x) > 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::vec3 u = glm::normalize(ref - axis * glm::dot(ref, axis));
   const double angle = std::fmod(static_cast<double>(b.phase) + static_cast<double>(b.speed) * t,
                                  2.0 * glm::pi<double>());
@@ -23,9 +25,8 @@ glm::vec3 orbit_at(const OrbitBehaviour& b, double t) {
 }
 
 float flicker_at(const FlickerBehaviour& b, std::uint64_t world_seed, StableId id, double t) {
-  const Rng entity = Rng(world_seed)
-                         .split((static_cast<std::uint64_t>(id.kind) << 32u) | id.value)
-                         .split(b.seed);
+  const Rng entity =
+      Rng(world_seed).split((static_cast<std::uint64_t>(id.kind) << 32u) | id.value).split(b.seed);
   const double u = std::max(0.0, t * static_cast<double>(b.rate));
   const double cell = std::floor(u);
   const auto k = static_cast<std::uint64_t>(cell);

@@ -11,9 +11,10 @@ void register_behaviour_systems(Scheduler& scheduler) {
       .reads<RotateComponent>()
       .writes<Transform>()
       .run([](Registry& r, const FrameTime& time) {
-        r.view<const RotateComponent, Transform>().each([&](const RotateComponent& rot, Transform& pose) {
-          pose.rotation = rotate_at(rot.params, rot.base_rotation, time.time);
-        });
+        r.view<const RotateComponent, Transform>().each(
+            [&](const RotateComponent& rot, Transform& pose) {
+              pose.rotation = rotate_at(rot.params, rot.base_rotation, time.time);
+            });
       });
 
   scheduler.add("world.orbit", Phase::Simulate)
@@ -21,7 +22,9 @@ void register_behaviour_systems(Scheduler& scheduler) {
       .writes<Transform>()
       .run([](Registry& r, const FrameTime& time) {
         r.view<const OrbitComponent, Transform>().each(
-            [&](const OrbitComponent& orbit, Transform& pose) { pose.translation = orbit_at(orbit.params, time.time); });
+            [&](const OrbitComponent& orbit, Transform& pose) {
+              pose.translation = orbit_at(orbit.params, time.time);
+            });
       });
 
   scheduler.add("world.follow_path", Phase::Simulate)
@@ -29,12 +32,13 @@ void register_behaviour_systems(Scheduler& scheduler) {
       .writes<Transform>()
       .run([](Registry& r, const FrameTime& time) {
         const Level& level = *r.ctx().get<LevelResource>();
-        r.view<const FollowPathComponent, Transform>().each([&](const FollowPathComponent& follow, Transform& pose) {
-          const CameraPath& path = level.paths[follow.path];
-          const PathPose p = path.evaluate(follow_path_time(follow.params, path, time.time));
-          pose.translation = p.position;
-          pose.rotation = p.orientation;
-        });
+        r.view<const FollowPathComponent, Transform>().each(
+            [&](const FollowPathComponent& follow, Transform& pose) {
+              const CameraPath& path = level.paths[follow.path];
+              const PathPose p = path.evaluate(follow_path_time(follow.params, path, time.time));
+              pose.translation = p.position;
+              pose.rotation = p.orientation;
+            });
       });
 
   scheduler.add("world.flicker", Phase::Simulate)

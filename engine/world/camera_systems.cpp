@@ -16,7 +16,8 @@ void register_camera_systems(Scheduler& scheduler) {
         const std::string& name = r.ctx().get<ActiveCameraPath>().name;
         if (name.empty()) return;
         const CameraPath* path = r.ctx().get<LevelResource>()->find_path(name);
-        if (path == nullptr) throw RuntimeError(fmt::format("world.camera_path: no camera path named '{}'", name));
+        if (path == nullptr)
+          throw RuntimeError(fmt::format("world.camera_path: no camera path named '{}'", name));
         const PathPose pose = path->evaluate(static_cast<float>(time.time));
         r.view<CameraComponent>().each([&](CameraComponent& c) {
           c.camera.position = pose.position;
@@ -30,10 +31,11 @@ void register_camera_systems(Scheduler& scheduler) {
       .reads<CameraComponent>()
       .writes<CameraHistory>()
       .run([](Registry& r, const FrameTime& time) {
-        r.view<const CameraComponent, CameraHistory>().each([&](const CameraComponent& c, CameraHistory& h) {
-          h.previous = time.frame_index == 0 ? c.camera : h.current;
-          h.current = c.camera;
-        });
+        r.view<const CameraComponent, CameraHistory>().each(
+            [&](const CameraComponent& c, CameraHistory& h) {
+              h.previous = time.frame_index == 0 ? c.camera : h.current;
+              h.current = c.camera;
+            });
       });
 }
 

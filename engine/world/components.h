@@ -100,7 +100,7 @@ struct ActiveCameraPath {
 
 // Settings fixed for the life of a world.
 struct WorldSettings {
-  std::uint64_t seed = 1;      // root of every random number the world systems draw
+  std::uint64_t seed = 1;          // root of every random number the world systems draw
   float aspect = 640.0f / 360.0f;  // output width / height, used when the level's camera has none
 };
 

@@ -39,8 +39,8 @@ std::shared_ptr<FrameSnapshot> writable_snapshot(FrameSnapshotSlot& slot) {
 
 void register_extract_system(Scheduler& scheduler) {
   scheduler.add("world.extract", Phase::Extract)
-      .reads<StableId, WorldMatrix, PreviousTransform, MeshRef, MaterialRef, EmissionScale, LightComponent,
-             Transform, CameraHistory, LevelResource, WorldSettings>()
+      .reads<StableId, WorldMatrix, PreviousTransform, MeshRef, MaterialRef, EmissionScale,
+             LightComponent, Transform, CameraHistory, LevelResource, WorldSettings>()
       .writes<FrameSnapshotSlot, CameraCutRequest>()
       .run([](Registry& r, const FrameTime& time) {
         const WorldSettings& settings = r.ctx().get<WorldSettings>();
@@ -62,18 +62,23 @@ void register_extract_system(Scheduler& scheduler) {
           snap->prev_camera = snapshot_camera(h.previous, settings.aspect);
         });
 
-        r.view<const StableId, const WorldMatrix, const PreviousTransform, const MeshRef, const MaterialRef,
-               const EmissionScale>()
-            .each([&](const StableId& id, const WorldMatrix& world, const PreviousTransform& prev, const MeshRef& mesh,
-                      const MaterialRef& material, const EmissionScale& scale) {
-              snap->instances.push_back(SnapshotInstance{world.object_to_world, prev.object_to_world, id.value,
-                                                         mesh.index, material.index, scale.value});
+        r.view<const StableId, const WorldMatrix, const PreviousTransform, const MeshRef,
+               const MaterialRef, const EmissionScale>()
+            .each([&](const StableId& id, const WorldMatrix& world, const PreviousTransform& prev,
+                      const MeshRef& mesh, const MaterialRef& material,
+                      const EmissionScale& scale) {
+              snap->instances.push_back(SnapshotInstance{world.object_to_world,
+                                                         prev.object_to_world, id.value, mesh.index,
+                                                         material.index, scale.value});
             });
         std::sort(snap->instances.begin(), snap->instances.end(),
-                  [](const SnapshotInstance& a, const SnapshotInstance& b) { return a.stable_id < b.stable_id; });
+                  [](const SnapshotInstance& a, const SnapshotInstance& b) {
+                    return a.stable_id < b.stable_id;
+                  });
 
         r.view<const StableId, const LightComponent, const Transform, const EmissionScale>().each(
-            [&](const StableId& id, const LightComponent& lc, const Transform& pose, const EmissionScale& scale) {
+            [&](const StableId& id, const LightComponent& lc, const Transform& pose,
+                const EmissionScale& scale) {
               const Light& light = level->lights[lc.index];
               SnapshotLight s;
               s.position = pose.translation;
@@ -88,7 +93,9 @@ void register_extract_system(Scheduler& scheduler) {
               snap->lights.push_back(s);
             });
         std::sort(snap->lights.begin(), snap->lights.end(),
-                  [](const SnapshotLight& a, const SnapshotLight& b) { return a.stable_id < b.stable_id; });
+                  [](const SnapshotLight& a, const SnapshotLight& b) {
+                    return a.stable_id < b.stable_id;
+                  });
 
         slot.latest = std::move(snap);
       });

@@ -45,13 +45,13 @@ struct SnapshotInstance {
 static_assert(sizeof(SnapshotInstance) == 2 * 64 + 16);
 
 struct SnapshotLight {
-  glm::vec3 position{0.0f};  // world space (unused for directional lights)
-  std::uint32_t stable_id = 0;  // index in Level::lights
+  glm::vec3 position{0.0f};                // world space (unused for directional lights)
+  std::uint32_t stable_id = 0;             // index in Level::lights
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // world space, unit: where the light shines
-  float intensity = 0.0f;  // current: Level intensity × flicker (W/sr, or W/m² if directional)
-  glm::vec3 color{1.0f};   // linear RGB multiplier
-  std::uint32_t type = 0;  // LightType
-  float range = 0.0f;      // 0 = pure inverse-square falloff
+  float intensity = 0.0f;   // current: Level intensity × flicker (W/sr, or W/m² if directional)
+  glm::vec3 color{1.0f};    // linear RGB multiplier
+  std::uint32_t type = 0;   // LightType
+  float range = 0.0f;       // 0 = pure inverse-square falloff
   float inner_cone = 0.0f;  // spot, radians
   float outer_cone = 0.0f;  // spot, radians
   float pad0 = 0.0f;

@@ -37,7 +37,8 @@ bool add_behaviour(Registry& registry, Entity e, const Level& level, const Behav
           return false;
         } else {
           static_assert(std::is_same_v<B, FollowPathBehaviour>);
-          registry.emplace<FollowPathComponent>(e, FollowPathComponent{b, path_index(level, b.path, owner)});
+          registry.emplace<FollowPathComponent>(
+              e, FollowPathComponent{b, path_index(level, b.path, owner)});
           return true;
         }
       },
@@ -80,7 +81,8 @@ WorldEntities instantiate(Registry& registry, std::shared_ptr<const Level> level
     registry.emplace<LightComponent>(e, LightComponent{static_cast<std::uint32_t>(i)});
     registry.emplace<EmissionScale>(e);
     if (light.behaviour) {
-      add_behaviour(registry, e, level, *light.behaviour, pose, fmt::format("light {} '{}'", i, light.name));
+      add_behaviour(registry, e, level, *light.behaviour, pose,
+                    fmt::format("light {} '{}'", i, light.name));
     }
   }
   out.lights = level.lights.size();
@@ -90,8 +92,9 @@ WorldEntities instantiate(Registry& registry, std::shared_ptr<const Level> level
   registry.emplace<CameraHistory>(out.camera, CameraHistory{level.camera, level.camera});
 
   if (!level.camera_path.empty() && level.find_path(level.camera_path) == nullptr) {
-    throw InputError(fmt::format("{}: the camera follows path '{}', which the level does not define",
-                                 level.source.string(), level.camera_path));
+    throw InputError(
+        fmt::format("{}: the camera follows path '{}', which the level does not define",
+                    level.source.string(), level.camera_path));
   }
   registry.ctx().emplace<ActiveCameraPath>(ActiveCameraPath{level.camera_path});
   registry.ctx().emplace<LevelResource>(std::move(level_ptr));

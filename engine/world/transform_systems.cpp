@@ -11,7 +11,8 @@ void register_transform_systems(Scheduler& scheduler) {
       .writes<WorldMatrix, PreviousTransform>()
       .run([](Registry& r, const FrameTime& time) {
         r.view<const Transform, const DynamicTransform, WorldMatrix, PreviousTransform>().each(
-            [&](const Transform& pose, const DynamicTransform&, WorldMatrix& world, PreviousTransform& prev) {
+            [&](const Transform& pose, const DynamicTransform&, WorldMatrix& world,
+                PreviousTransform& prev) {
               const glm::mat4 m = pose.matrix();
               prev.object_to_world = time.frame_index == 0 ? m : world.object_to_world;
               world.object_to_world = m;

@@ -20,9 +20,12 @@ unsigned checked_threads(unsigned threads) {
 }  // namespace
 
 World::World(std::shared_ptr<const Level> level, const WorldOptions& options)
-    : level_(std::move(level)), scheduler_(checked_threads(options.threads)), clock_(options.fixed_dt) {
+    : level_(std::move(level)),
+      scheduler_(checked_threads(options.threads)),
+      clock_(options.fixed_dt) {
   if (!level_) throw RuntimeError("world: null level");
-  if (!(options.aspect > 0.0f)) throw InputError(fmt::format("world: aspect must be positive, got {}", options.aspect));
+  if (!(options.aspect > 0.0f))
+    throw InputError(fmt::format("world: aspect must be positive, got {}", options.aspect));
   entities_ = instantiate(registry_, level_);
   registry_.ctx().emplace<WorldSettings>(WorldSettings{options.seed, options.aspect});
   registry_.ctx().emplace<CameraCutRequest>();
@@ -39,7 +42,9 @@ std::shared_ptr<const FrameSnapshot> World::latest() const {
   return registry_.ctx().get<FrameSnapshotSlot>().latest;
 }
 
-void World::request_camera_cut() { registry_.ctx().get<CameraCutRequest>().pending = true; }
+void World::request_camera_cut() {
+  registry_.ctx().get<CameraCutRequest>().pending = true;
+}
 
 void World::set_camera_path(std::string_view name) {
   if (!name.empty() && level_->find_path(name) == nullptr) {

@@ -21,10 +21,10 @@
 namespace lantern {
 
 struct WorldOptions {
-  unsigned threads = 1;             // scheduler worker threads (1 = run inline)
-  std::uint64_t seed = 1;           // root of the world's random numbers (flicker)
-  double fixed_dt = 1.0 / 60.0;     // seconds per step
-  float aspect = 640.0f / 360.0f;   // output width / height when the level's camera gives none
+  unsigned threads = 1;            // scheduler worker threads (1 = run inline)
+  std::uint64_t seed = 1;          // root of the world's random numbers (flicker)
+  double fixed_dt = 1.0 / 60.0;    // seconds per step
+  float aspect = 640.0f / 360.0f;  // output width / height when the level's camera gives none
 };
 
 class World {
