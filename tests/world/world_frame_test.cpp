@@ -2,6 +2,7 @@
 // its path, and each behaviour's motion checked against its own closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/quaternion.hpp>
@@ -125,6 +126,7 @@ TEST(WorldFrames, RotateFollowPathOrbitAndFlickerMatchTheirDefinitions) {
   const std::size_t firefly = light_named(*level, "firefly");
   const std::size_t candle = light_named(*level, "candle");
   const std::size_t candle2 = light_named(*level, "flicker_two");
+  const std::size_t beam = light_named(*level, "beam");
   const CameraPath& lap = *level->find_path("lap");
   const double dt = 1.0 / 60.0;
   const auto frames = test::run_frames(level, {.threads = 4, .fixed_dt = dt}, 100);
@@ -171,6 +173,10 @@ TEST(WorldFrames, RotateFollowPathOrbitAndFlickerMatchTheirDefinitions) {
       }
     }
     candles_differ += s.lights[candle].intensity / 3.0f != s.lights[candle2].intensity / 2.0f;
+    // rotate on a spot light: it tilts about its local X, so its beam sweeps at 45°/s.
+    const glm::vec3 beam_rest = level->lights[beam].direction();
+    EXPECT_NEAR(std::acos(std::clamp(glm::dot(s.lights[beam].direction, beam_rest), -1.0f, 1.0f)),
+                std::acos(std::cos(glm::radians(45.0f) * t)), 1e-3f);
     // Lights without flicker keep their intensity.
     EXPECT_EQ(s.lights[firefly].intensity, level->lights[firefly].intensity);
   }

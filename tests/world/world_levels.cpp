@@ -43,7 +43,7 @@ constexpr const char* kAnimatedLevel = R"json({
     { "type": "point", "name": "candle", "position": [0, 1, 0], "intensity": 3, "behaviour": "candle" },
     { "type": "point", "name": "firefly", "position": [0, 1.5, 0], "intensity": 1, "behaviour": "circle" },
     { "type": "spot", "name": "beam", "position": [0, 3, 0], "target": [0, 0, 0], "intensity": 10,
-      "inner_cone_deg": 20, "outer_cone_deg": 35, "behaviour": { "type": "rotate", "axis": [0, 0, 1], "speed_deg": 45 } },
+      "inner_cone_deg": 20, "outer_cone_deg": 35, "behaviour": { "type": "rotate", "axis": [1, 0, 0], "speed_deg": 45 } },
     { "type": "point", "name": "flicker_two", "position": [1, 1, 1], "intensity": 2, "behaviour": "candle" }
   ],
   "camera": { "position": [0, 1, 4], "target": [0, 0.5, 0], "yfov_deg": 40, "path": "fly" }
