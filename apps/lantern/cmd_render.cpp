@@ -12,6 +12,7 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "engine/level/level_loader.h"
+#include "lighting/integrators/auto_exposure.h"
 #include "lighting/integrators/offline_render.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/shader_library.h"
@@ -25,6 +26,7 @@ struct RenderOptions {
   std::string integrator;
   bool average = false;
   std::string out;
+  float exposure = 0.0f;  // PNG only; 0 = automatic (log-average luminance to middle grey)
 };
 
 std::uint32_t parse_dimension(std::string_view text, std::string_view size) {
@@ -46,7 +48,7 @@ std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {
 }
 
 void write_images(const std::filesystem::path& out,
-                  const std::vector<runtime::ImageRGBA32F>& images) {
+                  const std::vector<runtime::ImageRGBA32F>& images, float exposure) {
   const std::string ext = out.extension().string();
   if (ext == ".exr" || ext == ".png") {
     if (images.size() != 1) {
@@ -54,7 +56,9 @@ void write_images(const std::filesystem::path& out,
                                    out.string(), images.size()));
     }
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    runtime::write_image(out, images[0]);
+    const float e = exposure > 0.0f ? exposure : lighting::auto_exposure(images[0]);
+    if (ext == ".png") log::info("PNG exposure {:.4g}", e);
+    runtime::write_image(out, images[0], e);
     return;
   }
   if (!ext.empty()) {
@@ -82,7 +86,7 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
   runtime::ShaderLibrary shaders;
   const lighting::OfflineRenderResult result =
       lighting::render_offline(device, shaders, level, request);
-  write_images(o.out, result.images);
+  write_images(o.out, result.images, o.exposure);
   log::info("{} {} frame(s) at {}x{}: median {:.2f} ms/frame (GPU); wrote {}",
             lighting::integrator_name(request.integrator), request.frames, width, height,
             result.median_frame_ms(), o.out);
@@ -103,6 +107,8 @@ void add_render_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("--integrator", opts->integrator, "restir|baseline|reference")->required();
   cmd->add_flag("--average", opts->average, "Write the mean of the frames as one image");
   cmd->add_option("--out", opts->out, "Output directory, or one .exr/.png file")->required();
+  cmd->add_option("--exposure", opts->exposure, "PNG exposure multiplier (default: automatic)")
+      ->check(CLI::PositiveNumber);
   cmd->callback([opts, &options] { run_render(*opts, options); });
 }
 
