@@ -107,4 +107,12 @@ void Window::set_title(const std::string& title) {
   glfwSetWindowTitle(window_, title.c_str());
 }
 
+void Window::capture_cursor(bool captured) {
+  glfwSetInputMode(window_, GLFW_CURSOR, captured ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
+  if (captured && glfwRawMouseMotionSupported() == GLFW_TRUE)
+    glfwSetInputMode(window_, GLFW_RAW_MOUSE_MOTION, GLFW_TRUE);
+  cursor_captured_ = captured;
+  input_.cursor_known = false;  // the next position is a new origin, not a jump
+}
+
 }  // namespace lantern::runtime

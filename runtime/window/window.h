@@ -62,6 +62,9 @@ class Window {
   // events are processed.
   void set_size(std::uint32_t width, std::uint32_t height);
   void set_title(const std::string& title);
+  // Hides the cursor and reports unbounded movement (fly camera); false restores it.
+  void capture_cursor(bool captured);
+  bool cursor_captured() const { return cursor_captured_; }
 
   const InputState& input() const { return input_; }
   // For ImGui's GLFW backend and anything else that needs GLFW directly. Installing ImGui's
@@ -78,6 +81,7 @@ class Window {
   std::uint64_t resize_count_ = 0;
   std::function<void(FramebufferSize)> resize_callback_;
   InputState input_;
+  bool cursor_captured_ = false;
 };
 
 }  // namespace lantern::runtime

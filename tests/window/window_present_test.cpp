@@ -2,6 +2,7 @@
 // present more, and check the swapchain followed the framebuffer, the render size followed the
 // swapchain and validation stayed silent. Without DISPLAY this FAILS: the suite runs under
 // xvfb-run (scripts/test.sh), and a window test that silently skips proves nothing.
+#include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -120,6 +121,17 @@ TEST_F(WindowTest, PresentsResizesAndRecreatesSwapchain) {
   EXPECT_EQ(target.render_extent().width, second.width) << "render size follows the framebuffer";
   EXPECT_EQ(target.render_extent().height, second.height);
   EXPECT_EQ(target.skipped_frames(), 0u);
+  for (std::uint32_t i = 0; i < target.swapchain().image_count(); ++i) {
+    EXPECT_NE(target.swapchain().image(i).view, VkImageView{VK_NULL_HANDLE});
+    EXPECT_EQ(target.swapchain().image(i).layout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)
+        << "image " << i << " was never presented after the resize";
+  }
+
+  window.capture_cursor(true);
+  EXPECT_TRUE(window.cursor_captured());
+  window.poll_events();
+  window.capture_cursor(false);
+  EXPECT_FALSE(window.input().key_down(GLFW_KEY_W)) << "no key was pressed";
 
   EXPECT_FALSE(window.should_close());
   window.request_close();
