@@ -47,23 +47,30 @@ std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {
   return {parse_dimension(size.substr(0, x), size), parse_dimension(size.substr(x + 1), size)};
 }
 
+// Whether --out names one image file (.exr/.png) or a directory; InputError for anything else
+// and for one file when several images result.
+bool out_is_file(const std::filesystem::path& out, std::size_t image_count) {
+  const std::string ext = out.extension().string();
+  if (ext.empty()) return false;
+  if (ext != ".exr" && ext != ".png") {
+    throw InputError(
+        fmt::format("--out {}: expected a directory, a .exr or a .png file", out.string()));
+  }
+  if (image_count != 1) {
+    throw InputError(fmt::format("--out {}: {} frames result; give a directory or --average",
+                                 out.string(), image_count));
+  }
+  return true;
+}
+
 void write_images(const std::filesystem::path& out,
                   const std::vector<runtime::ImageRGBA32F>& images, float exposure) {
-  const std::string ext = out.extension().string();
-  if (ext == ".exr" || ext == ".png") {
-    if (images.size() != 1) {
-      throw InputError(fmt::format("--out {}: {} frames result; give a directory or --average",
-                                   out.string(), images.size()));
-    }
+  if (out_is_file(out, images.size())) {
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     const float e = exposure > 0.0f ? exposure : lighting::auto_exposure(images[0]);
-    if (ext == ".png") log::info("PNG exposure {:.4g}", e);
+    if (out.extension() == ".png") log::info("PNG exposure {:.4g}", e);
     runtime::write_image(out, images[0], e);
     return;
-  }
-  if (!ext.empty()) {
-    throw InputError(fmt::format("--out {}: expected a directory, a .exr or a .png file",
-                                 out.string()));
   }
   std::filesystem::create_directories(out);
   for (std::size_t i = 0; i < images.size(); ++i) {
@@ -80,6 +87,8 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
   request.frames = common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 1u;
   request.average = o.average;
   request.seed = common.seed;
+  lighting::require_implemented(request.integrator);
+  out_is_file(o.out, request.average ? 1u : request.frames);  // refuse a bad --out before work
   const Level level = load_level_argument(o.level);
 
   runtime::Device device({.selector = common.device});

@@ -12,8 +12,8 @@ float auto_exposure(const runtime::ImageRGBA32F& image) {
   double log_sum = 0.0;
   std::size_t count = 0;
   for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4) {
-    const float l = gpu::luminance(
-        glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]));
+    const float l =
+        gpu::luminance(glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]));
     if (!std::isfinite(l) || l <= 0.0f) continue;  // black: background, not the scene
     log_sum += std::log(kFloor + l);
     ++count;

@@ -27,11 +27,21 @@ IntegratorKind parse_integrator(std::string_view name) {
 
 const char* integrator_name(IntegratorKind kind) {
   switch (kind) {
-    case IntegratorKind::Baseline: return "baseline";
-    case IntegratorKind::Reference: return "reference";
-    case IntegratorKind::Restir: return "restir";
+    case IntegratorKind::Baseline:
+      return "baseline";
+    case IntegratorKind::Reference:
+      return "reference";
+    case IntegratorKind::Restir:
+      return "restir";
   }
   return "?";
+}
+
+void require_implemented(IntegratorKind kind) {
+  if (kind != IntegratorKind::Baseline) {
+    throw InputError(fmt::format("integrator '{}' is not implemented yet (use baseline)",
+                                 integrator_name(kind)));
+  }
 }
 
 double OfflineRenderResult::median_frame_ms() const {
@@ -44,10 +54,7 @@ double OfflineRenderResult::median_frame_ms() const {
 
 OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibrary& shaders,
                                    const Level& level, const OfflineRenderRequest& request) {
-  if (request.integrator != IntegratorKind::Baseline) {
-    throw InputError(fmt::format("integrator '{}' is not implemented yet (use baseline)",
-                                 integrator_name(request.integrator)));
-  }
+  require_implemented(request.integrator);
   if (request.width == 0 || request.height == 0 || request.frames == 0) {
     throw InputError(fmt::format("render size {}x{} and frame count {} must be positive",
                                  request.width, request.height, request.frames));
@@ -70,7 +77,8 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
                                             .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                             .memory = runtime::MemoryUsage::DeviceLocal,
                                             .name = "frame.constants"});
-  runtime::upload_buffer(device, constants_buffer, std::span<const gpu::FrameConstants>(&constants, 1));
+  runtime::upload_buffer(device, constants_buffer,
+                         std::span<const gpu::FrameConstants>(&constants, 1));
   const std::size_t pixel_count = std::size_t{request.width} * request.height;
   runtime::Buffer radiance(device, {.size = pixel_count * 4 * sizeof(float),
                                     .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,

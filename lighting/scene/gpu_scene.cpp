@@ -38,9 +38,8 @@ GpuScene::GpuScene(runtime::Device& device, const SceneData& scene)
       instances_(make_storage(device, scene.instances, "scene.instances")),
       lights_(make_storage(device, scene.lights.lights(), "scene.lights")),
       alias_(make_storage(device, scene.lights.alias_table().entries(), "scene.light_alias")),
-      light_count_(scene.lights.has_power()
-                       ? static_cast<std::uint32_t>(scene.lights.lights().size())
-                       : 0u),
+      light_count_(
+          scene.lights.has_power() ? static_cast<std::uint32_t>(scene.lights.lights().size()) : 0u),
       instance_count_(static_cast<std::uint32_t>(scene.instances.size())),
       scene_radius_(scene.scene_radius()) {}
 
@@ -59,9 +58,9 @@ void GpuScene::bind(runtime::Bindings& bindings) const {
 
 std::uint64_t GpuScene::bytes() const {
   std::uint64_t total = 0;
-  for (const runtime::Buffer* b : {&bvh_header_, &bvh_nodes_, &bvh_triangles_, &bvh_instances_,
-                                   &vertices_, &indices_, &materials_, &instances_, &lights_,
-                                   &alias_}) {
+  for (const runtime::Buffer* b :
+       {&bvh_header_, &bvh_nodes_, &bvh_triangles_, &bvh_instances_, &vertices_, &indices_,
+        &materials_, &instances_, &lights_, &alias_}) {
     total += b->size();
   }
   return total;

@@ -133,9 +133,9 @@ SceneData build_scene_data(const Level& level) {
     g.object_to_world = inst.world;
     g.prev_object_to_world = inst.world;
     g.world_to_object = glm::inverse(inst.world);
-    g.geometry = glm::uvec4(inst.material, first_index[inst.mesh],
-                            static_cast<std::uint32_t>(mesh.indices.size()),
-                            first_vertex[inst.mesh]);
+    g.geometry =
+        glm::uvec4(inst.material, first_index[inst.mesh],
+                   static_cast<std::uint32_t>(mesh.indices.size()), first_vertex[inst.mesh]);
     g.bvh = glm::uvec4(0u, gpu::kInvalidLight, 0u, 0u);
     scene.instances.push_back(g);
     for (const glm::vec3& p : mesh.positions) {

@@ -29,7 +29,8 @@ class BaselineRenderTest : public runtime::test::GpuTest {
 // Camera ray through image position (x, y) in pixels (same construction as baseline.comp).
 gpu::BvhRay camera_ray(const Camera& camera, std::uint32_t w, std::uint32_t h, float x, float y) {
   const glm::mat4 inv = glm::inverse(lighting::camera_view_proj(camera, w, h));
-  const glm::vec2 ndc = glm::vec2(x / static_cast<float>(w), y / static_cast<float>(h)) * 2.0f - 1.0f;
+  const glm::vec2 ndc =
+      glm::vec2(x / static_cast<float>(w), y / static_cast<float>(h)) * 2.0f - 1.0f;
   const glm::vec4 a = inv * glm::vec4(ndc, 0.0f, 1.0f);
   const glm::vec4 b = inv * glm::vec4(ndc, 0.5f, 1.0f);
   const glm::vec3 dir = glm::normalize(glm::vec3(b) / b.w - glm::vec3(a) / a.w);
@@ -89,18 +90,19 @@ TEST_F(BaselineRenderTest, CornellLightsIsFiniteLitAndShowsEmittersExactly) {
       if (!scene.bvh.trace_closest(ray, hit)) continue;
       const Material& material = level.materials[level.instances[hit.instance].material];
       if (!material.emissive()) continue;
-      if (glm::dot(front_normal(level, hit.instance, hit.primitive), glm::vec3(ray.direction)) >= 0.0f) {
+      if (glm::dot(front_normal(level, hit.instance, hit.primitive), glm::vec3(ray.direction)) >=
+          0.0f) {
         continue;
       }
       bool interior = true;
       for (const glm::vec2 d : {glm::vec2(-0.5f, -0.5f), glm::vec2(0.5f, -0.5f),
                                 glm::vec2(-0.5f, 0.5f), glm::vec2(0.5f, 0.5f)}) {
         gpu::BvhHit corner{};
-        interior = interior &&
-                   scene.bvh.trace_closest(camera_ray(level.camera, image.width, image.height,
-                                                      cx + d.x, cy + d.y),
-                                           corner) &&
-                   corner.instance == hit.instance;
+        interior =
+            interior &&
+            scene.bvh.trace_closest(
+                camera_ray(level.camera, image.width, image.height, cx + d.x, cy + d.y), corner) &&
+            corner.instance == hit.instance;
       }
       if (!interior) continue;
       const glm::vec3 expected = material.emitted_radiance();
