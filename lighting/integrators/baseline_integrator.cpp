@@ -1,10 +1,25 @@
-// integrators.baseline: binds the scene and dispatches one thread per pixel.
+// integrators.baseline: binds the scene and dispatches one workgroup per shuffled 8x8 tile.
 #include "lighting/integrators/baseline_integrator.h"
+
+#include <numeric>
 
 #include "integrators/baseline.h"
 #include "runtime/gpu/bindings.h"
 
 namespace lantern::lighting {
+namespace {
+
+// A stride near count / golden ratio that is coprime to `count`, so g -> g * stride mod count
+// is a permutation that scatters neighbouring workgroups across the image. 1 when the product
+// could overflow 32 bits.
+std::uint32_t tile_stride(std::uint32_t count) {
+  if (count < 3 || count > 65535) return 1;
+  std::uint32_t stride = static_cast<std::uint32_t>(static_cast<double>(count) * 0.6180339887);
+  while (std::gcd(stride, count) != 1) ++stride;
+  return stride;
+}
+
+}  // namespace
 
 BaselineIntegrator::BaselineIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders)
     : pipeline_(device, shaders.load("integrators/baseline.comp"),
@@ -22,8 +37,11 @@ void BaselineIntegrator::record(VkCommandBuffer cmd, const GpuScene& scene,
   push.frame_index = frame_index;
   push.light_count = scene.light_count();
   push.scene_radius = scene.scene_radius();
+  const std::uint32_t tiles = ((width + gpu::kBaselineTileSize - 1) / gpu::kBaselineTileSize) *
+                              ((height + gpu::kBaselineTileSize - 1) / gpu::kBaselineTileSize);
+  push.tile_stride = tile_stride(tiles);
   pipeline_.push_constants(cmd, push);
-  pipeline_.dispatch_threads(cmd, width, height);
+  pipeline_.dispatch(cmd, tiles);
 }
 
 }  // namespace lantern::lighting

@@ -11,9 +11,12 @@ struct BaselinePush {
   uint frame_index;    // seeds this frame's random numbers (with FrameConstants.frame.w)
   uint light_count;    // lights in the alias table; 0 = no light can be sampled
   float scene_radius;  // world bounding-sphere radius: directional shadow ray length
-  uint pad0;
+  uint tile_stride;    // workgroup g shades tile (g * tile_stride) mod tile count; coprime to it
 };
 LANTERN_STATIC_SIZE(BaselinePush, 16);
+
+// Pixels per side of the square tile one workgroup shades.
+LANTERN_CONST uint kBaselineTileSize = 8u;
 
 // RNG stream of the baseline pass (rng_init's `pass`).
 LANTERN_CONST uint kBaselineRngPass = 0x62u;
