@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "engine/level/level_loader.h"
 #include "engine/level/primitives.h"
@@ -117,16 +118,12 @@ TEST_F(BaselineRenderTest, CornellLightsIsFiniteLitAndShowsEmittersExactly) {
   EXPECT_GE(checked, 10) << "too few pixels see an emitter: the test proves nothing";
 }
 
-// One Lambertian plane (y = 0, facing +Y), a point light at height h above the origin and a
-// camera above it looking straight down: the centre pixel sees the point under the light, where
-// the radiance is rho/pi * I / h^2 (one light: sampling it is exact, one frame suffices).
-TEST_F(BaselineRenderTest, LambertPlaneUnderPointLightMatchesClosedForm) {
-  const float rho = 0.5f;
-  const float h = 1.5f;
-  const glm::vec3 intensity(3.0f, 2.0f, 1.0f);
-
+// One Lambertian plane (y = 0, facing +Y) lit from above, seen by a camera straight above the
+// origin: the centre pixel sees the origin, where the radiance is rho/pi times the irradiance
+// (one light: sampling it is exact, one frame suffices).
+Level lit_plane_level(float rho, const Light& light) {
   Level level;
-  level.name = "point_over_plane";
+  level.name = "lit_plane";
   level.meshes.push_back(make_plane(glm::vec2(20.0f, 20.0f)));
   Material m;
   m.base_color = glm::vec4(rho, rho, rho, 1.0f);
@@ -137,31 +134,72 @@ TEST_F(BaselineRenderTest, LambertPlaneUnderPointLightMatchesClosedForm) {
   Instance inst;
   inst.name = "plane";
   level.instances.push_back(inst);
-  Light light;
-  light.type = LightType::Point;
-  light.color = intensity;
-  light.intensity = 1.0f;
-  light.position = glm::vec3(0.0f, h, 0.0f);
   level.lights.push_back(light);
   level.camera.position = glm::vec3(0.0f, 4.0f, 0.0f);
   level.camera.orientation = look_at_orientation(level.camera.position, glm::vec3(0.0f));
   level.camera.yfov = 0.6f;
   level.has_camera = true;
+  return level;
+}
 
+runtime::ImageRGBA32F render_single(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                                    const Level& level) {
   OfflineRenderRequest request;
   request.width = 41;  // odd: the centre pixel's centre is the image centre
   request.height = 31;
-  const auto result = render_offline(device, shaders, level, request);
-  ASSERT_EQ(result.images.size(), 1u);
-  const runtime::ImageRGBA32F& image = result.images[0];
-  EXPECT_EQ(image.count_non_finite(), 0u);
-  const float* centre = image.at(20, 15);
+  auto result = render_offline(device, shaders, level, request);
+  EXPECT_EQ(result.images.size(), 1u);
+  EXPECT_EQ(result.images.at(0).count_non_finite(), 0u);
+  return result.images.at(0);
+}
+
+void expect_centre(const runtime::ImageRGBA32F& image, glm::vec3 expected) {
+  const float* centre = image.at(image.width / 2, image.height / 2);
   for (int c = 0; c < 3; ++c) {
-    const float expected = rho / 3.14159265f * intensity[c] / (h * h);
-    EXPECT_NEAR(centre[c], expected, 0.01f * expected) << "channel " << c;
+    EXPECT_NEAR(centre[c], expected[c], 0.01f * expected[c]) << "channel " << c;
   }
+}
+
+constexpr float kRho = 0.5f;
+constexpr float kHeight = 1.5f;
+const glm::vec3 kColor(3.0f, 2.0f, 1.0f);
+
+TEST_F(BaselineRenderTest, LambertPlaneUnderPointLightMatchesClosedForm) {
+  Light light;
+  light.type = LightType::Point;
+  light.color = kColor;
+  light.position = glm::vec3(0.0f, kHeight, 0.0f);
+  const runtime::ImageRGBA32F image = render_single(device, shaders, lit_plane_level(kRho, light));
+  expect_centre(image, kRho / 3.14159265f * kColor / (kHeight * kHeight));
   // Farther from the light the image gets darker (the falloff is there at all).
-  EXPECT_LT(image.at(0, 15)[0], centre[0]);
+  EXPECT_LT(image.at(0, image.height / 2)[0], image.at(image.width / 2, image.height / 2)[0]);
+}
+
+// A spot pointing straight down: on its axis it is a point light; outside its cone, black.
+TEST_F(BaselineRenderTest, LambertPlaneUnderSpotLightMatchesClosedFormAndCone) {
+  Light light;
+  light.type = LightType::Spot;
+  light.color = kColor;
+  light.position = glm::vec3(0.0f, kHeight, 0.0f);
+  light.rotation = glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1.0f, 0.0f, 0.0f));
+  light.inner_cone = 0.05f;
+  light.outer_cone = 0.1f;
+  ASSERT_NEAR(light.direction().y, -1.0f, 1e-5f);
+  const runtime::ImageRGBA32F image = render_single(device, shaders, lit_plane_level(kRho, light));
+  expect_centre(image, kRho / 3.14159265f * kColor / (kHeight * kHeight));
+  EXPECT_EQ(image.at(0, 0)[0], 0.0f) << "a corner lies outside the 0.1 rad cone";
+}
+
+// A directional light shining straight down with irradiance E: radiance rho/pi * E everywhere.
+TEST_F(BaselineRenderTest, LambertPlaneUnderDirectionalLightMatchesClosedForm) {
+  Light light;
+  light.type = LightType::Directional;
+  light.color = kColor;
+  light.rotation = glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1.0f, 0.0f, 0.0f));
+  const runtime::ImageRGBA32F image = render_single(device, shaders, lit_plane_level(kRho, light));
+  expect_centre(image, kRho / 3.14159265f * kColor);
+  const float* corner = image.at(0, 0);
+  EXPECT_NEAR(corner[0], kRho / 3.14159265f * kColor[0], 0.01f * kColor[0]);
 }
 
 }  // namespace
