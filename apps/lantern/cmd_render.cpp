@@ -38,8 +38,9 @@ std::uint32_t parse_dimension(std::string_view text, std::string_view size) {
   return value;
 }
 
-// "640x360" -> (640, 360).
-std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {
+// "640x360" -> (640, 360). (Duplicate of app::parse_size in cli_values.cpp, in progress
+// elsewhere: switch to it once it lands.)
+std::pair<std::uint32_t, std::uint32_t> parse_render_size(std::string_view size) {
   const std::size_t x = size.find('x');
   if (x == std::string_view::npos) {
     throw InputError(fmt::format("--size {}: expected WxH, e.g. 640x360", size));
@@ -81,7 +82,7 @@ void write_images(const std::filesystem::path& out,
 void run_render(const RenderOptions& o, const CommonOptions& common) {
   lighting::OfflineRenderRequest request;
   request.integrator = lighting::parse_integrator(o.integrator);
-  const auto [width, height] = parse_size(common.size);
+  const auto [width, height] = parse_render_size(common.size);
   request.width = width;
   request.height = height;
   request.frames = common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 1u;
