@@ -8,6 +8,9 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace lantern::app {
 
@@ -28,5 +31,9 @@ void add_common_flags(CLI::App& cmd, CommonOptions& options);
 void add_devices_command(CLI::App& root, CommonOptions& options);
 void add_info_command(CLI::App& root, CommonOptions& options);
 void add_render_command(CLI::App& root, CommonOptions& options);
+void add_play_command(CLI::App& root, CommonOptions& options);
+
+// "640x360" -> (640, 360); InputError naming the flag otherwise.
+std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size);
 
 }  // namespace lantern::app

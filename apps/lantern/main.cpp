@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   app::add_devices_command(root, options);
   app::add_info_command(root, options);
   app::add_render_command(root, options);
+  app::add_play_command(root, options);
 
   try {
     root.parse(argc, argv);
