@@ -29,25 +29,6 @@ struct RenderOptions {
   float exposure = 0.0f;  // PNG only; 0 = automatic (log-average luminance to middle grey)
 };
 
-std::uint32_t parse_dimension(std::string_view text, std::string_view size) {
-  std::uint32_t value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || value == 0 || value > 16384) {
-    throw InputError(fmt::format("--size {}: expected WxH with W and H in 1..16384", size));
-  }
-  return value;
-}
-
-// "640x360" -> (640, 360). (Duplicate of app::parse_size in cli_values.cpp, in progress
-// elsewhere: switch to it once it lands.)
-std::pair<std::uint32_t, std::uint32_t> parse_render_size(std::string_view size) {
-  const std::size_t x = size.find('x');
-  if (x == std::string_view::npos) {
-    throw InputError(fmt::format("--size {}: expected WxH, e.g. 640x360", size));
-  }
-  return {parse_dimension(size.substr(0, x), size), parse_dimension(size.substr(x + 1), size)};
-}
-
 // Whether --out names one image file (.exr/.png) or a directory; InputError for anything else
 // and for one file when several images result.
 bool out_is_file(const std::filesystem::path& out, std::size_t image_count) {
@@ -82,7 +63,7 @@ void write_images(const std::filesystem::path& out,
 void run_render(const RenderOptions& o, const CommonOptions& common) {
   lighting::OfflineRenderRequest request;
   request.integrator = lighting::parse_integrator(o.integrator);
-  const auto [width, height] = parse_render_size(common.size);
+  const auto [width, height] = parse_size(common.size);
   request.width = width;
   request.height = height;
   request.frames = common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 1u;

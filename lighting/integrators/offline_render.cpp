@@ -62,7 +62,7 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
 
   const SceneData scene = build_scene_data(level);
   const GpuScene gpu_scene(device, scene);
-  log::info("scene: {} instances, {} BVH triangles, {} lights ({} emissive triangles), {:.1f} MiB",
+  log::debug("scene: {} instances, {} BVH triangles, {} lights ({} emissive triangles), {:.1f} MiB",
             scene.instances.size(), scene.bvh.triangles().size(), scene.lights.lights().size(),
             scene.emissive_triangles, static_cast<double>(gpu_scene.bytes()) / (1024.0 * 1024.0));
 
