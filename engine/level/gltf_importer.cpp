@@ -39,6 +39,7 @@ struct Importer {
       mesh_of_primitive;              // (mesh, primitive) -> level mesh
   std::vector<glm::mat4> node_world;  // filled while traversing
   std::vector<int> node_parent;
+  std::vector<std::vector<std::size_t>> node_instances;  // level instances made from each node
 
   [[noreturn]] void fail(const std::string& place, const std::string& message) const {
     throw InputError(fmt::format("{}: {}: {}", file.string(), place, message));
@@ -227,6 +228,7 @@ struct Importer {
         inst.material = material_index(mesh.primitives[p].material);
         inst.world = world;
         inst.transform = Transform::from_matrix(world);
+        node_instances[static_cast<std::size_t>(index)].push_back(level.instances.size());
         level.instances.push_back(std::move(inst));
       }
     }
@@ -328,7 +330,11 @@ struct Importer {
     return {q.x, q.y, q.z, q.w};
   }
 
-  std::optional<CameraPath> camera_path(int camera_node, const glm::mat4& placement) const {
+  // The first animation that moves `node_index` (translation and/or rotation), sampled at the
+  // union of its key times into world-space keys: parent world (at rest) × animated local. The
+  // path is named after the animation (possibly empty). Other channels (scale, weights) are
+  // skipped.
+  std::optional<CameraPath> node_path(int node_index, const glm::mat4& placement) const {
     for (std::size_t ai = 0; ai < model.animations.size(); ++ai) {
       const tinygltf::Animation& anim = model.animations[ai];
       struct Channel {
@@ -341,9 +347,8 @@ struct Importer {
       std::vector<float> all_times;
       for (std::size_t ci = 0; ci < anim.channels.size(); ++ci) {
         const tinygltf::AnimationChannel& ch = anim.channels[ci];
-        if (ch.target_node != camera_node ||
-            (ch.target_path != "translation" && ch.target_path != "rotation"))
-          continue;
+        if (ch.target_node != node_index) continue;
+        if (ch.target_path != "translation" && ch.target_path != "rotation") continue;
         const std::string place = fmt::format("animation {} '{}' channel {}", ai, anim.name, ci);
         if (ch.sampler < 0 || static_cast<std::size_t>(ch.sampler) >= anim.samplers.size())
           fail(place, fmt::format("sampler {} does not exist", ch.sampler));
@@ -371,12 +376,12 @@ struct Importer {
       if (channels.empty()) continue;
       std::sort(all_times.begin(), all_times.end());
       all_times.erase(std::unique(all_times.begin(), all_times.end()), all_times.end());
-      const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(camera_node)];
-      const int parent = node_parent[static_cast<std::size_t>(camera_node)];
+      const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(node_index)];
+      const int parent = node_parent[static_cast<std::size_t>(node_index)];
       const glm::mat4 parent_world =
           parent >= 0 ? node_world[static_cast<std::size_t>(parent)] : placement;
       CameraPath path;
-      path.name = anim.name.empty() ? "camera" : anim.name;
+      path.name = anim.name;
       for (float t : all_times) {
         Transform local = local_transform(node);
         for (const Channel& c : channels) {
@@ -390,11 +395,41 @@ struct Importer {
         path.keys.push_back({t, world.translation, world.rotation, std::nullopt});
       }
       if (std::string problem = path.problem(); !problem.empty())
-        fail(fmt::format("animation {} '{}' of camera node {}", ai, anim.name, camera_node),
+        fail(fmt::format("animation {} '{}' of node {} '{}'", ai, anim.name, node_index, node.name),
              problem);
       return path;
     }
     return std::nullopt;
+  }
+
+  std::optional<CameraPath> camera_path(int camera_node, const glm::mat4& placement) const {
+    std::optional<CameraPath> path = node_path(camera_node, placement);
+    if (path && path->name.empty()) path->name = "camera";
+    return path;
+  }
+
+  // "<file stem>/<node name or index>", suffixed "#2", "#3"... if the level already has it.
+  std::string unique_path_name(int node_index) const {
+    const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(node_index)];
+    const std::string base = fmt::format(
+        "{}/{}", file.stem().string(), node.name.empty() ? std::to_string(node_index) : node.name);
+    std::string name = base;
+    for (int k = 2; level.find_path(name); ++k) name = fmt::format("{}#{}", base, k);
+    return name;
+  }
+
+  // Every animated mesh node gets a path of its own, followed (speed 1, looping) by each
+  // instance made from it; follow_path sets translation and rotation, the node's scale stays.
+  void animate_mesh_nodes(const glm::mat4& placement) {
+    for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+      if (node_instances[i].empty()) continue;
+      std::optional<CameraPath> path = node_path(static_cast<int>(i), placement);
+      if (!path) continue;
+      path->name = unique_path_name(static_cast<int>(i));
+      const FollowPathBehaviour follow{path->name, 1.0f, true};
+      for (std::size_t k : node_instances[i]) level.instances[k].behaviour = follow;
+      level.paths.push_back(std::move(*path));
+    }
   }
 
   static constexpr int kUnvisited = -2;
@@ -425,6 +460,7 @@ GltfImport import_gltf(const std::filesystem::path& file, const glm::mat4& place
   Importer im{file, model, level, diagnostics};
   im.node_world.assign(model.nodes.size(), glm::mat4(1.0f));
   im.node_parent.assign(model.nodes.size(), Importer::kUnvisited);
+  im.node_instances.assign(model.nodes.size(), {});
   im.import_images();
   im.import_materials();
 
@@ -451,6 +487,14 @@ GltfImport import_gltf(const std::filesystem::path& file, const glm::mat4& place
   int camera_node = -1;
   result.camera = im.camera(camera_node);
   if (camera_node >= 0) result.camera_path = im.camera_path(camera_node, placement);
+  im.animate_mesh_nodes(placement);
+  std::size_t scale_channels = 0;
+  for (const tinygltf::Animation& anim : model.animations)
+    for (const tinygltf::AnimationChannel& ch : anim.channels)
+      scale_channels += ch.target_path == "scale" ? 1 : 0;
+  if (scale_channels > 0)
+    log::warn("{}: {} scale animation channel(s) ignored (node animations move and turn only)",
+              file.string(), scale_channels);
   return result;
 }
 

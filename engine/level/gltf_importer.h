@@ -1,6 +1,7 @@
 // Imports a glTF 2.0 file (.gltf or .glb, through Debian's tinygltf) into a Level: meshes,
 // metallic-roughness materials (+ emissive strength, specular), image references, instances,
-// KHR_lights_punctual lights, the first camera node and that camera's animation as a path.
+// KHR_lights_punctual lights, the first camera node and that camera's animation as a path, and
+// each animated mesh node as a path of the level that its instances follow (follow_path).
 #pragma once
 
 #include <filesystem>
@@ -20,6 +21,7 @@ struct GltfImport {
 };
 
 // Appends the file's content to `level`, every node placed under `placement` (world matrix).
+// Animated mesh nodes add paths named "<file stem>/<node name or index>" to `level.paths`.
 // Throws InputError naming the file and the node/mesh/accessor for bad input.
 GltfImport import_gltf(const std::filesystem::path& file, const glm::mat4& placement, Level& level,
                        LoadDiagnostics& diagnostics);
