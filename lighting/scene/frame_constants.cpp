@@ -2,7 +2,8 @@
 #include "lighting/scene/frame_constants.h"
 
 #include <algorithm>
-#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/world/projection.h"
 
 namespace lantern::lighting {
 
@@ -10,9 +11,7 @@ glm::mat4 camera_view_proj(const Camera& camera, std::uint32_t width, std::uint3
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1u));
   const float znear = std::max(camera.znear, 1e-6f);
   const float zfar = camera.zfar > znear ? camera.zfar : 1e4f * znear;
-  glm::mat4 proj = glm::perspectiveRH_ZO(camera.yfov, aspect, znear, zfar);
-  proj[1][1] = -proj[1][1];  // Vulkan: +y points down in NDC
-  return proj * camera.view_matrix();
+  return vulkan_perspective(camera.yfov, aspect, znear, zfar) * camera.view_matrix();
 }
 
 gpu::FrameConstants make_frame_constants(const Camera& camera, std::uint32_t width,
