@@ -1,0 +1,79 @@
+// What one frame hands to the lighting integrators (baseline, reference, restir): the snapshot,
+// the scene buffers and G-buffer as render-graph handles, and the linear HDR target they write.
+// The frame renderer (lighting/frame/frame_renderer.h) builds it after scene.upload and gbuffer;
+// an Integrator adds its passes from it. Handles are valid for the current graph frame only.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/world/frame_snapshot.h"
+#include "runtime/graph/render_graph.h"
+
+namespace lantern::lighting {
+
+class GpuScene;
+
+// The scene's device buffers imported into this frame's graph (written by scene.upload, read-only
+// for integrators). The Vulkan objects behind them are the ones GpuScene::bind() binds.
+struct SceneHandles {
+  runtime::graph::BufferHandle frame_constants;  // one gpu::FrameConstants
+  runtime::graph::BufferHandle vertices;
+  runtime::graph::BufferHandle indices;
+  runtime::graph::BufferHandle materials;
+  runtime::graph::BufferHandle instances;  // gpu::GpuInstance, with previous transforms
+  runtime::graph::BufferHandle lights;     // gpu::GpuLight, current frame
+  runtime::graph::BufferHandle alias;      // gpu::AliasEntry over current lights' power
+  runtime::graph::BufferHandle bvh_header;
+  runtime::graph::BufferHandle bvh_nodes;
+  runtime::graph::BufferHandle bvh_triangles;
+  runtime::graph::BufferHandle bvh_instances;
+  // uint per previous-frame light: its current index, or kInvalidLight when it was removed.
+  runtime::graph::BufferHandle light_previous_to_current;
+
+  // Declares a StorageRead of every scene buffer (what a pass that calls GpuScene::bind needs).
+  void declare_reads(runtime::graph::PassBuilder& builder) const;
+};
+
+// The G-buffer images of shaders/shared/gbuffer.h, after the gbuffer pass wrote them.
+struct GBufferHandles {
+  runtime::graph::ImageHandle position;
+  runtime::graph::ImageHandle normal;
+  runtime::graph::ImageHandle albedo_roughness;
+  runtime::graph::ImageHandle emission_metallic;
+  runtime::graph::ImageHandle ids;
+  runtime::graph::ImageHandle motion;
+
+  // Declares a StorageRead of every colour image (read with imageLoad, layout GENERAL).
+  void declare_reads(runtime::graph::PassBuilder& builder) const;
+};
+
+struct FrameInputs {
+  const FrameSnapshot* snapshot = nullptr;
+  const GpuScene* scene = nullptr;  // bind() binds the buffers behind `scene_handles`
+  SceneHandles scene_handles;
+  GBufferHandles gbuffer;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t frame_index = 0;  // frames rendered since the renderer was created
+  std::uint32_t seed = 1;
+  // False on the first frame, after a camera cut and after a resize: no temporal history.
+  bool history_valid = false;
+  std::uint32_t light_count = 0;           // current lights (alias table size)
+  std::uint32_t previous_light_count = 0;  // entries of light_previous_to_current
+};
+
+// A lighting integrator: adds its passes to the frame's graph. They write linear radiance into
+// `hdr` (a buffer of width*height vec4, row-major from the top-left, alpha 1) and the new version
+// of `hdr` is returned. Pass names are module.stage ("integrators.baseline", "restir.initial").
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual const char* name() const = 0;
+  // JIT-compiles every pipeline now (lavapipe compiles at first dispatch), not in a timed frame.
+  virtual void warm_up() = 0;
+  [[nodiscard]] virtual runtime::graph::BufferHandle add_passes(
+      runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
+      runtime::graph::BufferHandle hdr) = 0;
+};
+
+}  // namespace lantern::lighting

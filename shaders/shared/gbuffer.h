@@ -1,0 +1,53 @@
+// The G-buffer the raster pass `gbuffer` writes and every later pass reads (restir.*, baseline,
+// reference, debug views). One owner for its formats, encodings and conventions:
+//
+//   image                      format               contents
+//   gbuffer.position           R32G32B32A32_SFLOAT  xyz world position; w linear view depth
+//                                                   (> 0), 0 where no geometry (sky)
+//   gbuffer.normal             R32G32B32A32_SFLOAT  xy octahedral shading normal, zw octahedral
+//                                                   geometric normal; both face the camera
+//   gbuffer.albedo_roughness   R16G16B16A16_SFLOAT  rgb base colour (linear); a perceptual
+//                                                   roughness
+//   gbuffer.emission_metallic  R32G32B32A32_SFLOAT  rgb emitted radiance towards the camera
+//                                                   (front faces only, 0 otherwise); a metallic
+//                                                   (float: radiance spans 1e-8..1e8)
+//   gbuffer.ids                R32G32B32A32_UINT    x instance (kNoInstance = sky), y material,
+//                                                   z primitive, w 0
+//   gbuffer.motion             R32G32B32A32_SFLOAT  xy motion in pixels: previous pixel position
+//                                                   minus current (prev = cur + motion); zw 0
+//   gbuffer.depth              D32_SFLOAT           raster depth (not read by compute passes)
+//
+// Compute passes read the colour images as storage images (imageLoad, layout GENERAL).
+#ifndef LANTERN_SHARED_GBUFFER_H
+#define LANTERN_SHARED_GBUFFER_H
+
+#include "shared/lang.h"
+
+LANTERN_BEGIN_SHARED
+
+// Octahedral encoding of a unit vector into [-1, 1]^2 (Cigolle et al. 2014), and back.
+LANTERN_FUNC vec2 oct_encode(vec3 n) {
+  float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+  vec2 p = vec2(n.x, n.y) * (1.0f / (l1 > 0.0f ? l1 : 1.0f));
+  if (n.z < 0.0f) {
+    float sx = p.x >= 0.0f ? 1.0f : -1.0f;
+    float sy = p.y >= 0.0f ? 1.0f : -1.0f;
+    p = vec2((1.0f - abs(p.y)) * sx, (1.0f - abs(p.x)) * sy);
+  }
+  return p;
+}
+
+LANTERN_FUNC vec3 oct_decode(vec2 e) {
+  vec3 n = vec3(e.x, e.y, 1.0f - abs(e.x) - abs(e.y));
+  float t = n.z < 0.0f ? -n.z : 0.0f;
+  n.x += n.x >= 0.0f ? -t : t;
+  n.y += n.y >= 0.0f ? -t : t;
+  return normalize(n);
+}
+
+// Sky test on gbuffer.position.w.
+LANTERN_FUNC bool gbuffer_is_sky(float view_depth) { return !(view_depth > 0.0f); }
+
+LANTERN_END_SHARED
+
+#endif
