@@ -1,8 +1,10 @@
-// night_market: meets the counts issue 4 asks for and is deterministic given its seed.
+// Generators: night_market meets the counts issue 4 asks for, light_field (million_lights) makes
+// exactly the emitter count asked for; both are deterministic given their seed.
 #include <gtest/gtest.h>
 
 #include <cstring>
 
+#include "engine/core/error.h"
 #include "engine/level/level_loader.h"
 #include "engine/scene/level_summary.h"
 #include "tests/level/test_files.h"
@@ -107,6 +109,46 @@ TEST(NightMarket, SameSeedSameLevelOtherSeedOtherLevel) {
   const std::uint64_t c = hash_level(market_with_seed(12));
   EXPECT_EQ(a, b);
   EXPECT_NE(a, c);
+}
+
+
+Level field_with(int seed, int triangles) {
+  const auto file = test::scratch("field_" + std::to_string(seed) + "_" + std::to_string(triangles) + ".json");
+  test::write_text(file, R"({"generators": [{"type": "light_field", "seed": )" +
+                             std::to_string(seed) + R"(, "emitter_triangles": )" +
+                             std::to_string(triangles) + "}]}");
+  return load_level(file);
+}
+
+TEST(LightField, MakesTheEmitterCountAskedFor) {
+  for (int n : {1000, 10000, 100000}) {
+    const LevelSummary s = summarize(field_with(3, n));
+    EXPECT_EQ(s.emissive_triangles, static_cast<std::size_t>(n)) << n;
+    EXPECT_GT(s.triangles, s.emissive_triangles);  // pillars and floor occlude and receive
+  }
+}
+
+TEST(LightField, MillionLightsLevelHasAMillionEmitters) {
+  const Level level = load_level_argument("million_lights");
+  EXPECT_EQ(summarize(level).emissive_triangles, 1000000u);
+  ASSERT_NE(level.find_path(level.camera_path), nullptr);
+  EXPECT_EQ(level.find_path(level.camera_path)->problem(), "");
+}
+
+TEST(LightField, SameSeedSameLevelOtherSeedOtherLevel) {
+  EXPECT_EQ(hash_level(field_with(5, 2000)), hash_level(field_with(5, 2000)));
+  EXPECT_NE(hash_level(field_with(5, 2000)), hash_level(field_with(6, 2000)));
+}
+
+TEST(LightField, BadParametersAreNamed) {
+  const auto file = test::scratch("field_bad.json");
+  test::write_text(file, R"({"generators": [{"type": "light_field", "radiance": [5, -1]}]})");
+  try {
+    load_level(file);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("radiance"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

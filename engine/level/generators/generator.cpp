@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/level/generators/light_field.h"
 #include "engine/level/generators/night_market.h"
 #include "engine/level/json_level_reader.h"
 
@@ -41,7 +42,28 @@ void run_generator(JsonObject& params, JsonLevelReader& reader) {
                           fmt::format("{}: {}", reader.file().string(), params.pointer()));
     return;
   }
-  params.fail("type", fmt::format("unknown generator type '{}' (night_market)", type));
+  if (type == "light_field") {
+    LightFieldParams p;
+    p.seed = static_cast<std::uint64_t>(params.integer("seed", 1, 0, 0x7FFFFFFFFFFFFFFFll));
+    p.emitter_triangles = static_cast<std::uint32_t>(
+        params.integer("emitter_triangles", p.emitter_triangles, 2, 2000000));
+    p.extent = params.number("extent", p.extent);
+    p.pillars = static_cast<std::uint32_t>(params.integer("pillars", p.pillars, 0, 10000));
+    p.radiance = params.vec2("radiance", p.radiance);
+    p.quad_size = params.number("quad_size", p.quad_size);
+    p.path_name = params.string("path", p.path_name);
+    p.path_duration = params.number("path_duration", p.path_duration);
+    if (!(p.extent >= 1.0f && p.extent <= 10000.0f)) params.fail("extent", "must be in [1, 10000]");
+    if (!(p.quad_size > 0.0f && p.quad_size <= 10.0f)) params.fail("quad_size", "must be in (0, 10]");
+    if (!(p.radiance.x > 0.0f && p.radiance.y >= p.radiance.x && p.radiance.y < 1e9f))
+      params.fail("radiance", "need 0 < min <= max < 1e9");
+    if (p.path_duration <= 0.0f) params.fail("path_duration", "must be > 0");
+    generate_light_field(p, reader.builder(),
+                         fmt::format("{}: {}", reader.file().string(), params.pointer()));
+    return;
+  }
+  params.fail("type",
+              fmt::format("unknown generator type '{}' (night_market, light_field)", type));
 }
 
 }  // namespace lantern
