@@ -1,12 +1,17 @@
-// `lantern render LEVEL --integrator restir|baseline|reference [--frames N] [--average] --out PATH`
-// (CLI.md): renders frames on the level's camera headless and writes them: one .exr/.png file
-// when one image results, else a directory of frame_NNNN.exr.
+// `lantern render LEVEL --integrator restir|baseline|reference [--frame K] [--frames N]
+// [--spp N] [--average] [--static] --out PATH` (CLI.md): steps the level's world K frames, then
+// renders N frames headless (objects, lights and camera animate unless --static) and writes them:
+// one .exr/.png file when one image results, else a directory of frame_NNNN.exr. --preset and
+// --set KEY=VALUE go to the integrator (an unknown key is an error).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "apps/lantern/commands.h"
 #include "engine/core/error.h"
@@ -27,7 +32,24 @@ struct RenderOptions {
   bool average = false;
   std::string out;
   float exposure = 0.0f;  // PNG only; 0 = automatic (log-average luminance to middle grey)
+  std::uint32_t first_frame = 0;
+  std::uint32_t spp = 0;
+  bool still = false;  // --static: every frame renders the first rendered frame's snapshot
 };
+
+// "KEY=VALUE" settings, in order; InputError naming a malformed one.
+std::vector<std::pair<std::string, std::string>> parse_settings(
+    const std::vector<std::string>& settings) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& s : settings) {
+    const std::size_t eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw InputError(fmt::format("--set {}: expected KEY=VALUE", s));
+    }
+    out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
+  }
+  return out;
+}
 
 // Whether --out names one image file (.exr/.png) or a directory; InputError for anything else
 // and for one file when several images result.
@@ -62,25 +84,44 @@ void write_images(const std::filesystem::path& out,
 
 void run_render(const RenderOptions& o, const CommonOptions& common) {
   lighting::OfflineRenderRequest request;
-  request.integrator = lighting::parse_integrator(o.integrator);
+  request.integrator.kind = lighting::parse_integrator(o.integrator);
+  request.integrator.preset = common.preset;
+  request.integrator.settings = parse_settings(common.settings);
+  request.integrator.spp = o.spp;
+  request.first_frame = o.first_frame;
+  request.animate = !o.still;
   const auto [width, height] = parse_size(common.size);
   request.width = width;
   request.height = height;
   request.frames = common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 1u;
   request.average = o.average;
   request.seed = common.seed;
-  lighting::require_implemented(request.integrator);
+  lighting::require_implemented(request.integrator.kind);
   out_is_file(o.out, request.average ? 1u : request.frames);  // refuse a bad --out before work
-  const Level level = load_level_argument(o.level);
+  const auto level = std::make_shared<const Level>(load_level_argument(o.level));
 
   runtime::Device device({.selector = common.device});
   runtime::ShaderLibrary shaders;
   const lighting::OfflineRenderResult result =
       lighting::render_offline(device, shaders, level, request);
   write_images(o.out, result.images, o.exposure);
-  log::info("{} {} frame(s) at {}x{}: median {:.2f} ms/frame (GPU); wrote {}",
-            lighting::integrator_name(request.integrator), request.frames, width, height,
-            result.median_frame_ms(), o.out);
+  log::info("{} {} frame(s) from frame {} at {}x{}: median {:.2f} ms/frame (GPU); wrote {}",
+            lighting::integrator_name(request.integrator.kind), request.frames,
+            request.first_frame, width, height, result.median_frame_ms(), o.out);
+  // Median GPU ms per pass, in the order of the first frame.
+  if (!result.pass_ms.empty()) {
+    std::string passes;
+    for (const auto& [name, ms] : result.pass_ms.front()) {
+      passes += fmt::format(" {} {:.2f}", name, result.median_pass_ms(name));
+    }
+    log::info("median pass ms:{}", passes);
+  }
+  std::vector<double> update = result.scene_update_ms;
+  std::sort(update.begin(), update.end());
+  if (!update.empty()) {
+    log::info("scene update (CPU): median {:.2f} ms, max {:.2f} ms", update[update.size() / 2],
+              update.back());
+  }
   if (device.validation_enabled() && device.validation_errors() > 0) {
     throw RuntimeError(fmt::format("{} Vulkan validation error(s)", device.validation_errors()));
   }
@@ -97,6 +138,11 @@ void add_render_command(CLI::App& root, CommonOptions& options) {
       ->required();
   cmd->add_option("--integrator", opts->integrator, "restir|baseline|reference")->required();
   cmd->add_flag("--average", opts->average, "Write the mean of the frames as one image");
+  cmd->add_option("--frame", opts->first_frame,
+                  "Step the world K frames before the first rendered frame");
+  cmd->add_option("--spp", opts->spp, "Samples per pixel per frame (reference integrator)");
+  cmd->add_flag("--static", opts->still,
+                "Render every frame from the first rendered frame's snapshot (no animation)");
   cmd->add_option("--out", opts->out, "Output directory, or one .exr/.png file")->required();
   cmd->add_option("--exposure", opts->exposure, "PNG exposure multiplier (default: automatic)")
       ->check(CLI::PositiveNumber);

@@ -1,13 +1,19 @@
-// integrators.baseline: binds the scene and dispatches one workgroup per shuffled 8x8 tile.
+// integrators.baseline: reads the G-buffer and the scene, writes the HDR buffer; one workgroup
+// per shuffled 8x8 tile (shaders/integrators/baseline.comp).
 #include "lighting/integrators/baseline_integrator.h"
 
 #include <numeric>
 
 #include "integrators/baseline.h"
+#include "lighting/scene/gpu_scene.h"
 #include "runtime/gpu/bindings.h"
 
 namespace lantern::lighting {
 namespace {
+
+using runtime::graph::Access;
+using runtime::graph::BufferHandle;
+using runtime::graph::ImageHandle;
 
 // A stride near count / golden ratio that is coprime to `count`, so g -> g * stride mod count
 // is a permutation that scatters neighbouring workgroups across the image. 1 when the product
@@ -25,23 +31,49 @@ BaselineIntegrator::BaselineIntegrator(runtime::Device& device, runtime::ShaderL
     : pipeline_(device, shaders.load("integrators/baseline.comp"),
                 runtime::ComputePipelineDesc{.name = "integrators.baseline", .constants = {}}) {}
 
-void BaselineIntegrator::record(VkCommandBuffer cmd, const GpuScene& scene,
-                                const runtime::Buffer& frame_constants,
-                                const runtime::Buffer& radiance, std::uint32_t width,
-                                std::uint32_t height, std::uint32_t frame_index) const {
-  runtime::Bindings bindings(pipeline_);
-  scene.bind(bindings);
-  bindings.buffer("frame_constants", frame_constants).buffer("radiance", radiance);
-  pipeline_.bind(cmd, bindings);
+BufferHandle BaselineIntegrator::add_passes(runtime::graph::RenderGraph& graph,
+                                            const FrameInputs& inputs, BufferHandle hdr) {
+  struct Data {
+    BufferHandle hdr;
+    ImageHandle position, normal, emission, ids;
+  };
+  const std::uint32_t width = inputs.width;
+  const std::uint32_t height = inputs.height;
   gpu::BaselinePush push{};
-  push.frame_index = frame_index;
-  push.light_count = scene.light_count();
-  push.scene_radius = scene.scene_radius();
+  push.frame_index = inputs.frame_index;
+  push.light_count = inputs.light_count;
+  push.scene_radius = inputs.scene->scene_radius();
   const std::uint32_t tiles = ((width + gpu::kBaselineTileSize - 1) / gpu::kBaselineTileSize) *
                               ((height + gpu::kBaselineTileSize - 1) / gpu::kBaselineTileSize);
   push.tile_stride = tile_stride(tiles);
-  pipeline_.push_constants(cmd, push);
-  pipeline_.dispatch(cmd, tiles);
+  const GpuScene* scene = inputs.scene;
+  const Data& data = graph.add_pass<Data>(
+      "integrators.baseline", runtime::graph::PassKind::Compute,
+      [&](runtime::graph::PassBuilder& b, Data& d) {
+        inputs.scene_handles.declare_reads(b);
+        d.position = inputs.gbuffer.position;
+        d.normal = inputs.gbuffer.normal;
+        d.emission = inputs.gbuffer.emission_metallic;
+        d.ids = inputs.gbuffer.ids;
+        for (ImageHandle h : {d.position, d.normal, d.emission, d.ids}) {
+          b.read(h, Access::StorageRead);
+        }
+        d.hdr = b.write(hdr, Access::StorageWrite);
+      },
+      [this, scene, push, tiles](runtime::graph::PassContext& ctx, const Data& d) {
+        runtime::Bindings bindings(pipeline_);
+        scene->bind(bindings);
+        bindings.buffer("radiance", ctx.buffer(d.hdr), 0, VK_WHOLE_SIZE)
+            .image_view("gbuffer_position", ctx.view(d.position), VK_IMAGE_LAYOUT_GENERAL)
+            .image_view("gbuffer_normal", ctx.view(d.normal), VK_IMAGE_LAYOUT_GENERAL)
+            .image_view("gbuffer_emission_metallic", ctx.view(d.emission),
+                        VK_IMAGE_LAYOUT_GENERAL)
+            .image_view("gbuffer_ids", ctx.view(d.ids), VK_IMAGE_LAYOUT_GENERAL);
+        pipeline_.bind(ctx.cmd(), bindings);
+        pipeline_.push_constants(ctx.cmd(), push);
+        pipeline_.dispatch(ctx.cmd(), tiles);
+      });
+  return data.hdr;
 }
 
 }  // namespace lantern::lighting

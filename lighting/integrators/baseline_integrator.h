@@ -1,30 +1,27 @@
-// integrators.baseline: per pixel, one camera ray, directly seen emission and one light sample
-// from the power alias table with one shadow ray (shaders/integrators/baseline.comp). The
-// simple, unbiased estimator ReSTIR is compared with.
+// integrators.baseline: per pixel, the G-buffer's primary hit, its emission seen from the camera,
+// and one light sample from the power alias table with one shadow ray
+// (shaders/integrators/baseline.comp). The simple, unbiased estimator ReSTIR is compared with.
+// Settings: none (1 sample per pixel per frame); any --set key is an InputError.
 #pragma once
-
-#include <vulkan/vulkan.h>
 
 #include <cstdint>
 
-#include "lighting/scene/gpu_scene.h"
+#include "lighting/frame/frame_inputs.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/shader_library.h"
 
 namespace lantern::lighting {
 
-class BaselineIntegrator {
+class BaselineIntegrator final : public Integrator {
  public:
   BaselineIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders);
 
-  // JIT-compiles the shader now (lavapipe compiles at first dispatch), not in a timed frame.
-  void warm_up() const { pipeline_.warm_up(); }
-
-  // Records one frame: writes width * height vec4 radiance values (row-major, top-left first)
-  // into `radiance`. `frame_constants` holds one gpu::FrameConstants.
-  void record(VkCommandBuffer cmd, const GpuScene& scene, const runtime::Buffer& frame_constants,
-              const runtime::Buffer& radiance, std::uint32_t width, std::uint32_t height,
-              std::uint32_t frame_index) const;
+  const char* name() const override { return "baseline"; }
+  void warm_up() override { pipeline_.warm_up(); }
+  // Writes every pixel of `hdr` (StorageWrite).
+  [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
+                                                        const FrameInputs& inputs,
+                                                        runtime::graph::BufferHandle hdr) override;
 
  private:
   runtime::ComputePipeline pipeline_;

@@ -1,108 +1,137 @@
-// render_offline: build and upload the scene, warm the pipeline up, run and read back N frames.
+// render_offline: World + FrameRenderer + HeadlessTarget through the render graph (offline_render.h).
 #include "lighting/integrators/offline_render.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 
 #include "engine/core/error.h"
-#include "engine/core/log.h"
-#include "lighting/integrators/baseline_integrator.h"
-#include "lighting/scene/frame_constants.h"
-#include "lighting/scene/gpu_scene.h"
-#include "lighting/scene/scene_data.h"
+#include "engine/world/world.h"
+#include "lighting/frame/frame_renderer.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/gpu_timer.h"
-#include "runtime/gpu/transfer.h"
+#include "runtime/graph/graph_executor.h"
+#include "runtime/graph/render_graph.h"
+#include "runtime/target/headless_target.h"
 
 namespace lantern::lighting {
+namespace {
 
-IntegratorKind parse_integrator(std::string_view name) {
-  if (name == "baseline") return IntegratorKind::Baseline;
-  if (name == "reference") return IntegratorKind::Reference;
-  if (name == "restir") return IntegratorKind::Restir;
-  throw InputError(
-      fmt::format("unknown integrator '{}' (expected restir, baseline or reference)", name));
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-const char* integrator_name(IntegratorKind kind) {
-  switch (kind) {
-    case IntegratorKind::Baseline:
-      return "baseline";
-    case IntegratorKind::Reference:
-      return "reference";
-    case IntegratorKind::Restir:
-      return "restir";
+// Passes that deliver the image rather than render it.
+bool is_delivery_pass(const std::string& name) {
+  return name == "frame.output" || name.rfind("target.", 0) == 0;
+}
+
+// A frozen frame: the same poses again, no motion since the previous frame, history kept.
+FrameSnapshot frozen_copy(const FrameSnapshot& s) {
+  FrameSnapshot f = s;
+  f.camera_cut = false;
+  f.prev_camera = f.camera;
+  for (SnapshotInstance& i : f.instances) i.prev_object_to_world = i.object_to_world;
+  return f;
+}
+
+}  // namespace
+
+double OfflineRenderResult::median_frame_ms() const { return median(frame_ms); }
+
+double OfflineRenderResult::median_pass_ms(const std::string& name) const {
+  std::vector<double> values;
+  for (const auto& frame : pass_ms) {
+    double sum = 0.0;
+    bool found = false;
+    for (const auto& [pass, ms] : frame) {
+      if (pass == name) {
+        sum += ms;
+        found = true;
+      }
+    }
+    if (found) values.push_back(sum);
   }
-  return "?";
-}
-
-void require_implemented(IntegratorKind kind) {
-  if (kind != IntegratorKind::Baseline) {
-    throw InputError(fmt::format("integrator '{}' is not implemented yet (use baseline)",
-                                 integrator_name(kind)));
-  }
-}
-
-double OfflineRenderResult::median_frame_ms() const {
-  if (frame_ms.empty()) return 0.0;
-  std::vector<double> sorted = frame_ms;
-  std::sort(sorted.begin(), sorted.end());
-  const std::size_t n = sorted.size();
-  return n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  return median(values);
 }
 
 OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibrary& shaders,
                                    const Level& level, const OfflineRenderRequest& request) {
-  require_implemented(request.integrator);
+  return render_offline(device, shaders, std::make_shared<const Level>(level), request);
+}
+
+OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                                   std::shared_ptr<const Level> level,
+                                   const OfflineRenderRequest& request) {
+  using Clock = std::chrono::steady_clock;
   if (request.width == 0 || request.height == 0 || request.frames == 0) {
     throw InputError(fmt::format("render size {}x{} and frame count {} must be positive",
                                  request.width, request.height, request.frames));
   }
+  std::unique_ptr<Integrator> integrator = make_integrator(device, shaders, request.integrator);
+  World world(level, {.threads = 1,
+                      .seed = request.seed,
+                      .fixed_dt = 1.0 / 60.0,
+                      .aspect = static_cast<float>(request.width) /
+                                static_cast<float>(request.height)});
+  FrameRenderer renderer(device, shaders, level, std::move(integrator), request.width,
+                         request.height, request.seed);
+  renderer.warm_up();
+  runtime::HeadlessTarget target(device, {.width = request.width, .height = request.height});
+  runtime::graph::RenderGraph graph;
+  runtime::graph::GraphExecutor executor(device);
+  runtime::GpuTimer timer(device, 256);
 
-  const SceneData scene = build_scene_data(level);
-  const GpuScene gpu_scene(device, scene);
-  log::debug("scene: {} instances, {} BVH triangles, {} lights ({} emissive triangles), {:.1f} MiB",
-            scene.instances.size(), scene.bvh.triangles().size(), scene.lights.lights().size(),
-            scene.emissive_triangles, static_cast<double>(gpu_scene.bytes()) / (1024.0 * 1024.0));
-
-  BaselineIntegrator baseline(device, shaders);
-  baseline.warm_up();
-
-  const FrameCounts counts{gpu_scene.light_count(), gpu_scene.instance_count(),
-                           scene.emissive_triangles};
-  const gpu::FrameConstants constants =
-      make_frame_constants(level.camera, request.width, request.height, 0, request.seed, counts);
-  runtime::Buffer constants_buffer(device, {.size = sizeof(gpu::FrameConstants),
-                                            .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                            .memory = runtime::MemoryUsage::DeviceLocal,
-                                            .name = "frame.constants"});
-  runtime::upload_buffer(device, constants_buffer,
-                         std::span<const gpu::FrameConstants>(&constants, 1));
-  const std::size_t pixel_count = std::size_t{request.width} * request.height;
-  runtime::Buffer radiance(device, {.size = pixel_count * 4 * sizeof(float),
-                                    .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                    .memory = runtime::MemoryUsage::DeviceLocal,
-                                    .name = "integrators.baseline.radiance"});
+  for (std::uint32_t k = 0; k < request.first_frame; ++k) world.step();
+  if (request.first_frame > 0) world.request_camera_cut();
 
   OfflineRenderResult result;
-  runtime::GpuTimer timer(device);
+  const std::size_t pixel_count = std::size_t{request.width} * request.height;
   std::vector<double> sum;  // mean in double precision
   if (request.average) sum.assign(pixel_count * 4, 0.0);
+  std::shared_ptr<const FrameSnapshot> snapshot;
   for (std::uint32_t frame = 0; frame < request.frames; ++frame) {
-    device.submit_and_wait([&](VkCommandBuffer cmd) {
-      timer.reset(cmd);
-      auto scope = timer.scope(cmd, "integrators.baseline");
-      baseline.record(cmd, gpu_scene, constants_buffer, radiance, request.width, request.height,
-                      frame);
-    });
-    result.frame_ms.push_back(timer.resolve().at(0).ms);
-    std::vector<float> pixels = runtime::read_buffer<float>(device, radiance);
+    const auto start = Clock::now();
+    if (request.animate || frame == 0) {
+      world.step();
+      snapshot = world.latest();
+    } else if (frame == 1) {
+      snapshot = std::make_shared<const FrameSnapshot>(frozen_copy(*snapshot));
+    }
+    const auto target_frame = target.begin_frame();
+    if (!target_frame) throw RuntimeError("render: the headless target gave no frame");
+    timer.reset(target_frame->cmd);
+    graph.begin_frame();
+    const runtime::graph::BufferHandle hdr = renderer.add_frame(graph, *snapshot);
+    result.scene_update_ms.push_back(renderer.scene().last_update().cpu_ms);
+    const runtime::graph::ImageHandle output = renderer.add_output_pass(
+        graph, hdr, target.import_output(graph, *target_frame), 0.0f);
+    target.add_delivery(graph, *target_frame, output);
+    graph.bake(executor.compile_options());
+    executor.record(graph, target_frame->cmd, &timer);
+    graph.end_frame();
+    target.end_frame(*target_frame);
+    result.frame_wall_ms.push_back(
+        std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+
+    std::vector<std::pair<std::string, double>> passes;
+    double gpu_ms = 0.0;
+    for (const runtime::GpuTimer::Result& r : timer.resolve()) {
+      if (r.depth != 0) continue;
+      passes.emplace_back(r.name, r.ms);
+      if (!is_delivery_pass(r.name)) gpu_ms += r.ms;
+    }
+    result.frame_ms.push_back(gpu_ms);
+    result.pass_ms.push_back(std::move(passes));
+
+    runtime::ImageRGBA32F image = target.read_output();
     if (request.average) {
-      for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += pixels[i];
+      for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += image.pixels[i];
     } else {
-      runtime::ImageRGBA32F image(request.width, request.height);
-      image.pixels = std::move(pixels);
       result.images.push_back(std::move(image));
     }
   }

@@ -1,13 +1,18 @@
-// Headless rendering of a level with a chosen integrator: N frames on the level's fixed camera,
-// read back as linear radiance images (one per frame, or their mean), with GPU time per frame.
-// What `lantern render` runs, and what the render tests call.
+// Headless rendering of a running level: a World steps the level (moving objects, animated
+// lights, camera paths) and a FrameRenderer renders its snapshots with the chosen integrator
+// through the render graph into a HeadlessTarget, read back as linear radiance images (one per
+// frame, or their mean), with GPU time per pass. What `lantern render` runs, and what the render
+// tests call.
 #pragma once
 
 #include <cstdint>
-#include <string_view>
+#include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/scene/level.h"
+#include "lighting/integrators/integrator_factory.h"
 #include "runtime/image/image.h"
 
 namespace lantern::runtime {
@@ -17,32 +22,40 @@ class ShaderLibrary;
 
 namespace lantern::lighting {
 
-enum class IntegratorKind { Baseline, Reference, Restir };
-
-// "baseline" | "reference" | "restir"; lantern::InputError naming the value otherwise.
-IntegratorKind parse_integrator(std::string_view name);
-const char* integrator_name(IntegratorKind kind);
-// Throws lantern::InputError for an integrator that is not implemented yet (so a command can
-// refuse before loading anything).
-void require_implemented(IntegratorKind kind);
-
 struct OfflineRenderRequest {
-  IntegratorKind integrator = IntegratorKind::Baseline;
+  IntegratorConfig integrator;
   std::uint32_t width = 640;
   std::uint32_t height = 360;
   std::uint32_t frames = 1;
+  // Steps the world this many frames without rendering first (`--frame K`); the first rendered
+  // frame is then a camera cut (no history).
+  std::uint32_t first_frame = 0;
   bool average = false;  // one image: the mean of the frames
   std::uint32_t seed = 1;
+  // true: the world steps every rendered frame (objects, lights and camera move). false: every
+  // frame renders the first rendered frame's snapshot (a static scene; only the random numbers
+  // change), the accumulation a converged image needs.
+  bool animate = true;
 };
 
 struct OfflineRenderResult {
   std::vector<runtime::ImageRGBA32F> images;  // one per frame, or one mean image
-  std::vector<double> frame_ms;               // GPU time of each frame's passes
+  // GPU ms per frame: the sum of the renderer's passes (scene.upload, gbuffer*, the
+  // integrator's); frame.output and target.readback are in pass_ms but not here.
+  std::vector<double> frame_ms;
+  std::vector<double> frame_wall_ms;  // CPU wall time per frame: update, record, submit, wait
+  std::vector<std::vector<std::pair<std::string, double>>> pass_ms;  // per frame: pass -> ms
+  std::vector<double> scene_update_ms;  // CPU cost of GpuScene::update per frame
   double median_frame_ms() const;
+  // Median GPU ms of pass `name` over the frames (0 when it never ran).
+  double median_pass_ms(const std::string& name) const;
 };
 
-// Renders `level` (static: instances at their load-time transforms, the level camera). Throws
-// lantern::InputError for integrators not implemented yet and bad sizes.
+// Renders `level`. Throws lantern::InputError for integrators not implemented yet, bad integrator
+// settings and bad sizes.
+OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                                   std::shared_ptr<const Level> level,
+                                   const OfflineRenderRequest& request);
 OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibrary& shaders,
                                    const Level& level, const OfflineRenderRequest& request);
 

@@ -29,4 +29,34 @@ gpu::FrameConstants make_frame_constants(const Camera& camera, std::uint32_t wid
   return fc;
 }
 
+glm::mat4 camera_view_proj(const SnapshotCamera& camera, std::uint32_t width,
+                           std::uint32_t height) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1u));
+  const float znear = std::max(camera.znear, 1e-6f);
+  const float zfar = camera.zfar > znear ? camera.zfar : 1e4f * znear;
+  return vulkan_perspective(camera.yfov, aspect, znear, zfar) * camera.view;
+}
+
+gpu::FrameConstants make_frame_constants(const FrameSnapshot& snapshot, std::uint32_t width,
+                                         std::uint32_t height, std::uint32_t frame_index,
+                                         std::uint32_t seed, const FrameCounts& counts,
+                                         bool history_valid) {
+  gpu::FrameConstants fc{};
+  fc.view_proj = camera_view_proj(snapshot.camera, width, height);
+  fc.inv_view_proj = glm::inverse(fc.view_proj);
+  fc.camera_position = glm::vec4(snapshot.camera.position, snapshot.camera.yfov);
+  if (history_valid) {
+    fc.prev_view_proj = camera_view_proj(snapshot.prev_camera, width, height);
+    fc.prev_camera_position = glm::vec4(snapshot.prev_camera.position, snapshot.prev_camera.yfov);
+  } else {
+    fc.prev_view_proj = fc.view_proj;
+    fc.prev_camera_position = fc.camera_position;
+  }
+  fc.frame = glm::uvec4(width, height, frame_index, seed);
+  fc.counts = glm::uvec4(counts.lights, counts.instances, counts.emissive_triangles,
+                         history_valid ? 0u : 1u);
+  fc.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  return fc;
+}
+
 }  // namespace lantern::lighting

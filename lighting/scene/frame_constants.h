@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "engine/scene/camera.h"
+#include "engine/world/frame_snapshot.h"
 #include "shared/scene.h"
 
 namespace lantern::lighting {
@@ -23,5 +24,16 @@ glm::mat4 camera_view_proj(const Camera& camera, std::uint32_t width, std::uint3
 gpu::FrameConstants make_frame_constants(const Camera& camera, std::uint32_t width,
                                          std::uint32_t height, std::uint32_t frame_index,
                                          std::uint32_t seed, const FrameCounts& counts);
+
+// World -> clip for a snapshot camera rendering width x height (same conventions as above).
+glm::mat4 camera_view_proj(const SnapshotCamera& camera, std::uint32_t width, std::uint32_t height);
+
+// Constants for a frame of a running world: the snapshot's camera and previous camera, frame
+// index and seed; `history_valid` false (first frame, camera cut, resize) sets counts.w = 1 and
+// makes the previous camera equal the current one.
+gpu::FrameConstants make_frame_constants(const FrameSnapshot& snapshot, std::uint32_t width,
+                                         std::uint32_t height, std::uint32_t frame_index,
+                                         std::uint32_t seed, const FrameCounts& counts,
+                                         bool history_valid);
 
 }  // namespace lantern::lighting

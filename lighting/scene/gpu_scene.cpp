@@ -1,68 +1,436 @@
-// scene.upload: SceneData -> device-local storage buffers (gpu_scene.h).
+// scene.upload: device buffers of the scene and their per-frame update (gpu_scene.h).
 #include "lighting/scene/gpu_scene.h"
 
-#include <span>
-#include <string>
-#include <vector>
+#include <fmt/format.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <string>
+
+#include "engine/core/error.h"
 #include "runtime/core/device.h"
+#include "runtime/gpu/pipeline.h"
 #include "runtime/gpu/transfer.h"
 
 namespace lantern::lighting {
 namespace {
 
-// A storage buffer holding `values` (one zeroed element when empty: Vulkan has no empty buffers).
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+constexpr const char* kSlotNames[GpuScene::kSlotCount] = {
+    "scene.frame_constants", "scene.vertices",      "scene.indices",
+    "scene.materials",       "scene.instances",     "scene.lights",
+    "scene.light_alias",     "scene.bvh_header",    "scene.bvh_nodes",
+    "scene.bvh_triangles",   "scene.bvh_instances", "scene.light_previous_to_current"};
+
+// Shader names of each slot (bind()).
+constexpr const char* kBindNames[GpuScene::kSlotCount] = {
+    "frame_constants", "scene_vertices",    "scene_indices",     "scene_materials",
+    "scene_instances", "scene_lights",      "light_alias",       "BvhHeaderBuffer",
+    "BvhNodeBuffer",   "BvhTriangleBuffer", "BvhInstanceBuffer", "light_previous_to_current"};
+
 template <class T>
-runtime::Buffer make_storage(runtime::Device& device, const std::vector<T>& values,
-                             const std::string& name) {
-  std::vector<T> data = values;
-  if (data.empty()) data.push_back(T{});
-  runtime::Buffer buffer(device, {.size = data.size() * sizeof(T),
-                                  .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                  .memory = runtime::MemoryUsage::DeviceLocal,
-                                  .name = name});
-  runtime::upload_buffer(device, buffer, std::span<const T>(data));
-  return buffer;
+std::span<const std::byte> bytes_of(const std::vector<T>& v) {
+  return std::as_bytes(std::span<const T>(v));
+}
+
+// How an imported scene buffer may have been used by the previous frames (conservative: any
+// stage, any access), so the first use this frame is ordered after all of them.
+constexpr runtime::graph::AccessState kAnyPriorUse{
+    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+    VK_IMAGE_LAYOUT_UNDEFINED};
+
+std::uint32_t float_bits(float f) {
+  std::uint32_t u = 0;
+  std::memcpy(&u, &f, sizeof(u));
+  return u;
 }
 
 }  // namespace
 
-GpuScene::GpuScene(runtime::Device& device, const SceneData& scene)
-    : bvh_header_(make_storage(device, std::vector{scene.bvh.header()}, "scene.bvh_header")),
-      bvh_nodes_(make_storage(device, scene.bvh.nodes(), "scene.bvh_nodes")),
-      bvh_triangles_(make_storage(device, scene.bvh.triangles(), "scene.bvh_triangles")),
-      bvh_instances_(make_storage(device, scene.bvh.instances(), "scene.bvh_instances")),
-      vertices_(make_storage(device, scene.vertices, "scene.vertices")),
-      indices_(make_storage(device, scene.indices, "scene.indices")),
-      materials_(make_storage(device, scene.materials, "scene.materials")),
-      instances_(make_storage(device, scene.instances, "scene.instances")),
-      lights_(make_storage(device, scene.lights.lights(), "scene.lights")),
-      alias_(make_storage(device, scene.lights.alias_table().entries(), "scene.light_alias")),
-      light_count_(
-          scene.lights.has_power() ? static_cast<std::uint32_t>(scene.lights.lights().size()) : 0u),
-      instance_count_(static_cast<std::uint32_t>(scene.instances.size())),
-      scene_radius_(scene.scene_radius()) {}
+GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level)
+    : device_(device), level_(std::move(level)) {
+  if (!level_) throw InputError("GpuScene: no level");
+  data_ = build_scene_data(*level_);
+  scene_radius_ = data_.scene_radius();
+  for (gpu::GpuInstance& g : data_.instances) g.bvh.z = float_bits(1.0f);
+
+  // Emitters in the order build_scene_data put them in the light table: emissive instances'
+  // triangles in instance order, then analytic lights.
+  emitters_ = extract_light_emitters(*level_, scene_radius_);
+  std::uint32_t first = 0;
+  for (std::size_t i = 0; i < level_->instances.size(); ++i) {
+    const Instance& inst = level_->instances[i];
+    const Material& material = level_->materials.at(inst.material);
+    if (!material.emissive()) continue;
+    EmissiveInstance e;
+    e.instance = static_cast<std::uint32_t>(i);
+    e.first = first;
+    e.count = static_cast<std::uint32_t>(level_->meshes.at(inst.mesh).triangle_count());
+    e.world = inst.world;
+    e.radiance = material.emitted_radiance();
+    first += e.count;
+    emissive_.push_back(e);
+  }
+  triangle_emitters_ = first;
+  for (std::size_t i = 0; i < level_->instances.size(); ++i) {
+    bvh_descs_.push_back(
+        {level_->instances[i].mesh, level_->instances[i].world, static_cast<std::uint32_t>(i)});
+  }
+  remap_.resize(data_.lights.lights().size());
+  for (std::uint32_t i = 0; i < remap_.size(); ++i) remap_[i] = i;
+  constants_.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+
+  for (std::uint32_t s = 0; s < kSlotCount; ++s) {
+    arrays_[s].read_only =
+        s == kVertices || s == kIndices || s == kMaterials || s == kBvhTriangles;
+    ensure_capacity(static_cast<Slot>(s));
+    // Everything starts uploaded (blocking, setup time); per-frame changes go through the graph.
+    std::vector<std::byte> bytes(arrays_[s].buffer.size());  // zero-filled past the array
+    const std::span<const std::byte> src = cpu_bytes(static_cast<Slot>(s));
+    std::copy(src.begin(), src.end(), bytes.begin());
+    runtime::upload_buffer(device_, arrays_[s].buffer, std::span<const std::byte>(bytes));
+    arrays_[s].dirty_begin = arrays_[s].dirty_end = 0;
+  }
+}
+
+GpuScene::~GpuScene() = default;
+
+std::span<const std::byte> GpuScene::cpu_bytes(Slot slot) const {
+  switch (slot) {
+    case kFrameConstants:
+      return std::as_bytes(std::span<const gpu::FrameConstants>(&constants_, 1));
+    case kVertices:
+      return bytes_of(data_.vertices);
+    case kIndices:
+      return bytes_of(data_.indices);
+    case kMaterials:
+      return bytes_of(data_.materials);
+    case kInstances:
+      return bytes_of(data_.instances);
+    case kLights:
+      return bytes_of(data_.lights.lights());
+    case kAlias:
+      return bytes_of(data_.lights.alias_table().entries());
+    case kBvhHeader:
+      return std::as_bytes(std::span<const gpu::BvhSceneHeader>(&data_.bvh.header(), 1));
+    case kBvhNodes:
+      return bytes_of(data_.bvh.nodes());
+    case kBvhTriangles:
+      return bytes_of(data_.bvh.triangles());
+    case kBvhInstances:
+      return bytes_of(data_.bvh.instances());
+    case kRemap:
+      return bytes_of(remap_);
+    case kSlotCount:
+      break;
+  }
+  return {};
+}
+
+void GpuScene::mark_dirty(Slot slot, std::uint64_t begin, std::uint64_t end) {
+  DeviceArray& a = arrays_[slot];
+  if (begin >= end) return;
+  if (a.dirty_begin >= a.dirty_end) {
+    a.dirty_begin = begin;
+    a.dirty_end = end;
+  } else {
+    a.dirty_begin = std::min(a.dirty_begin, begin);
+    a.dirty_end = std::max(a.dirty_end, end);
+  }
+}
+
+void GpuScene::mark_all_dirty(Slot slot) { mark_dirty(slot, 0, cpu_bytes(slot).size()); }
+
+void GpuScene::ensure_capacity(Slot slot) {
+  DeviceArray& a = arrays_[slot];
+  // Never empty: Vulkan has no zero-sized buffers (an empty array reads as one zeroed element).
+  const VkDeviceSize needed = std::max<VkDeviceSize>(cpu_bytes(slot).size(), 16);
+  if (a.buffer && a.buffer.size() >= needed) return;
+  VkDeviceSize size = needed;
+  if (a.buffer) {
+    size = std::max<VkDeviceSize>(needed, a.buffer.size() + a.buffer.size() / 2);
+    retired_.emplace_back(uploads_, std::move(a.buffer));
+  }
+  a.buffer = runtime::Buffer(device_, {.size = size,
+                                       .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                       .memory = runtime::MemoryUsage::DeviceLocal,
+                                       .name = kSlotNames[slot]});
+  // A fresh buffer holds nothing: the next scene.upload copies the whole array.
+  mark_all_dirty(slot);
+}
+
+void GpuScene::update(const FrameSnapshot& snapshot) {
+  const auto start = Clock::now();
+  stats_ = {};
+  update_instances(snapshot);
+  stats_.instance_ms = ms_since(start);
+  const auto lights_start = Clock::now();
+  update_lights(snapshot);
+  stats_.light_ms = ms_since(lights_start);
+  stats_.cpu_ms = ms_since(start);
+}
+
+void GpuScene::update_instances(const FrameSnapshot& snapshot) {
+  const std::size_t count = data_.instances.size();
+  bool moved = false;
+  std::uint64_t lo = ~0ull;
+  std::uint64_t hi = 0;
+  for (const SnapshotInstance& s : snapshot.instances) {
+    if (s.stable_id >= count || s.mesh != level_->instances[s.stable_id].mesh) {
+      throw InputError(fmt::format(
+          "frame {}: snapshot instance {} (mesh {}) is not an instance of level '{}' ({} "
+          "instances)",
+          snapshot.frame_index, s.stable_id, s.mesh, level_->name, count));
+    }
+    if (s.material >= data_.materials.size()) {
+      throw InputError(fmt::format("frame {}: snapshot instance {} uses material {} of {}",
+                                   snapshot.frame_index, s.stable_id, s.material,
+                                   data_.materials.size()));
+    }
+    gpu::GpuInstance& g = data_.instances[s.stable_id];
+    bool changed = false;
+    if (g.object_to_world != s.object_to_world) {
+      g.object_to_world = s.object_to_world;
+      g.world_to_object = glm::inverse(s.object_to_world);
+      bvh_descs_[s.stable_id].object_to_world = s.object_to_world;
+      moved = true;
+      ++stats_.moved_instances;
+      changed = true;
+    }
+    if (g.prev_object_to_world != s.prev_object_to_world) {
+      g.prev_object_to_world = s.prev_object_to_world;
+      changed = true;
+    }
+    const std::uint32_t scale = float_bits(s.emission_scale);
+    if (g.geometry.x != s.material || g.bvh.z != scale) {
+      g.geometry.x = s.material;
+      g.bvh.z = scale;
+      changed = true;
+    }
+    if (changed) {
+      lo = std::min<std::uint64_t>(lo, s.stable_id);
+      hi = std::max<std::uint64_t>(hi, s.stable_id + 1);
+    }
+  }
+  if (lo < hi) {
+    mark_dirty(kInstances, lo * sizeof(gpu::GpuInstance), hi * sizeof(gpu::GpuInstance));
+  }
+  if (moved) {
+    data_.bvh.set_instances(bvh_descs_);
+    stats_.tlas_rebuilt = true;
+    ensure_capacity(kBvhNodes);
+    const gpu::BvhSceneHeader& h = data_.bvh.header();
+    mark_dirty(kBvhNodes, std::uint64_t{h.tlas_node_offset} * sizeof(gpu::BvhNode),
+               data_.bvh.nodes().size() * sizeof(gpu::BvhNode));
+    mark_all_dirty(kBvhHeader);
+    ensure_capacity(kBvhInstances);
+    mark_all_dirty(kBvhInstances);
+  }
+}
+
+void GpuScene::update_lights(const FrameSnapshot& snapshot) {
+  bool changed = false;
+  // Emissive triangles: re-extract the instances that moved or changed emission scale.
+  std::vector<LightEmitter> scratch;
+  for (EmissiveInstance& e : emissive_) {
+    const gpu::GpuInstance& g = data_.instances[e.instance];
+    float scale = 0.0f;
+    std::memcpy(&scale, &g.bvh.z, sizeof(scale));
+    if (g.object_to_world == e.world && scale == e.scale) continue;
+    e.world = g.object_to_world;
+    e.scale = scale;
+    scratch.clear();
+    const Mesh& mesh = level_->meshes[level_->instances[e.instance].mesh];
+    append_triangle_emitters(mesh, e.world, e.radiance * std::max(scale, 0.0f), e.instance,
+                             scratch);
+    std::copy(scratch.begin(), scratch.end(), emitters_.begin() + e.first);
+    ++stats_.reextracted_instances;
+    stats_.reextracted_triangles += e.count;
+    changed = true;
+  }
+  // Analytic lights: the snapshot's, in stable-id order.
+  std::vector<LightEmitter> analytic;
+  analytic.reserve(snapshot.lights.size());
+  for (const SnapshotLight& l : snapshot.lights) {
+    analytic.push_back(analytic_emitter(l.stable_id, static_cast<LightType>(l.type), l.position,
+                                        l.direction, l.color * l.intensity, l.inner_cone,
+                                        l.outer_cone, l.range, scene_radius_));
+  }
+  const std::size_t old_analytic = emitters_.size() - triangle_emitters_;
+  if (analytic.size() != old_analytic ||
+      !std::equal(analytic.begin(), analytic.end(), emitters_.begin() + triangle_emitters_,
+                  [](const LightEmitter& a, const LightEmitter& b) {
+                    return a.stable_id == b.stable_id && a.power == b.power &&
+                           std::memcmp(&a.light, &b.light, sizeof(a.light)) == 0;
+                  })) {
+    emitters_.resize(triangle_emitters_);
+    emitters_.insert(emitters_.end(), analytic.begin(), analytic.end());
+    changed = true;
+  }
+
+  const std::vector<std::uint32_t> old_remap = remap_;
+  if (changed) {
+    stats_.lights_changed = true;
+    stats_.alias_rebuilt = data_.lights.update(emitters_);
+    remap_ = data_.lights.previous_to_current();
+    ensure_capacity(kLights);
+    mark_all_dirty(kLights);
+    if (stats_.alias_rebuilt) {
+      ensure_capacity(kAlias);
+      mark_all_dirty(kAlias);
+    }
+  } else {
+    // Nothing changed: every light keeps its index.
+    remap_.resize(data_.lights.lights().size());
+    for (std::uint32_t i = 0; i < remap_.size(); ++i) remap_[i] = i;
+  }
+  if (remap_ != old_remap) {
+    ensure_capacity(kRemap);
+    mark_all_dirty(kRemap);
+  }
+}
+
+void GpuScene::set_frame_constants(const gpu::FrameConstants& constants) {
+  constants_ = constants;
+  mark_all_dirty(kFrameConstants);
+}
+
+SceneHandles GpuScene::import(runtime::graph::RenderGraph& graph) const {
+  auto imp = [&](Slot s) {
+    const DeviceArray& a = arrays_[s];
+    return graph.import_buffer(kSlotNames[s], a.buffer.handle(), {a.buffer.size()},
+                               {.read_only = a.read_only, .initial = kAnyPriorUse});
+  };
+  SceneHandles h;
+  h.frame_constants = imp(kFrameConstants);
+  h.vertices = imp(kVertices);
+  h.indices = imp(kIndices);
+  h.materials = imp(kMaterials);
+  h.instances = imp(kInstances);
+  h.lights = imp(kLights);
+  h.alias = imp(kAlias);
+  h.bvh_header = imp(kBvhHeader);
+  h.bvh_nodes = imp(kBvhNodes);
+  h.bvh_triangles = imp(kBvhTriangles);
+  h.bvh_instances = imp(kBvhInstances);
+  h.light_previous_to_current = imp(kRemap);
+  return h;
+}
+
+SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
+                                       const SceneHandles& imported) {
+  // Release buffers retired long enough ago that no frame in flight can still read them.
+  while (!retired_.empty() && uploads_ >= retired_.front().first + kRetireFrames) {
+    retired_.pop_front();
+  }
+
+  // Stage this frame's changes into the ring slot no frame in flight uses.
+  struct Copy {
+    Slot slot;
+    VkBufferCopy region;
+  };
+  std::vector<Copy> copies;
+  std::uint64_t total = 0;
+  for (std::uint32_t s = 0; s < kSlotCount; ++s) {
+    const DeviceArray& a = arrays_[s];
+    if (a.dirty_end > a.dirty_begin) total += ((a.dirty_end - a.dirty_begin + 15) / 16) * 16;
+  }
+  runtime::Buffer& staging = staging_[uploads_ % kStagingSlots];
+  if (total > 0 && (!staging || staging.size() < total)) {
+    staging = runtime::Buffer(
+        device_, {.size = std::max<VkDeviceSize>(total + total / 4, 4096),
+                  .usage = 0,
+                  .memory = runtime::MemoryUsage::Upload,
+                  .name = fmt::format("scene.staging.{}", uploads_ % kStagingSlots)});
+  }
+  std::uint64_t offset = 0;
+  for (std::uint32_t s = 0; s < kSlotCount; ++s) {
+    DeviceArray& a = arrays_[s];
+    if (a.dirty_end <= a.dirty_begin) continue;
+    const std::span<const std::byte> src = cpu_bytes(static_cast<Slot>(s));
+    const std::uint64_t end = std::min<std::uint64_t>(a.dirty_end, src.size());
+    if (a.dirty_begin < end) {
+      const std::uint64_t n = end - a.dirty_begin;
+      std::memcpy(staging.mapped() + offset, src.data() + a.dirty_begin, n);
+      copies.push_back({static_cast<Slot>(s), VkBufferCopy{offset, a.dirty_begin, n}});
+      offset += ((n + 15) / 16) * 16;
+    }
+    a.dirty_begin = a.dirty_end = 0;
+  }
+  stats_.upload_bytes = offset;
+  ++uploads_;
+
+  SceneHandles out = imported;
+  if (copies.empty()) return out;
+  auto handle_of = [](SceneHandles& h, Slot s) -> runtime::graph::BufferHandle& {
+    switch (s) {
+      case kFrameConstants: return h.frame_constants;
+      case kVertices: return h.vertices;
+      case kIndices: return h.indices;
+      case kMaterials: return h.materials;
+      case kInstances: return h.instances;
+      case kLights: return h.lights;
+      case kAlias: return h.alias;
+      case kBvhHeader: return h.bvh_header;
+      case kBvhNodes: return h.bvh_nodes;
+      case kBvhTriangles: return h.bvh_triangles;
+      case kBvhInstances: return h.bvh_instances;
+      case kRemap:
+      case kSlotCount: break;
+    }
+    return h.light_previous_to_current;
+  };
+
+  const runtime::graph::BufferHandle source = graph.import_buffer(
+      "scene.staging", staging.handle(), {staging.size()},
+      {.read_only = true,
+       .initial = {VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT,
+                   VK_IMAGE_LAYOUT_UNDEFINED}});
+  struct Data {
+    runtime::graph::BufferHandle source;
+    std::vector<std::pair<runtime::graph::BufferHandle, VkBufferCopy>> copies;
+  };
+  graph.add_pass<Data>(
+      "scene.upload", runtime::graph::PassKind::Transfer,
+      [&](runtime::graph::PassBuilder& b, Data& d) {
+        d.source = source;
+        b.read(source, runtime::graph::Access::TransferSrc);
+        for (const Copy& c : copies) {
+          runtime::graph::BufferHandle& h = handle_of(out, c.slot);  // one copy per buffer
+          h = b.write(h, runtime::graph::Access::TransferDst);
+          d.copies.emplace_back(h, c.region);
+        }
+      },
+      [](runtime::graph::PassContext& ctx, const Data& d) {
+        const VkBuffer src = ctx.buffer(d.source);
+        for (const auto& [h, region] : d.copies) {
+          vkCmdCopyBuffer(ctx.cmd(), src, ctx.buffer(h), 1, &region);
+        }
+      });
+  return out;
+}
 
 void GpuScene::bind(runtime::Bindings& bindings) const {
-  bindings.buffer("BvhHeaderBuffer", bvh_header_)
-      .buffer("BvhNodeBuffer", bvh_nodes_)
-      .buffer("BvhTriangleBuffer", bvh_triangles_)
-      .buffer("BvhInstanceBuffer", bvh_instances_)
-      .buffer("scene_vertices", vertices_)
-      .buffer("scene_indices", indices_)
-      .buffer("scene_materials", materials_)
-      .buffer("scene_instances", instances_)
-      .buffer("scene_lights", lights_)
-      .buffer("light_alias", alias_);
+  for (std::uint32_t s = 0; s < kSlotCount; ++s) {
+    if (bindings.pipeline().find_binding(kBindNames[s]) != nullptr) {
+      bindings.buffer(kBindNames[s], arrays_[s].buffer);
+    }
+  }
+}
+
+std::uint32_t GpuScene::light_count() const {
+  return data_.lights.has_power() ? static_cast<std::uint32_t>(data_.lights.lights().size()) : 0u;
 }
 
 std::uint64_t GpuScene::bytes() const {
   std::uint64_t total = 0;
-  for (const runtime::Buffer* b :
-       {&bvh_header_, &bvh_nodes_, &bvh_triangles_, &bvh_instances_, &vertices_, &indices_,
-        &materials_, &instances_, &lights_, &alias_}) {
-    total += b->size();
-  }
+  for (const DeviceArray& a : arrays_) total += a.buffer.size();
   return total;
 }
 

@@ -25,24 +25,67 @@ gpu::GpuMaterial to_gpu_material(const Material& m) {
   return g;
 }
 
-// World-space triangle t of a mesh under `world`, wound so that cross(p1 - p0, p2 - p0) is the
-// front normal (glTF: a negative determinant mirrors the winding).
-void world_triangle(const Mesh& mesh, const glm::mat4& world, std::size_t t, glm::vec3 p[3]) {
-  for (int k = 0; k < 3; ++k) {
-    const glm::vec3& v = mesh.positions[mesh.indices[3 * t + static_cast<std::size_t>(k)]];
-    p[k] = glm::vec3(world * glm::vec4(v, 1.0f));
-  }
-  if (glm::determinant(glm::mat3(world)) < 0.0f) std::swap(p[1], p[2]);
-}
-
-float light_luminance(const Light& light) {
-  return gpu::luminance(light.color * light.intensity);
-}
-
 }  // namespace
 
 float SceneData::scene_radius() const {
   return std::max(0.5f * glm::length(bounds_max - bounds_min), 1e-3f);
+}
+
+void append_triangle_emitters(const Mesh& mesh, const glm::mat4& world, const glm::vec3& radiance,
+                              std::uint32_t instance, std::vector<LightEmitter>& out) {
+  const float luminance = gpu::luminance(radiance);
+  const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
+  const std::size_t count = mesh.triangle_count();
+  for (std::size_t t = 0; t < count; ++t) {
+    glm::vec3 p[3];
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3& v = mesh.positions[mesh.indices[3 * t + static_cast<std::size_t>(k)]];
+      p[k] = glm::vec3(world * glm::vec4(v, 1.0f));
+    }
+    if (mirrored) std::swap(p[1], p[2]);
+    const float area = gpu::triangle_area(p[0], p[1], p[2]);
+    LightEmitter e;
+    e.stable_id = (static_cast<std::uint64_t>(instance) << 32) | t;
+    e.light.p0 = glm::vec4(p[0], glm::uintBitsToFloat(gpu::kLightTriangle));
+    e.light.p1 = glm::vec4(p[1] - p[0], 0.0f);
+    e.light.p2 = glm::vec4(p[2] - p[0], 0.0f);
+    e.light.radiance = glm::vec4(radiance, 0.0f);
+    e.power = gpu::finite_positive_or_zero(luminance * area * gpu::kPi);
+    out.push_back(e);
+  }
+}
+
+LightEmitter analytic_emitter(std::uint32_t index, LightType type, const glm::vec3& position,
+                              const glm::vec3& direction, const glm::vec3& intensity,
+                              float inner_cone, float outer_cone, float range,
+                              float scene_radius) {
+  LightEmitter e;
+  e.stable_id = kAnalyticLightIdBase | index;
+  e.light.radiance = glm::vec4(intensity, 0.0f);
+  const float len = glm::length(direction);
+  const glm::vec3 dir = len > 0.0f ? direction / len : glm::vec3(0.0f, 0.0f, -1.0f);
+  const float luminance = gpu::luminance(intensity);
+  switch (type) {
+    case LightType::Point:
+      e.light.p0 = glm::vec4(position, glm::uintBitsToFloat(gpu::kLightPoint));
+      e.light.p2 = glm::vec4(0.0f, 0.0f, 0.0f, std::max(range, 0.0f));
+      e.power = 4.0f * gpu::kPi * luminance;
+      break;
+    case LightType::Spot:
+      e.light.p0 = glm::vec4(position, glm::uintBitsToFloat(gpu::kLightSpot));
+      e.light.p1 = glm::vec4(dir, 0.0f);
+      e.light.p2 =
+          glm::vec4(std::cos(outer_cone), std::cos(inner_cone), 0.0f, std::max(range, 0.0f));
+      e.power = 4.0f * gpu::kPi * luminance;
+      break;
+    case LightType::Directional:
+      e.light.p0 = glm::vec4(0.0f, 0.0f, 0.0f, glm::uintBitsToFloat(gpu::kLightDirectional));
+      e.light.p1 = glm::vec4(dir, 0.0f);
+      e.power = luminance * gpu::kPi * scene_radius * scene_radius;
+      break;
+  }
+  e.power = gpu::finite_positive_or_zero(e.power);
+  return e;
 }
 
 std::vector<LightEmitter> extract_light_emitters(const Level& level, float scene_radius) {
@@ -51,47 +94,15 @@ std::vector<LightEmitter> extract_light_emitters(const Level& level, float scene
     const Instance& inst = level.instances[i];
     const Material& material = level.materials.at(inst.material);
     if (!material.emissive()) continue;
-    const Mesh& mesh = level.meshes.at(inst.mesh);
-    const glm::vec3 radiance = material.emitted_radiance();
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-      glm::vec3 p[3];
-      world_triangle(mesh, inst.world, t, p);
-      const float area = gpu::triangle_area(p[0], p[1], p[2]);
-      LightEmitter e;
-      e.stable_id = (static_cast<std::uint64_t>(i) << 32) | t;
-      e.light.p0 = glm::vec4(p[0], glm::uintBitsToFloat(gpu::kLightTriangle));
-      e.light.p1 = glm::vec4(p[1] - p[0], 0.0f);
-      e.light.p2 = glm::vec4(p[2] - p[0], 0.0f);
-      e.light.radiance = glm::vec4(radiance, 0.0f);
-      e.power = gpu::finite_positive_or_zero(gpu::luminance(radiance) * area * gpu::kPi);
-      emitters.push_back(e);
-    }
+    append_triangle_emitters(level.meshes.at(inst.mesh), inst.world, material.emitted_radiance(),
+                             static_cast<std::uint32_t>(i), emitters);
   }
   for (std::size_t k = 0; k < level.lights.size(); ++k) {
     const Light& light = level.lights[k];
-    LightEmitter e;
-    e.stable_id = kAnalyticLightIdBase | k;
-    e.light.radiance = glm::vec4(light.color * light.intensity, 0.0f);
-    const glm::vec3 dir = glm::normalize(light.direction());
-    switch (light.type) {
-      case LightType::Point:
-        e.light.p0 = glm::vec4(light.position, glm::uintBitsToFloat(gpu::kLightPoint));
-        e.power = 4.0f * gpu::kPi * light_luminance(light);
-        break;
-      case LightType::Spot:
-        e.light.p0 = glm::vec4(light.position, glm::uintBitsToFloat(gpu::kLightSpot));
-        e.light.p1 = glm::vec4(dir, 0.0f);
-        e.light.p2 = glm::vec4(std::cos(light.outer_cone), std::cos(light.inner_cone), 0.0f, 0.0f);
-        e.power = 4.0f * gpu::kPi * light_luminance(light);
-        break;
-      case LightType::Directional:
-        e.light.p0 = glm::vec4(0.0f, 0.0f, 0.0f, glm::uintBitsToFloat(gpu::kLightDirectional));
-        e.light.p1 = glm::vec4(dir, 0.0f);
-        e.power = light_luminance(light) * gpu::kPi * scene_radius * scene_radius;
-        break;
-    }
-    e.power = gpu::finite_positive_or_zero(e.power);
-    emitters.push_back(e);
+    emitters.push_back(analytic_emitter(static_cast<std::uint32_t>(k), light.type, light.position,
+                                        light.direction(), light.color * light.intensity,
+                                        light.inner_cone, light.outer_cone, light.range,
+                                        scene_radius));
   }
   return emitters;
 }

@@ -37,6 +37,17 @@ struct SceneData {
 // point/spot: 4 pi luminance(I)) or, for directional lights, luminance(E) * pi * scene_radius^2.
 std::vector<LightEmitter> extract_light_emitters(const Level& level, float scene_radius);
 
+// The emissive triangles of instance `instance` (a Level instance index) placed by `world`, with
+// emitted radiance `radiance`, appended to `out` in triangle order (ids as above).
+void append_triangle_emitters(const Mesh& mesh, const glm::mat4& world, const glm::vec3& radiance,
+                              std::uint32_t instance, std::vector<LightEmitter>& out);
+
+// Analytic light `index` of the level (point, spot or directional) as a light record:
+// `intensity` = colour x intensity; spot cones in radians; `range` (0 = none) goes to p2.w.
+LightEmitter analytic_emitter(std::uint32_t index, LightType type, const glm::vec3& position,
+                              const glm::vec3& direction, const glm::vec3& intensity,
+                              float inner_cone, float outer_cone, float range, float scene_radius);
+
 // Builds everything; throws lantern::InputError on bad level data (bad indices, singular
 // transforms, out-of-range material or mesh references).
 SceneData build_scene_data(const Level& level);

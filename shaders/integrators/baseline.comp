@@ -1,8 +1,9 @@
-// integrators.baseline: direct lighting with one light sample per pixel. Camera ray through the
-// pixel centre, closest hit, emission of a front-facing emitter seen directly, plus one light
-// drawn from the power alias table (solid-angle pdf for triangles), one shadow ray, BRDF.
-// Reads: scene buffers (lighting/scene/gpu_scene.h), frame constants. Writes: radiance (rgba32f
-// per pixel, row-major from the top-left; the host averages frames). History: none.
+// integrators.baseline: direct lighting with one light sample per pixel. The primary hit comes
+// from the G-buffer (position, facing normals, material id, emission seen from the camera); one
+// light drawn from the power alias table (solid-angle pdf for triangles), one shadow ray, BRDF.
+// Reads: G-buffer images (shared/gbuffer.h), scene materials, lights, alias table, BVH, frame
+// constants. Writes: radiance (rgba32f per pixel, row-major from the top-left; the host averages
+// frames). History: none.
 // Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride): lavapipe hands each CPU
 // thread a contiguous range of workgroups, so without the shuffle the thread that gets the sky
 // idles while the other traces the geometry (shared/PLATFORM.md, 1.45-1.6x on ray casting).
@@ -15,6 +16,7 @@
 #include "shared/brdf.h"
 #include "shared/color.h"
 #include "shared/common_math.h"
+#include "shared/gbuffer.h"
 #include "shared/lights.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
@@ -23,46 +25,16 @@
 layout(local_size_x = kBaselineTileSize, local_size_y = kBaselineTileSize) in;
 
 layout(std430, binding = 4) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
-layout(std430, binding = 5) readonly buffer VertexBuffer { GpuVertex v[]; } scene_vertices;
-layout(std430, binding = 6) readonly buffer IndexBuffer { uint i[]; } scene_indices;
 layout(std430, binding = 7) readonly buffer MaterialBuffer { GpuMaterial m[]; } scene_materials;
-layout(std430, binding = 8) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
 layout(std430, binding = 9) readonly buffer LightBuffer { GpuLight l[]; } scene_lights;
 layout(std430, binding = 10) readonly buffer AliasBuffer { AliasEntry e[]; } light_alias;
 layout(std430, binding = 11) writeonly buffer RadianceBuffer { vec4 pixels[]; } radiance;
+layout(binding = 12, rgba32f) uniform readonly image2D gbuffer_position;
+layout(binding = 13, rgba32f) uniform readonly image2D gbuffer_normal;
+layout(binding = 14, rgba32f) uniform readonly image2D gbuffer_emission_metallic;
+layout(binding = 15, rgba32ui) uniform readonly uimage2D gbuffer_ids;
 
 layout(push_constant) uniform Push { BaselinePush push; };
-
-struct SurfaceHit {
-  vec3 position;
-  vec3 geometric_normal;  // front-face normal (winding, mirrored by a negative determinant)
-  vec3 shading_normal;    // interpolated vertex normal (may be zero: then the geometric one)
-  uint material;
-};
-
-SurfaceHit surface_at(BvhHit hit) {
-  GpuInstance inst = scene_instances.i[hit.instance];
-  uint base = inst.geometry.y + 3u * hit.primitive;
-  uint first_vertex = inst.geometry.w;
-  GpuVertex v0 = scene_vertices.v[first_vertex + scene_indices.i[base]];
-  GpuVertex v1 = scene_vertices.v[first_vertex + scene_indices.i[base + 1u]];
-  GpuVertex v2 = scene_vertices.v[first_vertex + scene_indices.i[base + 2u]];
-  mat3 linear = mat3(inst.object_to_world);
-  vec3 p0 = (inst.object_to_world * vec4(v0.position_u.xyz, 1.0)).xyz;
-  vec3 e1 = linear * (v1.position_u.xyz - v0.position_u.xyz);
-  vec3 e2 = linear * (v2.position_u.xyz - v0.position_u.xyz);
-  SurfaceHit s;
-  s.position = p0 + hit.u * e1 + hit.v * e2;
-  vec3 ng = cross(e1, e2);
-  if (determinant(linear) < 0.0) ng = -ng;
-  s.geometric_normal = normalize(ng);
-  vec3 n_object = (1.0 - hit.u - hit.v) * v0.normal_v.xyz + hit.u * v1.normal_v.xyz +
-                  hit.v * v2.normal_v.xyz;
-  vec3 n_world = transpose(mat3(inst.world_to_object)) * n_object;
-  s.shading_normal = dot(n_world, n_world) > 0.0 ? normalize(n_world) : s.geometric_normal;
-  s.material = inst.geometry.x;
-  return s;
-}
 
 // One light sample: returns the estimate f * L * cos / pdf (visibility included) towards light
 // `index`, drawn with probability select_pdf.
@@ -93,7 +65,7 @@ vec3 sample_light(uint index, float select_pdf, vec3 x, vec3 n, vec3 ng, vec3 v,
     target = light.p0.xyz;
     vec3 to_light = target - x;
     float dist2 = dot(to_light, to_light);
-    float falloff = punctual_distance_falloff(dist2, 0.0);
+    float falloff = punctual_distance_falloff(dist2, light.p2.w);  // p2.w: range (0 = none)
     if (kind == kLightSpot) {
       float cos_theta = dot(normalize(light.p1.xyz), -to_light * inversesqrt(max(dist2, 1e-30)));
       falloff *= spot_cone_falloff(cos_theta, light.p2.x, light.p2.y);
@@ -112,25 +84,18 @@ vec3 sample_light(uint index, float select_pdf, vec3 x, vec3 n, vec3 ng, vec3 v,
 
 vec3 shade_pixel(uvec2 pixel) {
   FrameConstants fc = frame_constants.frame;
-  vec2 ndc = (vec2(pixel) + 0.5) / vec2(fc.frame.xy) * 2.0 - 1.0;
-  vec4 near = fc.inv_view_proj * vec4(ndc, 0.0, 1.0);
-  vec4 far = fc.inv_view_proj * vec4(ndc, 0.5, 1.0);
-  vec3 origin = fc.camera_position.xyz;
-  vec3 dir = normalize(far.xyz / far.w - near.xyz / near.w);
-
-  BvhHit hit;
-  if (!bvh_trace_closest(bvh_make_ray(origin, dir, 0.0, kBvhMiss), hit)) {
-    return fc.environment.rgb;
-  }
-  SurfaceHit s = surface_at(hit);
-  GpuMaterial mat = scene_materials.m[s.material];
-  vec3 v = -dir;
-  vec3 result = vec3(0.0);
-  if (dot(s.geometric_normal, v) > 0.0) result += mat.emission.rgb;
-
-  // Shade the side the camera sees.
-  vec3 ng = dot(s.geometric_normal, v) > 0.0 ? s.geometric_normal : -s.geometric_normal;
-  vec3 n = dot(s.shading_normal, ng) > 0.0 ? s.shading_normal : -s.shading_normal;
+  ivec2 p = ivec2(pixel);
+  vec4 position = imageLoad(gbuffer_position, p);
+  if (gbuffer_is_sky(position.w)) return fc.environment.rgb;
+  vec4 normals = imageLoad(gbuffer_normal, p);
+  uvec4 ids = imageLoad(gbuffer_ids, p);
+  GpuMaterial mat = scene_materials.m[ids.y];
+  vec3 x = position.xyz;
+  vec3 v = normalize(fc.camera_position.xyz - x);
+  vec3 n = oct_decode(normals.xy);   // shading normal, facing the camera
+  vec3 ng = oct_decode(normals.zw);  // geometric normal, facing the camera
+  if (dot(n, ng) < 0.0) n = -n;
+  vec3 result = imageLoad(gbuffer_emission_metallic, p).rgb;
   if (push.light_count > 0u) {
     uint rng = rng_init(pixel, push.frame_index, fc.frame.w, kBaselineRngPass);
     float u0 = rng_next_float(rng);
@@ -139,7 +104,7 @@ vec3 shade_pixel(uvec2 pixel) {
     uint slot = alias_slot(push.light_count, u0);
     uint index = alias_select(u1, light_alias.e[slot], slot);
     float select_pdf = light_alias.e[index].pdf;
-    result += sample_light(index, select_pdf, s.position, n, ng, v, mat, u_light);
+    result += sample_light(index, select_pdf, x, n, ng, v, mat, u_light);
   }
   return result;
 }

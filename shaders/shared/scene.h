@@ -44,7 +44,9 @@ struct GpuInstance {
   mat4 prev_object_to_world;  // equals object_to_world for static instances and on first frame
   mat4 world_to_object;
   uvec4 geometry;             // x: material; y: first index; z: index count; w: first vertex
-  uvec4 bvh;                  // x: BLAS root node; y: first emissive light or kInvalidLight; z, w: 0
+  uvec4 bvh;                  // x: BLAS root node; y: first emissive light or kInvalidLight;
+                              // z: emission scale (float bits: uintBitsToFloat; the snapshot's
+                              // flicker, multiplies the material emission); w: 0
 };
 LANTERN_STATIC_SIZE(GpuInstance, 3 * 64 + 32);
 

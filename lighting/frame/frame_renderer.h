@@ -1,0 +1,82 @@
+// FrameRenderer: one frame of a level from its FrameSnapshot, as render-graph passes:
+//   scene.upload (GpuScene: instances with previous transforms, TLAS, lights + remap, constants)
+//   -> gbuffer (lighting/gbuffer/gbuffer_pass.h) -> the integrator's passes -> the HDR buffer.
+// It owns the GpuScene, the G-buffer pass and the Integrator; the caller owns the graph, the
+// executor and the target (see lighting/integrators/offline_render.cpp and apps/lantern/cmd_play.cpp).
+//
+//   FrameRenderer renderer(device, shaders, level, make_integrator(device, shaders, config), w, h, 1);
+//   renderer.warm_up();
+//   graph.begin_frame();
+//   BufferHandle hdr = renderer.add_frame(graph, world.step());
+//   renderer.add_output_pass(graph, hdr, target.import_output(graph, frame), 0.0f);  // linear
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "engine/world/frame_snapshot.h"
+#include "lighting/frame/frame_inputs.h"
+#include "lighting/scene/gpu_scene.h"
+#include "runtime/graph/render_graph.h"
+
+namespace lantern::runtime {
+class Device;
+class ShaderLibrary;
+class ComputePipeline;
+}  // namespace lantern::runtime
+
+namespace lantern::lighting {
+
+class GBufferPass;
+
+class FrameRenderer {
+ public:
+  // Builds and uploads the scene of `level` (InputError on bad level data or size 0).
+  FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                std::shared_ptr<const Level> level, std::unique_ptr<Integrator> integrator,
+                std::uint32_t width, std::uint32_t height, std::uint32_t seed);
+  ~FrameRenderer();
+  FrameRenderer(const FrameRenderer&) = delete;
+  FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+  // JIT-compiles every pipeline (G-buffer, integrator, output) outside the timed frames.
+  void warm_up();
+
+  // Adds this frame's passes (scene.upload, gbuffer, the integrator's) to `graph` (between its
+  // begin_frame() and bake()) and returns the HDR buffer: width*height vec4 linear radiance.
+  [[nodiscard]] runtime::graph::BufferHandle add_frame(runtime::graph::RenderGraph& graph,
+                                                       const FrameSnapshot& snapshot);
+  // frame.output: `hdr` -> `target` (rgba32f image of the render size). exposure 0: linear
+  // copy (EXR, readback); > 0: exposure x filmic tonemap (display-referred linear, for a window).
+  [[nodiscard]] runtime::graph::ImageHandle add_output_pass(runtime::graph::RenderGraph& graph,
+                                                            runtime::graph::BufferHandle hdr,
+                                                            runtime::graph::ImageHandle target,
+                                                            float exposure);
+
+  // A new render size: the next frame has no history.
+  void resize(std::uint32_t width, std::uint32_t height);
+
+  const GpuScene& scene() const { return *scene_; }
+  GpuScene& scene() { return *scene_; }
+  Integrator& integrator() { return *integrator_; }
+  // What the last add_frame handed the integrator (handles valid for that graph frame only).
+  const FrameInputs& last_inputs() const { return inputs_; }
+  std::uint32_t width() const { return width_; }
+  std::uint32_t height() const { return height_; }
+  std::uint32_t frames_rendered() const { return frames_; }
+
+ private:
+  runtime::Device& device_;
+  std::unique_ptr<GpuScene> scene_;
+  std::unique_ptr<GBufferPass> gbuffer_;
+  std::unique_ptr<Integrator> integrator_;
+  std::unique_ptr<runtime::ComputePipeline> output_;
+  std::uint32_t width_;
+  std::uint32_t height_;
+  std::uint32_t seed_;
+  std::uint32_t frames_ = 0;
+  bool resized_ = false;
+  FrameInputs inputs_;
+};
+
+}  // namespace lantern::lighting

@@ -1,0 +1,66 @@
+// Integrator names and make_integrator (integrator_factory.h).
+#include "lighting/integrators/integrator_factory.h"
+
+#include <fmt/format.h>
+
+#include "engine/core/error.h"
+#include "lighting/integrators/baseline_integrator.h"
+#include "lighting/integrators/reference_integrator.h"
+
+namespace lantern::lighting {
+
+IntegratorKind parse_integrator(std::string_view name) {
+  if (name == "baseline") return IntegratorKind::Baseline;
+  if (name == "reference") return IntegratorKind::Reference;
+  if (name == "restir") return IntegratorKind::Restir;
+  throw InputError(
+      fmt::format("unknown integrator '{}' (expected restir, baseline or reference)", name));
+}
+
+const char* integrator_name(IntegratorKind kind) {
+  switch (kind) {
+    case IntegratorKind::Baseline:
+      return "baseline";
+    case IntegratorKind::Reference:
+      return "reference";
+    case IntegratorKind::Restir:
+      return "restir";
+  }
+  return "?";
+}
+
+void require_implemented(IntegratorKind kind) {
+  if (kind == IntegratorKind::Restir) {
+    throw InputError(fmt::format("integrator '{}' is not implemented yet (use baseline)",
+                                 integrator_name(kind)));
+  }
+}
+
+std::unique_ptr<Integrator> make_integrator(runtime::Device& device,
+                                            runtime::ShaderLibrary& shaders,
+                                            const IntegratorConfig& config) {
+  switch (config.kind) {
+    case IntegratorKind::Baseline:
+      if (!config.settings.empty()) {
+        throw InputError(fmt::format(
+            "--set {}: the baseline integrator has no settings (1 sample per pixel per frame)",
+            config.settings.front().first));
+      }
+      if (config.spp > 1) {
+        throw InputError(fmt::format(
+            "--spp {}: the baseline integrator takes 1 sample per pixel per frame (average "
+            "frames with --frames N --average instead)",
+            config.spp));
+      }
+      return std::make_unique<BaselineIntegrator>(device, shaders);
+    case IntegratorKind::Reference:
+      return std::make_unique<ReferenceIntegrator>(
+          device, shaders, parse_reference_settings(config.settings, config.spp));
+    case IntegratorKind::Restir:
+      break;
+  }
+  throw InputError(fmt::format("integrator '{}' is not implemented yet (use baseline)",
+                               integrator_name(config.kind)));
+}
+
+}  // namespace lantern::lighting
