@@ -46,6 +46,20 @@ float component(const unsigned char* p, int type, bool normalized) {
   }
 }
 
+// Whether `count` elements of `element` bytes, `stride` apart, starting at `offset` of a buffer
+// view of `view_length` bytes that starts at `view_offset` of a buffer of `buffer_size` bytes, all
+// fit. Written with subtractions and a division only: every size comes from the file (no overflow).
+bool elements_fit(std::size_t count, std::size_t stride, std::size_t element, std::size_t offset,
+                  std::size_t view_offset, std::size_t view_length, std::size_t buffer_size) {
+  if (view_offset > buffer_size || view_length > buffer_size - view_offset) return false;
+  if (count == 0) return true;
+  if (offset > view_length || element > view_length - offset) return false;
+  return count - 1 <= (view_length - offset - element) / stride;
+}
+
+// Accessors without a buffer view are all zeros (glTF); their size is still the file's word.
+constexpr std::size_t kMaxZeroAccessorElements = std::size_t{1} << 24;
+
 }  // namespace
 
 void GltfAccessorReader::fail(int accessor, const std::string& message) const {
@@ -70,8 +84,12 @@ std::vector<float> GltfAccessorReader::read(int index, int components,
   if (!is_float && !(allow_normalized && a.normalized))
     fail(index, fmt::format("component type {} is not supported here (float{})", a.componentType,
                             allow_normalized ? " or normalized integers" : ""));
-  std::vector<float> out(a.count * static_cast<std::size_t>(components), 0.0f);
-  if (a.bufferView < 0) return out;  // all zeros per the glTF spec
+  if (a.bufferView < 0) {  // all zeros per the glTF spec
+    if (a.count > kMaxZeroAccessorElements)
+      fail(index, fmt::format("{} elements without a buffer view (limit {})", a.count,
+                              kMaxZeroAccessorElements));
+    return std::vector<float>(a.count * static_cast<std::size_t>(components), 0.0f);
+  }
   if (static_cast<std::size_t>(a.bufferView) >= model_.bufferViews.size())
     fail(index, fmt::format("buffer view {} does not exist", a.bufferView));
   const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(a.bufferView)];
@@ -84,15 +102,15 @@ std::vector<float> GltfAccessorReader::read(int index, int components,
   const auto csize = static_cast<std::size_t>(
       tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType)));
   const std::size_t element = csize * static_cast<std::size_t>(components);
-  const std::size_t start = view.byteOffset + a.byteOffset;
-  const std::size_t needed = a.count == 0 ? 0 : start + stride * (a.count - 1) + element;
-  if (a.byteOffset + (a.count == 0 ? 0 : stride * (a.count - 1) + element) > view.byteLength ||
-      needed > buffer.data.size())
+  if (!elements_fit(a.count, stride, element, a.byteOffset, view.byteOffset, view.byteLength,
+                    buffer.data.size()))
     fail(index,
-         fmt::format("{} elements at offset {} overrun buffer view {} ({} bytes) / buffer {} "
+         fmt::format("{} elements at offset {} overrun buffer view {} ({} bytes at {}) / buffer {} "
                      "({} bytes)",
-                     a.count, start, a.bufferView, view.byteLength, view.buffer,
-                     buffer.data.size()));
+                     a.count, a.byteOffset, a.bufferView, view.byteLength, view.byteOffset,
+                     view.buffer, buffer.data.size()));
+  const std::size_t start = view.byteOffset + a.byteOffset;
+  std::vector<float> out(a.count * static_cast<std::size_t>(components), 0.0f);
   for (std::size_t i = 0; i < a.count; ++i) {
     const unsigned char* p = buffer.data.data() + start + i * stride;
     for (int c = 0; c < components; ++c)
@@ -147,11 +165,11 @@ std::vector<std::uint32_t> GltfAccessorReader::indices(int index) const {
   const int stride_or_error = a.ByteStride(view);
   const std::size_t stride =
       stride_or_error > 0 ? static_cast<std::size_t>(stride_or_error) : csize;
-  const std::size_t start = view.byteOffset + a.byteOffset;
-  if (a.count > 0 && (a.byteOffset + stride * (a.count - 1) + csize > view.byteLength ||
-                      start + stride * (a.count - 1) + csize > buffer.data.size()))
-    fail(index, fmt::format("{} indices at offset {} overrun buffer view {}", a.count, start,
+  if (!elements_fit(a.count, stride, csize, a.byteOffset, view.byteOffset, view.byteLength,
+                    buffer.data.size()))
+    fail(index, fmt::format("{} indices at offset {} overrun buffer view {}", a.count, a.byteOffset,
                             a.bufferView));
+  const std::size_t start = view.byteOffset + a.byteOffset;
   std::vector<std::uint32_t> out(a.count);
   for (std::size_t i = 0; i < a.count; ++i) {
     const unsigned char* p = buffer.data.data() + start + i * stride;
