@@ -2,9 +2,12 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <optional>
+#include <string>
 
 #include "apps/lantern/commands.h"
 #include "engine/core/error.h"
+#include "engine/core/log.h"
 
 namespace lantern::app {
 namespace {
@@ -17,7 +20,42 @@ std::uint32_t parse_dimension(std::string_view text, std::string_view size) {
   return value;
 }
 
+// Strips "<integrator>." from a key; nullopt when the key names another integrator.
+std::optional<std::string> key_for(const std::string& key, const std::string& integrator) {
+  const std::string prefix = integrator + ".";
+  if (key.rfind(prefix, 0) == 0) return key.substr(prefix.size());
+  for (const char* other : {"restir", "baseline", "reference"}) {
+    if (key.rfind(std::string(other) + ".", 0) == 0) return std::nullopt;
+  }
+  return key;
+}
+
 }  // namespace
+
+lighting::IntegratorConfig integrator_config(const std::string& integrator,
+                                             const CommonOptions& common, const Level& level) {
+  lighting::IntegratorConfig config;
+  config.kind = lighting::parse_integrator(integrator);
+  config.preset = common.preset;
+  const std::string name = lighting::integrator_name(config.kind);
+  for (const auto& [key, value] : level.settings) {
+    const std::string prefix = name + ".";
+    if (key.rfind(prefix, 0) == 0) config.settings.emplace_back(key.substr(prefix.size()), value);
+  }
+  for (const std::string& s : common.settings) {
+    const std::size_t eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw InputError(fmt::format("--set {}: expected KEY=VALUE", s));
+    }
+    const std::optional<std::string> key = key_for(s.substr(0, eq), name);
+    if (!key) {
+      log::warn("--set {}: not a {} setting, ignored", s, name);
+      continue;
+    }
+    config.settings.emplace_back(*key, s.substr(eq + 1));
+  }
+  return config;
+}
 
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {
   const std::size_t x = size.find('x');

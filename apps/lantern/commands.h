@@ -7,12 +7,22 @@
 
 #include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "engine/scene/level.h"
+#include "lighting/integrators/integrator_factory.h"
+
 namespace lantern::app {
+
+// A benchmark ran but exceeded its budget: exit code 3 (CLI.md).
+class BudgetExceeded : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // Flags shared by every command (CLI.md "Common flags").
 struct CommonOptions {
@@ -32,6 +42,15 @@ void add_devices_command(CLI::App& root, CommonOptions& options);
 void add_info_command(CLI::App& root, CommonOptions& options);
 void add_render_command(CLI::App& root, CommonOptions& options);
 void add_play_command(CLI::App& root, CommonOptions& options);
+
+void add_bench_command(CLI::App& root, CommonOptions& options);
+
+// The integrator configuration a command runs: `integrator` by name, the --preset, the level's
+// settings block for that integrator ("restir.radius" in the level is "radius" for restir), then
+// every --set in order (a "restir." prefix is optional; settings for another integrator are
+// skipped with a warning). InputError for a malformed --set or an unknown integrator.
+lighting::IntegratorConfig integrator_config(const std::string& integrator,
+                                             const CommonOptions& common, const Level& level);
 
 // "640x360" -> (640, 360); InputError naming the flag otherwise.
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size);

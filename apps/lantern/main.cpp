@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   app::add_info_command(root, options);
   app::add_render_command(root, options);
   app::add_play_command(root, options);
+  app::add_bench_command(root, options);
 
   try {
     root.parse(argc, argv);
@@ -55,6 +56,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "lantern: %s\n", e.what());
     return 2;
+  } catch (const app::BudgetExceeded& e) {
+    std::fprintf(stderr, "lantern: %s\n", e.what());
+    return 3;
   } catch (const RuntimeError& e) {
     std::fprintf(stderr, "lantern: %s\n", e.what());
     return 1;

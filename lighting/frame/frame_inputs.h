@@ -5,6 +5,9 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/world/frame_snapshot.h"
 #include "runtime/graph/render_graph.h"
@@ -71,6 +74,9 @@ class Integrator {
   virtual const char* name() const = 0;
   // JIT-compiles every pipeline now (lavapipe compiles at first dispatch), not in a timed frame.
   virtual void warm_up() = 0;
+  // Shadow (visibility) rays each of its passes traces per pixel, e.g. {"restir.shade", 1}:
+  // what `lantern bench` divides by pass time for rays per second. Empty: not reported.
+  virtual std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const { return {}; }
   [[nodiscard]] virtual runtime::graph::BufferHandle add_passes(
       runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
       runtime::graph::BufferHandle hdr) = 0;

@@ -13,8 +13,8 @@ namespace {
 
 // Sized to take a few milliseconds on lavapipe (2 threads): long enough for 1 ns timestamps and
 // scheduling noise to be small, short enough to interleave with every benchmark frame.
-constexpr std::uint32_t kInvocations = 320u * 180u;
-constexpr std::uint32_t kRounds = 48u;
+constexpr std::uint32_t kInvocations = 160u * 90u;
+constexpr std::uint32_t kRounds = 6u;
 constexpr std::uint32_t kTableEntries = 1u << 18;  // 4 MiB of vec4
 
 struct CalibrationPush {

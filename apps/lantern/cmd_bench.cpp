@@ -1,0 +1,246 @@
+// `lantern bench LEVEL [--integrator I] [--frames N] [--warmup N] [--json FILE] [--trace FILE]
+// [--budget FILE]` (CLI.md): runs the level's path headless, warm-up frames first, then N timed
+// frames; prints per-pass and frame statistics (median, p95, p99, max), writes them as JSON, a
+// Chrome trace (CPU systems and GPU passes per frame), and checks a budget file (exit 3 naming
+// every pass over budget). A calibration workload is timed in the same run, interleaved with
+// the frames, so budgets can be relative to it (engine/perf/budget.h).
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/lantern/commands.h"
+#include "engine/core/error.h"
+#include "engine/core/log.h"
+#include "engine/level/level_loader.h"
+#include "engine/perf/budget.h"
+#include "engine/perf/chrome_trace.h"
+#include "engine/perf/statistics.h"
+#include "lighting/frame/frame_renderer.h"
+#include "lighting/frame/headless_session.h"
+#include "runtime/core/device.h"
+#include "runtime/gpu/shader_library.h"
+#include "runtime/perf/calibration_workload.h"
+
+namespace lantern::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct BenchOptions {
+  std::string level;
+  std::string integrator = "restir";
+  int warmup = 10;
+  std::string json;
+  std::string trace;
+  std::string budget;
+};
+
+// Calibration runs: one before the frames, then one every kCalibrationEvery frames.
+constexpr int kCalibrationEvery = 8;
+
+double us_between(Clock::time_point origin, Clock::time_point t) {
+  return std::chrono::duration<double, std::micro>(t - origin).count();
+}
+
+nlohmann::json summary_json(const perf::Summary& s) {
+  return {{"median", s.median}, {"p95", s.p95}, {"p99", s.p99}, {"max", s.max}};
+}
+
+// Writes `text` to `path` through a temporary file (nothing half-written on failure).
+void write_text_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(fmt::format("{}: cannot be written", path));
+    out << text;
+    if (!out.flush()) throw RuntimeError(fmt::format("{}: write failed", path));
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw RuntimeError(fmt::format("{}: cannot be written", path));
+  }
+}
+
+void run_bench(const BenchOptions& o, const CommonOptions& common) {
+  const auto [width, height] = parse_size(common.size);
+  const int frames = common.frames > 0 ? common.frames : 60;
+  if (o.warmup < 0 || o.warmup > 100000) {
+    throw InputError(fmt::format("--warmup {}: expected 0..100000", o.warmup));
+  }
+  // Refuse a bad budget before any work.
+  std::optional<perf::Budget> budget;
+  if (!o.budget.empty()) budget = perf::load_budget(o.budget);
+  const auto level = std::make_shared<const Level>(load_level_argument(o.level));
+  const lighting::IntegratorConfig config = integrator_config(o.integrator, common, *level);
+
+  runtime::Device device({.selector = common.device});
+  runtime::ShaderLibrary shaders;
+  runtime::CalibrationWorkload calibration(device, shaders);
+  lighting::HeadlessSession session(
+      device, shaders, level,
+      {.integrator = config, .width = width, .height = height, .seed = common.seed});
+  session.warm_up();
+  const std::string integrator = lighting::integrator_name(config.kind);
+  log::info("bench {} {} {} at {}x{}: {} warm-up + {} frames on {}", level->name, integrator,
+            common.preset, width, height, o.warmup, frames, device.info().name);
+
+  for (int k = 0; k < o.warmup; ++k) session.render(session.step_world());
+
+  std::vector<double> calibration_ms = {calibration.run_ms()};
+  std::vector<double> frame_ms, wall_ms, update_ms;
+  std::map<std::string, std::vector<double>> pass_ms, system_ms;
+  std::vector<std::string> pass_order;
+  perf::ChromeTrace trace;
+  const int cpu_track = trace.track("CPU: world systems");
+  const int host_track = trace.track("CPU: frame");
+  const int gpu_track = trace.track("GPU passes");
+  const Clock::time_point origin = Clock::now();
+  for (int k = 0; k < frames; ++k) {
+    const Clock::time_point step_start = Clock::now();
+    const FrameSnapshot& snapshot = session.step_world();
+    const Clock::time_point render_start = Clock::now();
+    const lighting::FrameTiming t = session.render(snapshot);
+    frame_ms.push_back(t.gpu_ms);
+    wall_ms.push_back(t.wall_ms);
+    update_ms.push_back(t.scene_update_ms);
+    for (const auto& [name, ms] : t.passes) {
+      if (!pass_ms.contains(name)) pass_order.push_back(name);
+      pass_ms[name].push_back(ms);
+    }
+    for (const auto& [name, ms] : t.systems) system_ms[name].push_back(ms);
+
+    // Trace: systems laid out in run order inside the step (exact with one worker thread), the
+    // frame's host time, and the GPU passes back to back from the submission (GPU timestamps give
+    // durations; the passes of one frame run in order on one queue).
+    double at = us_between(origin, step_start);
+    trace.event(host_track, "world.step", at, t.step_ms * 1000.0);
+    for (const auto& [name, ms] : t.systems) {
+      trace.event(cpu_track, name, at, ms * 1000.0, "cpu");
+      at += ms * 1000.0;
+    }
+    const double render_at = us_between(origin, render_start);
+    trace.event(host_track, fmt::format("frame {}", k), render_at, t.wall_ms * 1000.0);
+    at = render_at;
+    for (const auto& [name, ms] : t.passes) {
+      trace.event(gpu_track, name, at, ms * 1000.0, "gpu");
+      at += ms * 1000.0;
+    }
+    if ((k + 1) % kCalibrationEvery == 0) calibration_ms.push_back(calibration.run_ms());
+  }
+
+  perf::BenchMeasurement m;
+  m.level = level->name;
+  m.size = {width, height};
+  m.integrator = integrator;
+  m.preset = common.preset;
+  m.device = device.info().name;
+  m.calibration_ms = perf::summarize(calibration_ms).median;
+  m.frame = perf::summarize(frame_ms);
+  for (const auto& [name, values] : pass_ms) m.passes[name] = perf::summarize(values);
+  const perf::Summary wall = perf::summarize(wall_ms);
+
+  // Rays per second: pixels over the G-buffer time (rasterised primary visibility), and the
+  // integrator's declared shadow rays over the time of the passes that trace them.
+  const double pixels = static_cast<double>(width) * height;
+  double primary_rps = 0.0, shadow_rps = 0.0;
+  if (auto it = m.passes.find("gbuffer"); it != m.passes.end() && it->second.median > 0.0) {
+    primary_rps = pixels / (it->second.median * 1e-3);
+  }
+  double shadow_rays = 0.0, shadow_ms = 0.0;
+  for (const auto& [pass, per_pixel] : session.renderer().integrator().shadow_rays_per_pixel()) {
+    if (auto it = m.passes.find(pass); it != m.passes.end()) {
+      shadow_rays += per_pixel * pixels;
+      shadow_ms += it->second.median;
+    }
+  }
+  if (shadow_ms > 0.0) shadow_rps = shadow_rays / (shadow_ms * 1e-3);
+
+  std::printf("%-24s %9s %9s %9s %9s\n", "pass (GPU ms)", "median", "p95", "p99", "max");
+  for (const std::string& name : pass_order) {
+    const perf::Summary& s = m.passes[name];
+    std::printf("%-24s %9.3f %9.3f %9.3f %9.3f\n", name.c_str(), s.median, s.p95, s.p99, s.max);
+  }
+  std::printf("%-24s %9.3f %9.3f %9.3f %9.3f\n", "frame (GPU)", m.frame.median, m.frame.p95,
+              m.frame.p99, m.frame.max);
+  std::printf("%-24s %9.3f %9.3f %9.3f %9.3f\n", "frame (wall)", wall.median, wall.p95, wall.p99,
+              wall.max);
+  std::printf("calibration %.3f ms (median of %zu); frame = %.2fx calibration\n",
+              m.calibration_ms, calibration_ms.size(), m.frame.median / m.calibration_ms);
+  std::printf("rays/s: primary %.3g (raster), shadow %.3g\n", primary_rps, shadow_rps);
+
+  if (!o.json.empty()) {
+    nlohmann::json passes = nlohmann::json::object();
+    for (const auto& [name, s] : m.passes) passes[name] = summary_json(s);
+    nlohmann::json systems = nlohmann::json::object();
+    for (const auto& [name, values] : system_ms) {
+      systems[name] = {{"median", perf::summarize(values).median}};
+    }
+    const nlohmann::json j = {
+        {"level", level->name},
+        {"integrator", integrator},
+        {"preset", common.preset},
+        {"settings", config.settings},
+        {"size", {width, height}},
+        {"device", device.info().name},
+        {"frames", frames},
+        {"warmup", o.warmup},
+        {"seed", common.seed},
+        {"frame_ms", summary_json(m.frame)},
+        {"frame_wall_ms", summary_json(wall)},
+        {"scene_update_ms", summary_json(perf::summarize(update_ms))},
+        {"passes", passes},
+        {"cpu_systems_ms", systems},
+        {"calibration_ms", m.calibration_ms},
+        {"rays_per_second", {{"primary", primary_rps}, {"shadow", shadow_rps}}},
+    };
+    write_text_atomic(o.json, j.dump(2) + "\n");
+  }
+  if (!o.trace.empty()) trace.write(o.trace);
+  if (device.validation_enabled() && device.validation_errors() > 0) {
+    throw RuntimeError(fmt::format("{} Vulkan validation error(s)", device.validation_errors()));
+  }
+  if (budget) {
+    const perf::BudgetResult result = perf::check_budget(*budget, m);
+    std::printf("budget %s:\n", o.budget.c_str());
+    for (const std::string& line : result.checked) std::printf("  %s\n", line.c_str());
+    if (!result.passed()) {
+      std::string names;
+      for (const perf::BudgetViolation& v : result.violations) {
+        names += fmt::format("{}{} ({:.3f} > {:.3f} {})", names.empty() ? "" : ", ", v.what,
+                             v.measured, v.limit, v.unit);
+      }
+      throw BudgetExceeded(fmt::format("over budget: {}", names));
+    }
+  }
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& root, CommonOptions& options) {
+  auto opts = std::make_shared<BenchOptions>();
+  auto* cmd = root.add_subcommand(
+      "bench", "Frame-time benchmark along the level's path (exit 3 when over budget)");
+  add_common_flags(*cmd, options);
+  cmd->add_option("LEVEL", opts->level,
+                  "Level: a .json/.gltf/.glb file or a name under content/levels/")
+      ->required();
+  cmd->add_option("--integrator", opts->integrator, "restir|baseline|reference")
+      ->capture_default_str();
+  cmd->add_option("--warmup", opts->warmup, "Frames rendered before timing")
+      ->capture_default_str();
+  cmd->add_option("--json", opts->json, "Write the statistics as JSON to FILE");
+  cmd->add_option("--trace", opts->trace,
+                  "Write a Chrome trace (chrome://tracing, ui.perfetto.dev) to FILE");
+  cmd->add_option("--budget", opts->budget,
+                  "Check a budget file (see docs/budgets.md); exit 3 when over budget");
+  cmd->callback([opts, &options] { run_bench(*opts, options); });
+}
+
+}  // namespace lantern::app
