@@ -9,6 +9,7 @@
 #include "shared/bvh.h"
 #include "shared/color.h"
 #include "shared/common_math.h"
+#include "shared/environment.h"
 #include "shared/lang.h"
 #include "shared/lights.h"
 #include "shared/reservoir.h"
@@ -37,6 +38,7 @@ layout(std430, binding = 11) buffer BvhInstanceProbe { BvhInstance bvh_instances
 layout(std430, binding = 12) buffer BvhSceneHeaderProbe { BvhSceneHeader bvh_headers[]; };
 layout(std430, binding = 13) buffer BvhRayProbe { BvhRay bvh_rays[]; };
 layout(std430, binding = 14) buffer BvhHitProbe { BvhHit bvh_hits[]; };
+layout(std430, binding = 17) buffer GpuEnvironmentProbe { GpuEnvironment gpu_environments[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -55,4 +57,5 @@ void main() {
   bvh_headers[0] = bvh_headers[1];
   bvh_rays[0] = bvh_rays[1];
   bvh_hits[0] = bvh_hits[1];
+  gpu_environments[0] = gpu_environments[1];
 }

@@ -15,6 +15,7 @@
 
 #include "shared/alias_table.h"
 #include "shared/bvh.h"
+#include "shared/environment.h"
 #include "shared/lights.h"
 #include "shared/reservoir.h"
 #include "shared/reservoir_pack.h"
@@ -47,6 +48,10 @@ const std::vector<StructLayout>& cpp_layouts() {
        sizeof(gpu::AliasEntry),
        {LANTERN_MEMBER(AliasEntry, threshold), LANTERN_MEMBER(AliasEntry, alias),
         LANTERN_MEMBER(AliasEntry, pdf), LANTERN_MEMBER(AliasEntry, pad0)}},
+      {"GpuEnvironment",
+       sizeof(gpu::GpuEnvironment),
+       {LANTERN_MEMBER(GpuEnvironment, world_to_map), LANTERN_MEMBER(GpuEnvironment, map_to_world),
+        LANTERN_MEMBER(GpuEnvironment, size), LANTERN_MEMBER(GpuEnvironment, params)}},
       {"GpuLight",
        sizeof(gpu::GpuLight),
        {LANTERN_MEMBER(GpuLight, p0), LANTERN_MEMBER(GpuLight, p1), LANTERN_MEMBER(GpuLight, p2),

@@ -1,0 +1,67 @@
+// integrators.reference: converged direct lighting (shaders/integrators/reference.comp). Per pixel
+// the G-buffer's primary hit and `spp` samples per frame, each one light sample (environment or
+// power alias table) and one BSDF sample (GGX VNDF / cosine), combined with the power heuristic;
+// emissive triangles and the environment are reached by both strategies, punctual lights by light
+// sampling only. Frames average to the converged image (offline_render's `average`); converged
+// references are cached by lighting/integrators/reference_cache.h.
+//
+// The level's environment map (if any) is loaded and its sampling tables uploaded on the first
+// frame of a level (lighting/lights/environment_map.h); without one a black 1-texel stand-in is
+// bound. Light selection: the environment with probability env_power / (env_power +
+// emitters' total power), else the alias table (environment_map.h explains the power proxy).
+//
+// Settings (--set): reference.spp=N (samples per pixel per frame; IntegratorConfig.spp wins when
+// non-zero). Any other key is an InputError.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lighting/frame/frame_inputs.h"
+#include "lighting/lights/environment_map.h"
+#include "runtime/gpu/compute_pipeline.h"
+#include "runtime/gpu/shader_library.h"
+
+namespace lantern::lighting {
+
+struct ReferenceSettings {
+  std::uint32_t spp = 64;  // samples per pixel per frame (gpu::kReferenceDefaultSpp)
+};
+
+// From --set pairs and --spp (0 = the default or reference.spp); InputError on unknown keys and
+// bad values.
+ReferenceSettings parse_reference_settings(
+    const std::vector<std::pair<std::string, std::string>>& settings, std::uint32_t spp);
+
+class ReferenceIntegrator final : public Integrator {
+ public:
+  ReferenceIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                      const ReferenceSettings& settings);
+  ~ReferenceIntegrator() override;
+
+  const char* name() const override { return "reference"; }
+  void warm_up() override { pipeline_.warm_up(); }
+  // Writes every pixel of `hdr` (StorageWrite): the mean of this frame's spp samples.
+  [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
+                                                        const FrameInputs& inputs,
+                                                        runtime::graph::BufferHandle hdr) override;
+
+  const ReferenceSettings& settings() const { return settings_; }
+  // The environment bound last frame (the black stand-in when the level has none; nullptr before
+  // the first frame).
+  const GpuEnvironmentMap* environment() const { return environment_.get(); }
+
+ private:
+  void prepare_environment(const FrameInputs& inputs);
+
+  runtime::Device& device_;
+  runtime::ComputePipeline pipeline_;
+  ReferenceSettings settings_;
+  const Level* environment_level_ = nullptr;  // the level environment_ was built for
+  std::unique_ptr<GpuEnvironmentMap> environment_;
+};
+
+}  // namespace lantern::lighting

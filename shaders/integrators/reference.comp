@@ -1,0 +1,297 @@
+// integrators.reference: converged direct lighting, the yardstick of baseline and ReSTIR. Per
+// pixel: the G-buffer's primary hit (the same surface baseline and ReSTIR shade), its emission
+// seen from the camera (or the environment on sky pixels), then `spp` samples, each one light sample and one BSDF sample combined with the
+// power heuristic (MIS, Veach 1995):
+//   light sampling: the environment with probability env.params.x (its luminance x solid-angle
+//     distribution, shared/environment.h), else one emitter from the power alias table (triangles:
+//     uniform area point, solid-angle pdf; punctual lights: delta, weight 1); one shadow ray;
+//   BSDF sampling: GGX visible normals or cosine-weighted Lambert, picked by an estimate of the
+//     lobes' albedos; the ray's closest hit adds a front-facing emissive triangle's radiance, a
+//     miss adds the environment.
+// Both strategies' pdfs are evaluated for every direction that either can produce, so emissive
+// triangles and the environment are counted once. Direct lighting only (no bounces).
+// Reads: G-buffer images (shared/gbuffer.h), scene buffers (lighting/scene/gpu_scene.h), frame
+// constants, env_* (the environment map,
+// lighting/lights/environment_map.h; a black 1-texel dummy when the level has none).
+// Writes: radiance (rgba32f per pixel, the mean of this dispatch's samples). History: none (the
+// host averages frames). Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride),
+// as integrators.baseline.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "lib/bvh_traverse.glsl"
+#include "integrators/reference.h"
+#include "shared/alias_table.h"
+#include "shared/brdf.h"
+#include "shared/color.h"
+#include "shared/common_math.h"
+#include "shared/environment.h"
+#include "shared/gbuffer.h"
+#include "shared/lights.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+#include "shared/scene.h"
+
+layout(local_size_x = kReferenceTileSize, local_size_y = kReferenceTileSize) in;
+
+layout(std430, binding = 4) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
+layout(std430, binding = 5) readonly buffer VertexBuffer { GpuVertex v[]; } scene_vertices;
+layout(std430, binding = 6) readonly buffer IndexBuffer { uint i[]; } scene_indices;
+layout(std430, binding = 7) readonly buffer MaterialBuffer { GpuMaterial m[]; } scene_materials;
+layout(std430, binding = 8) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
+layout(std430, binding = 9) readonly buffer LightBuffer { GpuLight l[]; } scene_lights;
+layout(std430, binding = 10) readonly buffer AliasBuffer { AliasEntry e[]; } light_alias;
+layout(std430, binding = 11) writeonly buffer RadianceBuffer { vec4 pixels[]; } radiance;
+layout(binding = 16, rgba32f) uniform readonly image2D gbuffer_position;
+layout(binding = 17, rgba32f) uniform readonly image2D gbuffer_normal;
+layout(binding = 18, rgba32f) uniform readonly image2D gbuffer_emission_metallic;
+layout(binding = 19, rgba32ui) uniform readonly uimage2D gbuffer_ids;
+layout(std430, binding = 13) readonly buffer EnvTexelBuffer { vec4 t[]; } env_texels;
+layout(std430, binding = 14) readonly buffer EnvMarginalBuffer { AliasEntry e[]; } env_marginal;
+layout(std430, binding = 15) readonly buffer EnvConditionalBuffer { AliasEntry e[]; }
+    env_conditional;
+
+layout(std430, binding = 12) readonly buffer EnvHeaderBuffer { GpuEnvironment env; } env_header;
+
+vec4 env_fetch_texel(uint i) { return env_texels.t[i]; }
+AliasEntry env_fetch_marginal(uint i) { return env_marginal.e[i]; }
+AliasEntry env_fetch_conditional(uint i) { return env_conditional.e[i]; }
+
+layout(push_constant) uniform Push { ReferencePush push; };
+
+struct SurfaceHit {
+  vec3 position;
+  vec3 geometric_normal;  // front-face normal (winding, mirrored by a negative determinant)
+  vec3 shading_normal;    // interpolated vertex normal (may be zero: then the geometric one)
+  uint material;
+  uint light;             // this triangle's light index, or kInvalidLight
+};
+
+SurfaceHit surface_at(BvhHit hit) {
+  GpuInstance inst = scene_instances.i[hit.instance];
+  uint base = inst.geometry.y + 3u * hit.primitive;
+  uint first_vertex = inst.geometry.w;
+  GpuVertex v0 = scene_vertices.v[first_vertex + scene_indices.i[base]];
+  GpuVertex v1 = scene_vertices.v[first_vertex + scene_indices.i[base + 1u]];
+  GpuVertex v2 = scene_vertices.v[first_vertex + scene_indices.i[base + 2u]];
+  mat3 linear = mat3(inst.object_to_world);
+  vec3 p0 = (inst.object_to_world * vec4(v0.position_u.xyz, 1.0)).xyz;
+  vec3 e1 = linear * (v1.position_u.xyz - v0.position_u.xyz);
+  vec3 e2 = linear * (v2.position_u.xyz - v0.position_u.xyz);
+  SurfaceHit s;
+  s.position = p0 + hit.u * e1 + hit.v * e2;
+  vec3 ng = cross(e1, e2);
+  if (determinant(linear) < 0.0) ng = -ng;
+  s.geometric_normal = normalize(ng);
+  vec3 n_object = (1.0 - hit.u - hit.v) * v0.normal_v.xyz + hit.u * v1.normal_v.xyz +
+                  hit.v * v2.normal_v.xyz;
+  vec3 n_world = transpose(mat3(inst.world_to_object)) * n_object;
+  s.shading_normal = dot(n_world, n_world) > 0.0 ? normalize(n_world) : s.geometric_normal;
+  s.material = inst.geometry.x;
+  s.light = inst.bvh.y == kInvalidLight ? kInvalidLight : inst.bvh.y + hit.primitive;
+  return s;
+}
+
+// Radiance a front-facing emitter sends towards -dir: its light record when it has one (the
+// same value light sampling uses), else the material's emission.
+vec3 emitted(SurfaceHit s, GpuMaterial mat, vec3 dir) {
+  if (dot(s.geometric_normal, dir) >= 0.0) return vec3(0.0);
+  return s.light != kInvalidLight ? scene_lights.l[s.light].radiance.rgb : mat.emission.rgb;
+}
+
+float power_heuristic(float a, float b) {
+  float a2 = a * a;
+  float b2 = b * b;
+  return a2 + b2 > 0.0 ? finite_positive_or_zero(a2 / (a2 + b2)) : 0.0;
+}
+
+// Shading frame and lobe choice at one surface point.
+struct Shading {
+  vec3 x;
+  vec3 n;      // shading normal on the viewer's side
+  vec3 ng;     // geometric normal on the viewer's side
+  vec3 v;      // towards the viewer
+  vec3 albedo;
+  float roughness;
+  float metallic;
+  float specular;
+  float p_specular;  // probability that BSDF sampling picks the GGX lobe
+  float offset;      // secondary-ray start distance
+};
+
+float bsdf_pdf(Shading sh, vec3 l) {
+  float p = 0.0;
+  if (sh.p_specular > 0.0) p += sh.p_specular * ggx_vndf_pdf(sh.n, sh.v, l, sh.roughness);
+  if (sh.p_specular < 1.0) p += (1.0 - sh.p_specular) * cosine_hemisphere_pdf(sh.n, l);
+  return p;
+}
+
+vec3 brdf(Shading sh, vec3 l) {
+  if (dot(sh.ng, l) <= 0.0) return vec3(0.0);  // below the geometric surface: no light
+  return brdf_eval(sh.n, sh.v, l, sh.albedo, sh.roughness, sh.metallic, sh.specular);
+}
+
+// Probability that light sampling produces direction l towards a point on triangle light `index`
+// at distance t (both selection steps), as a solid-angle density.
+float triangle_light_pdf(uint index, float t, vec3 l) {
+  if (push.light_count == 0u) return 0.0;
+  GpuLight light = scene_lights.l[index];
+  vec3 e1 = light.p1.xyz;
+  vec3 e2 = light.p2.xyz;
+  vec3 c = cross(e1, e2);
+  float area = 0.5 * length(c);
+  float cos_light = -dot(normalize(c), l);
+  float select = (1.0 - env_header.env.params.x) * light_alias.e[index].pdf;
+  return select * triangle_solid_angle_pdf(area, t * t, cos_light);
+}
+
+// One light sample (environment or alias table), MIS-weighted against BSDF sampling.
+vec3 sample_light(Shading sh, inout uint rng) {
+  float u_select = rng_next_float(rng);
+  float p_env = env_header.env.params.x;
+  if (u_select < p_env) {
+    vec4 u = vec4(rng_next_vec2(rng), rng_next_vec2(rng));
+    vec3 l;
+    vec3 le;
+    float pdf = p_env * env_sample(env_header.env, u, l, le);
+    if (!(pdf > 0.0)) return vec3(0.0);
+    vec3 f = brdf(sh, l);
+    if (f == vec3(0.0) || le == vec3(0.0)) return vec3(0.0);
+    if (bvh_trace_any(bvh_make_ray(sh.x, l, sh.offset, kBvhMiss))) return vec3(0.0);
+    return f * le * (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
+  }
+  if (push.light_count == 0u) return vec3(0.0);
+  // Reuse u_select, rescaled to [0,1), for the alias slot.
+  float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
+  float u1 = rng_next_float(rng);
+  vec2 u_point = rng_next_vec2(rng);
+  uint slot = alias_slot(push.light_count, u0);
+  uint index = alias_select(u1, light_alias.e[slot], slot);
+  float select = (1.0 - p_env) * light_alias.e[index].pdf;
+  GpuLight light = scene_lights.l[index];
+  uint kind = light_kind(light);
+  if (kind == kLightTriangle) {
+    vec3 p0 = light.p0.xyz;
+    vec3 target = triangle_point(p0, p0 + light.p1.xyz, p0 + light.p2.xyz,
+                                 triangle_sample_barycentrics(u_point));
+    vec3 to_light = target - sh.x;
+    float dist2 = dot(to_light, to_light);
+    if (!(dist2 > 0.0)) return vec3(0.0);
+    vec3 l = to_light * inversesqrt(dist2);
+    vec3 c = cross(light.p1.xyz, light.p2.xyz);
+    float cos_light = -dot(normalize(c), l);
+    float pdf = select * triangle_solid_angle_pdf(0.5 * length(c), dist2, cos_light);
+    if (!(pdf > 0.0)) return vec3(0.0);
+    vec3 f = brdf(sh, l);
+    if (f == vec3(0.0) || light.radiance.rgb == vec3(0.0)) return vec3(0.0);
+    if (!bvh_visible(sh.x, target)) return vec3(0.0);
+    return f * light.radiance.rgb * (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
+  }
+  // Punctual lights: a delta in direction, no BSDF sample can hit them (MIS weight 1).
+  vec3 target;
+  vec3 incident;
+  if (kind == kLightDirectional) {
+    target = sh.x + directional_light_to_light(light.p1.xyz) * (4.0 * push.scene_radius);
+    incident = light.radiance.rgb;
+  } else {
+    target = light.p0.xyz;
+    vec3 to_light = target - sh.x;
+    float dist2 = dot(to_light, to_light);
+    float falloff = punctual_distance_falloff(dist2, light.p2.w);  // p2.w: range (0 = none)
+    if (kind == kLightSpot) {
+      float cos_theta = dot(normalize(light.p1.xyz), -to_light * inversesqrt(max(dist2, 1e-30)));
+      falloff *= spot_cone_falloff(cos_theta, light.p2.x, light.p2.y);
+    }
+    incident = light.radiance.rgb * falloff;
+  }
+  if (!(select > 0.0) || incident == vec3(0.0)) return vec3(0.0);
+  vec3 l = normalize(target - sh.x);
+  vec3 f = brdf(sh, l);
+  if (f == vec3(0.0)) return vec3(0.0);
+  if (!bvh_visible(sh.x, target)) return vec3(0.0);
+  return f * incident / select;
+}
+
+// One BSDF sample: the closest hit's front-facing emission, or the environment on a miss.
+vec3 sample_bsdf(Shading sh, inout uint rng) {
+  float u_lobe = rng_next_float(rng);
+  vec2 u = rng_next_vec2(rng);
+  vec3 l = u_lobe < sh.p_specular ? ggx_vndf_sample(sh.n, sh.v, sh.roughness, u)
+                                  : cosine_sample_hemisphere(sh.n, u);
+  float pdf = bsdf_pdf(sh, l);
+  if (!(pdf > 0.0)) return vec3(0.0);
+  vec3 f = brdf(sh, l);
+  if (f == vec3(0.0)) return vec3(0.0);
+  BvhHit hit;
+  if (bvh_trace_closest(bvh_make_ray(sh.x, l, sh.offset, kBvhMiss), hit)) {
+    SurfaceHit s = surface_at(hit);
+    vec3 le = emitted(s, scene_materials.m[s.material], l);
+    if (le == vec3(0.0)) return vec3(0.0);
+    float light_pdf = s.light != kInvalidLight ? triangle_light_pdf(s.light, hit.t, l) : 0.0;
+    return f * le * (power_heuristic(pdf, light_pdf) / pdf);
+  }
+  if (env_header.env.size.z == 0u) return vec3(0.0);
+  vec3 le = env_radiance(env_header.env, l);
+  float light_pdf = env_header.env.params.x * env_pdf(env_header.env, l);
+  return f * le * (power_heuristic(pdf, light_pdf) / pdf);
+}
+
+vec3 shade_pixel(uvec2 pixel) {
+  FrameConstants fc = frame_constants.frame;
+  ivec2 p = ivec2(pixel);
+  vec4 position = imageLoad(gbuffer_position, p);
+  if (gbuffer_is_sky(position.w)) {
+    if (env_header.env.params.z == 0.0) return fc.environment.rgb;
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(fc.frame.xy) * 2.0 - 1.0;
+    vec4 near = fc.inv_view_proj * vec4(ndc, 0.0, 1.0);
+    vec4 far = fc.inv_view_proj * vec4(ndc, 0.5, 1.0);
+    return env_radiance(env_header.env, normalize(far.xyz / far.w - near.xyz / near.w));
+  }
+  vec4 normals = imageLoad(gbuffer_normal, p);
+  uvec4 ids = imageLoad(gbuffer_ids, p);
+  GpuMaterial mat = scene_materials.m[ids.y];
+  vec3 result = imageLoad(gbuffer_emission_metallic, p).rgb;
+
+  Shading sh;
+  sh.x = position.xyz;
+  sh.v = normalize(fc.camera_position.xyz - sh.x);
+  sh.n = oct_decode(normals.xy);   // shading normal, facing the camera
+  sh.ng = oct_decode(normals.zw);  // geometric normal, facing the camera
+  if (dot(sh.n, sh.ng) < 0.0) sh.n = -sh.n;
+  sh.albedo = mat.base_color.rgb;
+  sh.roughness = mat.params.x;
+  sh.metallic = clamp(mat.params.y, 0.0, 1.0);
+  sh.specular = clamp(mat.params.z, 0.0, 1.0);
+  float n_dot_v = max(dot(sh.n, sh.v), 0.0);
+  float spec = dielectric_specular_albedo(n_dot_v, sh.roughness, sh.specular);
+  float w_diffuse = (1.0 - sh.metallic) * (1.0 - spec) * luminance(sh.albedo);
+  float w_specular = mix(spec, 1.0, sh.metallic);
+  sh.p_specular = w_diffuse + w_specular > 0.0
+                      ? clamp(w_specular / (w_diffuse + w_specular), 0.0, 1.0) : 0.0;
+  // Keep both lobes reachable unless one is absent.
+  if (sh.p_specular > 0.0 && sh.p_specular < 1.0) sh.p_specular = clamp(sh.p_specular, 0.1, 0.9);
+  vec3 magnitude = abs(sh.x);
+  sh.offset = kBvhShadowEpsilon * max(1.0, max(magnitude.x, max(magnitude.y, magnitude.z)));
+
+  uint rng = rng_init(pixel, push.frame_index, fc.frame.w, kReferenceRngPass);
+  vec3 sum = vec3(0.0);
+  for (uint i = 0u; i < push.spp; ++i) {
+    vec3 c = sample_light(sh, rng) + sample_bsdf(sh, rng);
+    // A non-finite sample counts as black (never NaN/Inf in the output).
+    if (is_finite(c.x) && is_finite(c.y) && is_finite(c.z)) sum += max(c, vec3(0.0));
+  }
+  return result + sum / float(max(push.spp, 1u));
+}
+
+void main() {
+  uvec2 size = frame_constants.frame.frame.xy;
+  uint tiles_x = (size.x + kReferenceTileSize - 1u) / kReferenceTileSize;
+  uint tiles_y = (size.y + kReferenceTileSize - 1u) / kReferenceTileSize;
+  uint tile = (gl_WorkGroupID.x * push.tile_stride) % (tiles_x * tiles_y);
+  uvec2 pixel = uvec2(tile % tiles_x, tile / tiles_x) * kReferenceTileSize + gl_LocalInvocationID.xy;
+  if (pixel.x >= size.x || pixel.y >= size.y) return;
+  vec3 value = shade_pixel(pixel);
+  if (!(is_finite(value.x) && is_finite(value.y) && is_finite(value.z))) value = vec3(0.0);
+  value = max(value, vec3(0.0));
+  radiance.pixels[pixel.y * size.x + pixel.x] = vec4(value, 1.0);
+}
