@@ -110,6 +110,9 @@ class GpuScene {
     kSlotCount
   };
 
+  // The device buffer behind a slot (tests, debugging; valid until the next update()).
+  const runtime::Buffer& device_buffer(Slot slot) const { return arrays_[slot].buffer; }
+
  private:
   struct DeviceArray {
     runtime::Buffer buffer;

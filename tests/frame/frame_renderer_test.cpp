@@ -1,0 +1,164 @@
+// FrameRenderer on a running World: frames along cornell_lights' camera path are finite and lit
+// with no validation error; a moving instance's GpuInstance (read back from the device) carries
+// last frame's transform as its previous one; a light removed from the snapshot maps to
+// kInvalidLight in the prev->current remap and its contribution leaves the image.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/glm.hpp>
+
+#include "engine/level/level_loader.h"
+#include "engine/level/primitives.h"
+#include "engine/world/world.h"
+#include "lighting/scene/scene_data.h"
+#include "runtime/gpu/transfer.h"
+#include "shared/color.h"
+#include "shared/common_math.h"
+#include "shared/lights.h"
+#include "shared/scene.h"
+#include "tests/frame/frame_harness.h"
+#include "tests/runtime/gpu_test_support.h"
+
+namespace lantern {
+namespace {
+
+class FrameRendererTest : public runtime::test::GpuTest {
+ protected:
+  runtime::ShaderLibrary shaders;
+};
+
+double mean_luminance(const runtime::ImageRGBA32F& image) {
+  double sum = 0.0;
+  for (std::uint32_t y = 0; y < image.height; ++y)
+    for (std::uint32_t x = 0; x < image.width; ++x) {
+      const float* p = image.at(x, y);
+      sum += gpu::luminance(glm::vec3(p[0], p[1], p[2]));
+    }
+  return sum / (double(image.width) * image.height);
+}
+
+TEST_F(FrameRendererTest, CornellLightsAlongTheCameraPathIsFiniteAndLit) {
+  auto level = std::make_shared<const Level>(load_level_argument("cornell_lights"));
+  World world(level, {.threads = 1, .seed = 3, .fixed_dt = 1.0 / 10.0, .aspect = 16.0f / 9.0f});
+  world.set_camera_path("dolly");
+  test::FrameHarness harness(device, shaders, level, 160, 90);
+  glm::vec3 first_position{0.0f};
+  for (int frame = 0; frame < 4; ++frame) {
+    const FrameSnapshot& snapshot = world.step();
+    if (frame == 0) first_position = snapshot.camera.position;
+    const runtime::ImageRGBA32F image = harness.render(snapshot);
+    EXPECT_EQ(image.count_non_finite(), 0u) << "frame " << frame;
+    EXPECT_GT(mean_luminance(image), 0.0) << "frame " << frame;
+    const auto& inputs = harness.renderer().last_inputs();
+    EXPECT_EQ(inputs.history_valid, frame > 0) << "frame " << frame;
+    EXPECT_EQ(inputs.frame_index, static_cast<std::uint32_t>(frame));
+    if (frame == 3) {
+      EXPECT_GT(glm::length(snapshot.camera.position - first_position), 1e-3f)
+          << "the camera did not move along the path: the test proves little";
+    }
+  }
+}
+
+TEST_F(FrameRendererTest, MovingInstanceCarriesLastFramesTransformAsPrevious) {
+  auto level = std::make_shared<const Level>(load_level_argument("cornell_lights"));
+  std::uint32_t moving = 0;
+  for (std::uint32_t i = 0; i < level->instances.size(); ++i)
+    if (level->instances[i].name == "moving_box") moving = i;
+  ASSERT_TRUE(level->instances[moving].behaviour.has_value());
+  World world(level, {.threads = 1, .seed = 1, .fixed_dt = 1.0 / 10.0, .aspect = 16.0f / 9.0f});
+  test::FrameHarness harness(device, shaders, level, 64, 36);
+  glm::mat4 last{1.0f};
+  for (int frame = 0; frame < 3; ++frame) {
+    const FrameSnapshot& snapshot = world.step();
+    const SnapshotInstance* s = nullptr;
+    for (const SnapshotInstance& i : snapshot.instances)
+      if (i.stable_id == moving) s = &i;
+    ASSERT_NE(s, nullptr);
+    harness.render(snapshot);
+    const auto& scene = harness.renderer().scene();
+    const std::vector<gpu::GpuInstance> gpu = runtime::read_buffer<gpu::GpuInstance>(
+        device, scene.device_buffer(lighting::GpuScene::kInstances));
+    ASSERT_GT(gpu.size(), moving);
+    EXPECT_EQ(gpu[moving].object_to_world, s->object_to_world) << "frame " << frame;
+    if (frame > 0) {
+      EXPECT_EQ(gpu[moving].prev_object_to_world, last) << "frame " << frame;
+      EXPECT_NE(gpu[moving].object_to_world, last) << "the box did not move";
+      EXPECT_TRUE(scene.last_update().tlas_rebuilt);
+    }
+    last = s->object_to_world;
+  }
+}
+
+// A Lambertian plane under two point lights; the camera looks straight down at the origin.
+Level two_light_level() {
+  Level level;
+  level.name = "two_lights";
+  level.meshes.push_back(make_plane(glm::vec2(20.0f, 20.0f)));
+  Material m;
+  m.base_color = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
+  m.metallic = 0.0f;
+  m.roughness = 1.0f;
+  m.specular_factor = 0.0f;
+  level.materials.push_back(m);
+  Instance inst;
+  inst.name = "plane";
+  level.instances.push_back(inst);
+  for (int k = 0; k < 2; ++k) {
+    Light light;
+    light.name = k == 0 ? "kept" : "removed";
+    light.type = LightType::Point;
+    light.intensity = k == 0 ? 10.0f : 40.0f;
+    light.position = glm::vec3(k == 0 ? 0.0f : 1.5f, 2.0f, 0.0f);
+    level.lights.push_back(light);
+  }
+  level.camera.position = glm::vec3(0.0f, 4.0f, 0.0f);
+  level.camera.orientation = look_at_orientation(level.camera.position, glm::vec3(0.0f));
+  level.camera.yfov = 0.6f;
+  level.has_camera = true;
+  return level;
+}
+
+TEST_F(FrameRendererTest, RemovedLightMapsToInvalidAndLeavesTheImage) {
+  auto level = std::make_shared<const Level>(two_light_level());
+  World world(level, {.threads = 1, .seed = 1, .fixed_dt = 1.0 / 60.0, .aspect = 41.0f / 31.0f});
+  test::FrameHarness harness(device, shaders, level, 41, 31);
+  const FrameSnapshot& first = world.step();
+  ASSERT_EQ(first.lights.size(), 2u);
+  const FrameSnapshot both = first;
+  harness.render(both);
+  const auto& scene = harness.renderer().scene();
+  ASSERT_EQ(scene.light_record_count(), 2u);
+  EXPECT_EQ(scene.data().lights.stable_ids()[1], lighting::kAnalyticLightIdBase | 1u);
+
+  FrameSnapshot without = both;
+  without.camera_cut = false;
+  without.lights.erase(without.lights.begin() + 1);  // the light with stable id 1
+  const runtime::ImageRGBA32F image = harness.render(without);
+  ASSERT_EQ(scene.previous_light_count(), 2u);
+  EXPECT_EQ(scene.light_previous_to_current()[0], 0u);
+  EXPECT_EQ(scene.light_previous_to_current()[1], gpu::kInvalidLight);
+  EXPECT_EQ(scene.light_count(), 1u);
+  EXPECT_EQ(harness.renderer().last_inputs().previous_light_count, 2u);
+  // The remap reached the device too.
+  const std::vector<std::uint32_t> remap = runtime::read_buffer<std::uint32_t>(
+      device, scene.device_buffer(lighting::GpuScene::kRemap));
+  ASSERT_GE(remap.size(), 2u);
+  EXPECT_EQ(remap[0], 0u);
+  EXPECT_EQ(remap[1], gpu::kInvalidLight);
+
+  // One light left: sampling it is exact, so the centre pixel is rho/pi * I / h^2 of the kept
+  // light alone (the removed one would add 40 * cos^3 / d^2 more).
+  const float* centre = image.at(20, 15);
+  const float expected = 0.5f / gpu::kPi * 10.0f / 4.0f;
+  EXPECT_NEAR(centre[0], expected, 2e-3f * expected);
+
+  // Adding it back: a new index, unknown to the previous frame.
+  const runtime::ImageRGBA32F again = harness.render(both);
+  EXPECT_EQ(scene.light_record_count(), 2u);
+  EXPECT_EQ(scene.light_previous_to_current().size(), 1u);
+  EXPECT_EQ(scene.light_previous_to_current()[0], 0u);
+  EXPECT_EQ(again.count_non_finite(), 0u);
+}
+
+}  // namespace
+}  // namespace lantern
