@@ -1,0 +1,75 @@
+// gbuffer (fragment stage): writes the G-buffer of shaders/shared/gbuffer.h for the closest
+// surface (depth test LESS). Both normals are flipped to face the camera (the geometric one by
+// the side the camera is on, the shading one into the geometric one's hemisphere); emission
+// only where the camera sees the front face (counter-clockwise winding, GpuMaterial.emission is
+// one-sided). Motion = previous pixel position - current pixel centre, in pixels, from the
+// interpolated previous clip position; a point behind the previous camera gets
+// kGBufferNoPreviousPixel (prev far off-screen). No output is NaN or Inf.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "gbuffer/gbuffer_push.h"
+#include "shared/common_math.h"
+#include "shared/gbuffer.h"
+#include "shared/scene.h"
+
+layout(std430, binding = 0) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
+layout(std430, binding = 4) readonly buffer MaterialBuffer { GpuMaterial m[]; } scene_materials;
+
+layout(location = 0) in vec3 in_world;
+layout(location = 1) in vec3 in_shading_normal;
+layout(location = 2) in vec4 in_prev_clip;
+layout(location = 3) flat in vec3 in_geometric_normal;
+layout(location = 4) flat in uvec3 in_ids;
+
+layout(location = 0) out vec4 out_position;
+layout(location = 1) out vec4 out_normal;
+layout(location = 2) out vec4 out_albedo_roughness;
+layout(location = 3) out vec4 out_emission_metallic;
+layout(location = 4) out uvec4 out_ids;
+layout(location = 5) out vec4 out_motion;
+
+float finite_or_zero(float x) { return is_finite(x) ? x : 0.0; }
+vec3 finite_or_zero(vec3 v) {
+  return vec3(finite_or_zero(v.x), finite_or_zero(v.y), finite_or_zero(v.z));
+}
+
+void main() {
+  vec3 position = finite_or_zero(in_world);
+  vec3 to_camera = frame_constants.frame.camera_position.xyz - position;
+  vec3 ng = in_geometric_normal;
+  bool front = dot(ng, to_camera) > 0.0;
+  vec3 ng_facing = front ? ng : -ng;
+  if (!(dot(ng_facing, ng_facing) > 0.0)) {  // degenerate triangle (rasterises nothing anyway)
+    float d2 = dot(to_camera, to_camera);
+    ng_facing = d2 > 0.0 ? to_camera * inversesqrt(d2) : vec3(0.0, 0.0, 1.0);
+  }
+  vec3 ns = in_shading_normal;
+  float ns_len2 = dot(ns, ns);
+  ns = (ns_len2 > 0.0 && is_finite(ns_len2)) ? ns * inversesqrt(ns_len2) : ng_facing;
+  if (dot(ns, ng_facing) < 0.0) ns = -ns;
+
+  GpuMaterial material = scene_materials.m[in_ids.y];
+  vec3 emission = front ? finite_or_zero(material.emission.rgb) : vec3(0.0);
+
+  // gl_FragCoord.w = 1 / clip w, and clip w is the linear view depth (w = -z_view).
+  float view_depth = max(finite_or_zero(1.0 / gl_FragCoord.w), 1e-30);
+
+  vec2 size = vec2(frame_constants.frame.frame.xy);
+  vec2 current = gl_FragCoord.xy;  // pixel centre, (0,0) top-left
+  vec2 previous = vec2(kGBufferNoPreviousPixel);
+  if (in_prev_clip.w > 0.0) {
+    vec2 ndc = in_prev_clip.xy / in_prev_clip.w;
+    previous = (ndc * 0.5 + 0.5) * size;
+  }
+  vec2 motion = previous - current;
+  if (!(is_finite(motion.x) && is_finite(motion.y))) motion = vec2(kGBufferNoPreviousPixel);
+
+  out_position = vec4(position, view_depth);
+  out_normal = vec4(oct_encode(ns), oct_encode(ng_facing));
+  out_albedo_roughness =
+      vec4(finite_or_zero(material.base_color.rgb), finite_or_zero(material.params.x));
+  out_emission_metallic = vec4(emission, finite_or_zero(material.params.y));
+  out_ids = uvec4(in_ids, 0u);
+  out_motion = vec4(motion, 0.0, 0.0);
+}

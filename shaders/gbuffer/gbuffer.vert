@@ -1,0 +1,54 @@
+// gbuffer (vertex stage): vertex pulling from the scene's storage buffers. One non-indexed draw
+// per instance (push.instance) of geometry.z vertices: vertex k is corner k % 3 of triangle
+// k / 3, whose mesh-relative indices start at geometry.y and vertices at geometry.w (as
+// surface_at in shaders/integrators/baseline.comp). The triangle's geometric normal is computed
+// here from its three world-space corners (winding e1 x e2, mirrored by a negative determinant)
+// and passed flat, with the instance, material and primitive ids. The previous clip position
+// (prev_object_to_world, prev_view_proj) is interpolated for the motion vector.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "gbuffer/gbuffer_push.h"
+#include "shared/scene.h"
+
+layout(std430, binding = 0) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
+layout(std430, binding = 1) readonly buffer VertexBuffer { GpuVertex v[]; } scene_vertices;
+layout(std430, binding = 2) readonly buffer IndexBuffer { uint i[]; } scene_indices;
+layout(std430, binding = 3) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
+
+layout(push_constant) uniform Push { GBufferPush push; };
+
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_shading_normal;  // world space, not normalised
+layout(location = 2) out vec4 out_prev_clip;
+layout(location = 3) flat out vec3 out_geometric_normal;  // front face, unit (or zero)
+layout(location = 4) flat out uvec3 out_ids;              // instance, material, primitive
+
+void main() {
+  uint instance = push.instance;
+  mat4 object_to_world = scene_instances.i[instance].object_to_world;
+  uvec4 geometry = scene_instances.i[instance].geometry;
+  uint primitive = uint(gl_VertexIndex) / 3u;
+  uint corner = uint(gl_VertexIndex) - 3u * primitive;
+  uint base = geometry.y + 3u * primitive;
+  uint first_vertex = geometry.w;
+  vec3 p0 = scene_vertices.v[first_vertex + scene_indices.i[base]].position_u.xyz;
+  vec3 p1 = scene_vertices.v[first_vertex + scene_indices.i[base + 1u]].position_u.xyz;
+  vec3 p2 = scene_vertices.v[first_vertex + scene_indices.i[base + 2u]].position_u.xyz;
+  vec3 p = corner == 0u ? p0 : (corner == 1u ? p1 : p2);
+  vec3 n_object = scene_vertices.v[first_vertex + scene_indices.i[base + corner]].normal_v.xyz;
+
+  mat3 linear = mat3(object_to_world);
+  vec3 ng = cross(linear * (p1 - p0), linear * (p2 - p0));
+  if (determinant(linear) < 0.0) ng = -ng;
+  float ng_len2 = dot(ng, ng);
+  out_geometric_normal = ng_len2 > 0.0 ? ng * inversesqrt(ng_len2) : vec3(0.0);
+
+  vec4 world = object_to_world * vec4(p, 1.0);
+  vec4 prev_world = scene_instances.i[instance].prev_object_to_world * vec4(p, 1.0);
+  out_world = world.xyz;
+  out_shading_normal = transpose(mat3(scene_instances.i[instance].world_to_object)) * n_object;
+  out_prev_clip = frame_constants.frame.prev_view_proj * prev_world;
+  out_ids = uvec3(instance, geometry.x, primitive);
+  gl_Position = frame_constants.frame.view_proj * world;
+}

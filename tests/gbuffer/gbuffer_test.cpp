@@ -1,0 +1,377 @@
+// The gbuffer raster pass on lavapipe against the CPU: at 160x90 on cornell_lights, instance ids,
+// world positions, view depth, normals, materials and emission agree with SceneBvh::trace_closest
+// of the same pixel-centre camera rays (baseline.comp's construction) for >= 99.9% of pixels;
+// motion vectors equal the analytic reprojection through prev_view_proj (moving camera) and
+// prev_object_to_world (moving instance) within 0.01 px; sky pixels are position.w == 0 and
+// ids.x == kNoInstance; nothing is NaN; validation stays silent.
+#include "shared/gbuffer.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <map>
+
+#include "engine/level/level_loader.h"
+#include "lighting/scene/frame_constants.h"
+#include "lighting/scene/scene_data.h"
+#include "runtime/gpu/shader_library.h"
+#include "tests/gbuffer/gbuffer_harness.h"
+#include "tests/runtime/gpu_test_support.h"
+
+namespace lantern {
+namespace {
+
+constexpr std::uint32_t kWidth = 160;
+constexpr std::uint32_t kHeight = 90;
+
+class GBufferTest : public runtime::test::GpuTest {
+ protected:
+  runtime::ShaderLibrary shaders;
+};
+
+bool finite(const glm::vec4& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+std::size_t count_non_finite(const test::GBufferImages& g) {
+  std::size_t bad = 0;
+  for (const auto* image :
+       {&g.position, &g.normal, &g.albedo_roughness, &g.emission_metallic, &g.motion}) {
+    for (const glm::vec4& v : *image) bad += finite(v) ? 0 : 1;
+  }
+  return bad;
+}
+
+// Camera ray through image position (x, y) in pixels (baseline.comp shade_pixel).
+gpu::BvhRay camera_ray(const gpu::FrameConstants& fc, float x, float y) {
+  const glm::vec2 ndc =
+      glm::vec2(x / static_cast<float>(fc.frame.x), y / static_cast<float>(fc.frame.y)) * 2.0f -
+      1.0f;
+  const glm::vec4 a = fc.inv_view_proj * glm::vec4(ndc, 0.0f, 1.0f);
+  const glm::vec4 b = fc.inv_view_proj * glm::vec4(ndc, 0.5f, 1.0f);
+  const glm::vec3 dir = glm::normalize(glm::vec3(b) / b.w - glm::vec3(a) / a.w);
+  return gpu::bvh_make_ray(glm::vec3(fc.camera_position), dir, 0.0f, gpu::kBvhMiss);
+}
+
+// Pixel position (x right, y down, pixel centres at half-integers) of world point p.
+glm::vec2 project(const glm::mat4& view_proj, const glm::vec3& p, glm::uvec2 size) {
+  const glm::vec4 clip = view_proj * glm::vec4(p, 1.0f);
+  return (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(size);
+}
+
+// World-space front normal of triangle `t` of instance `i` (winding, mirrored by det < 0).
+glm::vec3 front_normal(const lighting::SceneData& scene, std::uint32_t i, std::uint32_t t) {
+  const gpu::GpuInstance& inst = scene.instances[i];
+  glm::vec3 p[3];
+  for (std::uint32_t k = 0; k < 3; ++k) {
+    const std::uint32_t index = scene.indices[inst.geometry.y + 3 * t + k];
+    p[k] =
+        glm::vec3(inst.object_to_world *
+                  glm::vec4(glm::vec3(scene.vertices[inst.geometry.w + index].position_u), 1.0f));
+  }
+  const glm::vec3 n = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+  return glm::determinant(glm::mat3(inst.object_to_world)) < 0.0f ? -n : n;
+}
+
+// True when `ray` meets triangle `t` of instance `i` with barycentrics inside [-1e-4, 1 + 1e-4]
+// at a distance no greater than (1 + 1e-4) * t_max.
+bool touches_triangle(const lighting::SceneData& scene, std::uint32_t i, std::uint32_t t,
+                      const gpu::BvhRay& ray, float t_max) {
+  const gpu::GpuInstance& inst = scene.instances[i];
+  if (3 * t + 2 >= inst.geometry.z) return false;
+  glm::dvec3 p[3];
+  for (std::uint32_t k = 0; k < 3; ++k) {
+    const std::uint32_t index = scene.indices[inst.geometry.y + 3 * t + k];
+    p[k] =
+        glm::dvec3(inst.object_to_world *
+                   glm::vec4(glm::vec3(scene.vertices[inst.geometry.w + index].position_u), 1.0f));
+  }
+  const glm::dvec3 o(ray.origin), d(ray.direction);
+  const glm::dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+  const glm::dvec3 q = glm::cross(d, e2);
+  const double det = glm::dot(e1, q);
+  if (std::abs(det) < 1e-20) return false;
+  const glm::dvec3 s = o - p[0];
+  const double u = glm::dot(s, q) / det;
+  const glm::dvec3 r = glm::cross(s, e1);
+  const double v = glm::dot(d, r) / det;
+  const double dist = glm::dot(e2, r) / det;
+  constexpr double kEps = 1e-4;
+  return u >= -kEps && v >= -kEps && u + v <= 1.0 + kEps && dist > 0.0 &&
+         dist <= (1.0 + kEps) * static_cast<double>(t_max);
+}
+
+gpu::FrameConstants constants_for(const Camera& camera) {
+  return lighting::make_frame_constants(camera, kWidth, kHeight, 0, 1, {});
+}
+
+struct Agreement {
+  std::size_t pixels = 0, agree = 0, hits = 0, sky = 0, front_emitters = 0;
+  std::size_t back_emitters = 0;  // emissive material seen from behind (must show no emission)
+  std::size_t edges = 0;  // ids differ, but the ray passes (within rounding) through both hits
+  std::size_t attribute_mismatches = 0;  // normals, depth, material, emission on agreeing hits
+  std::string first_problem;
+};
+
+// Compares every pixel of `g` with the CPU trace of the pixel-centre ray.
+Agreement compare_with_cpu(const lighting::SceneData& scene, const gpu::FrameConstants& fc,
+                           const test::GBufferImages& g) {
+  Agreement a;
+  auto problem = [&](std::uint32_t x, std::uint32_t y, const std::string& what) {
+    if (a.first_problem.empty()) a.first_problem = fmt::format("pixel ({}, {}): {}", x, y, what);
+  };
+  for (std::uint32_t y = 0; y < g.height; ++y) {
+    for (std::uint32_t x = 0; x < g.width; ++x) {
+      ++a.pixels;
+      const std::size_t i = g.index(x, y);
+      const gpu::BvhRay ray =
+          camera_ray(fc, static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+      gpu::BvhHit hit{};
+      const bool cpu_hit = scene.bvh.trace_closest(ray, hit);
+      const bool gpu_sky = gpu::gbuffer_is_sky(g.position[i].w);
+      if (!cpu_hit) {
+        if (gpu_sky && g.ids[i].x == gpu::kNoInstance) {
+          ++a.agree;
+          ++a.sky;
+        } else {
+          problem(x, y, fmt::format("CPU misses, GPU instance {}", g.ids[i].x));
+        }
+        continue;
+      }
+      const glm::vec3 dir(ray.direction);
+      const glm::vec3 cpu_p = glm::vec3(ray.origin) + hit.t * dir;
+      const glm::vec3 gpu_p(g.position[i]);
+      const bool same_surface = !gpu_sky && g.ids[i].x == hit.instance &&
+                                g.ids[i].z == hit.primitive &&
+                                glm::length(gpu_p - cpu_p) <= 1e-3f * hit.t;
+      if (!same_surface) {
+        // An edge: the centre lies (within rounding) on the GPU's triangle too, no farther than
+        // the CPU's hit (shared edges, corners where surfaces meet, edges of decals).
+        if (!gpu_sky && g.ids[i].x < scene.instances.size() &&
+            touches_triangle(scene, g.ids[i].x, g.ids[i].z, ray, hit.t)) {
+          ++a.edges;
+          continue;
+        }
+        problem(x, y,
+                fmt::format("CPU instance {} triangle {} at t {}, GPU instance {} "
+                            "triangle {} at distance {}",
+                            hit.instance, hit.primitive, hit.t, g.ids[i].x, g.ids[i].z,
+                            glm::length(gpu_p - cpu_p)));
+        continue;
+      }
+      ++a.agree;
+      ++a.hits;
+      // Attributes of the agreeing hit.
+      const gpu::GpuInstance& inst = scene.instances[hit.instance];
+      const glm::vec3 front = front_normal(scene, hit.instance, hit.primitive);
+      const bool sees_front = glm::dot(front, -dir) > 0.0f;
+      const glm::vec3 facing = sees_front ? front : -front;
+      const glm::vec3 ng = gpu::oct_decode(glm::vec2(g.normal[i].z, g.normal[i].w));
+      const glm::vec3 ns = gpu::oct_decode(glm::vec2(g.normal[i].x, g.normal[i].y));
+      const float depth = (fc.view_proj * glm::vec4(cpu_p, 1.0f)).w;
+      const gpu::GpuMaterial& m = scene.materials[inst.geometry.x];
+      const glm::vec3 emission = sees_front ? glm::vec3(m.emission) : glm::vec3(0.0f);
+      const glm::vec3 gpu_emission(g.emission_metallic[i]);
+      std::string bad;
+      if (g.ids[i].y != inst.geometry.x) bad += " material";
+      if (glm::dot(ng, facing) < 0.999f && std::abs(glm::dot(front, dir)) > 1e-3f)
+        bad += " geometric-normal";
+      if (glm::dot(ns, ng) < -1e-6f) bad += " shading-normal";
+      if (std::abs(g.position[i].w - depth) > 1e-3f * depth) bad += " depth";
+      if (glm::length(gpu_emission - emission) > 1e-6f * glm::length(emission) + 1e-12f)
+        bad += " emission";
+      if (std::abs(g.emission_metallic[i].w - m.params.y) > 1e-6f) bad += " metallic";
+      if (glm::length(glm::vec3(g.albedo_roughness[i]) - glm::vec3(m.base_color)) > 2e-3f ||
+          std::abs(g.albedo_roughness[i].w - m.params.x) > 2e-3f)
+        bad += " albedo/roughness";
+      if (!bad.empty()) {
+        ++a.attribute_mismatches;
+        problem(x, y, "attributes differ:" + bad);
+      }
+      if (glm::length(glm::vec3(m.emission)) > 0.0f)
+        ++(sees_front ? a.front_emitters : a.back_emitters);
+    }
+  }
+  return a;
+}
+
+// >= 99.9% of the pixels that are not edges agree, and edges are few (a broken pass cannot
+// hide behind them).
+void expect_agreement(const Agreement& a, const char* what) {
+  const std::size_t judged = a.pixels - a.edges;
+  EXPECT_GE(static_cast<double>(a.agree), 0.999 * static_cast<double>(judged))
+      << what << ": " << judged - a.agree << " of " << judged
+      << " pixels disagree; first: " << a.first_problem;
+  EXPECT_LE(static_cast<double>(a.edges), 0.01 * static_cast<double>(a.pixels)) << what;
+  ::testing::Test::RecordProperty(std::string(what) + " edge pixels", std::to_string(a.edges));
+  ::testing::Test::RecordProperty(std::string(what) + " disagreeing pixels",
+                                  std::to_string(judged - a.agree));
+  EXPECT_LE(static_cast<double>(a.attribute_mismatches), 0.001 * static_cast<double>(a.pixels))
+      << what << ": first: " << a.first_problem;
+}
+
+TEST_F(GBufferTest, CornellLightsAgreesWithCpuTrace) {
+  const Level level = load_level_argument("cornell_lights");
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  test::GBufferHarness harness(device, shaders, scene);
+  harness.warm_up();
+  const gpu::FrameConstants fc = constants_for(level.camera);
+  const test::GBufferImages g = *harness.render(fc, true);
+  EXPECT_EQ(count_non_finite(g), 0u);
+  const Agreement a = compare_with_cpu(scene, fc, g);
+  expect_agreement(a, "cornell_lights");
+  EXPECT_GT(a.hits, a.pixels / 2) << "the camera should mostly see geometry";
+  EXPECT_GT(a.front_emitters, 10u) << "too few emitter pixels: emission is untested";
+  // Static camera and instances: no motion.
+  for (const glm::vec4& m : g.motion) ASSERT_LE(glm::length(glm::vec2(m)), 0.01f);
+  EXPECT_GT(harness.last_ms("gbuffer"), 0.0);
+}
+
+// Seen from outside and above with the ceiling removed: sky around the box, the ceiling panels
+// from behind (no emission), and one instance mirrored (negative determinant: winding flips).
+TEST_F(GBufferTest, SkyBackFacesAndMirroredInstanceAgreeWithCpuTrace) {
+  Level level = load_level_argument("cornell_lights");
+  const auto ceiling = std::find_if(level.instances.begin(), level.instances.end(),
+                                    [](const Instance& i) { return i.name == "ceiling"; });
+  ASSERT_NE(ceiling, level.instances.end());
+  level.instances.erase(ceiling);
+  std::uint32_t mirrored = 0;  // the smallest instance: a box, not a wall
+  for (std::uint32_t i = 0; i < level.instances.size(); ++i) {
+    if (level.meshes[level.instances[i].mesh].indices.size() <
+        level.meshes[level.instances[mirrored].mesh].indices.size()) {
+      mirrored = i;
+    }
+  }
+  level.instances[mirrored].world =
+      level.instances[mirrored].world * glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+  level.camera.position = glm::vec3(-1.5f, 2.5f, 7.0f);
+  level.camera.orientation =
+      look_at_orientation(level.camera.position, glm::vec3(0.5f, 1.0f, 0.0f));
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  ASSERT_LT(glm::determinant(glm::mat3(scene.instances[mirrored].object_to_world)), 0.0f)
+      << "the mirrored transform did not reach the scene records";
+  test::GBufferHarness harness(device, shaders, scene);
+  const gpu::FrameConstants fc = constants_for(level.camera);
+  const test::GBufferImages g = *harness.render(fc, true);
+  EXPECT_EQ(count_non_finite(g), 0u);
+  const Agreement a = compare_with_cpu(scene, fc, g);
+  expect_agreement(a, "outside view");
+  EXPECT_GT(a.sky, a.pixels / 10) << "the view should show sky";
+  EXPECT_GT(a.back_emitters, 10u) << "the ceiling panels should be seen from behind";
+  EXPECT_GT(a.hits, a.pixels / 10);
+  std::size_t mirrored_pixels = 0;
+  for (std::size_t i = 0; i < g.ids.size(); ++i) {
+    if (gpu::gbuffer_is_sky(g.position[i].w)) {
+      EXPECT_EQ(g.position[i].w, 0.0f);
+      EXPECT_EQ(g.ids[i].x, gpu::kNoInstance);
+      EXPECT_EQ(glm::vec2(g.motion[i]), glm::vec2(0.0f));
+    }
+    mirrored_pixels += g.ids[i].x == mirrored ? 1 : 0;
+  }
+  EXPECT_GT(mirrored_pixels, 20u) << "the mirrored instance is barely visible";
+}
+
+TEST_F(GBufferTest, CameraMotionIsTheReprojectionThroughPrevViewProj) {
+  const Level level = load_level_argument("cornell_lights");
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  test::GBufferHarness harness(device, shaders, scene);
+  Camera prev = level.camera;
+  prev.position += glm::vec3(0.12f, -0.07f, 0.15f);
+  prev.orientation = glm::angleAxis(glm::radians(2.5f), glm::vec3(0.0f, 1.0f, 0.0f)) *
+                     glm::angleAxis(glm::radians(-1.5f), glm::vec3(1.0f, 0.0f, 0.0f)) *
+                     prev.orientation;
+  gpu::FrameConstants fc = constants_for(level.camera);
+  fc.prev_view_proj = lighting::camera_view_proj(prev, kWidth, kHeight);
+  fc.prev_camera_position = glm::vec4(prev.position, prev.yfov);
+  fc.counts.w = 0;
+  const test::GBufferImages g = *harness.render(fc, true);
+  EXPECT_EQ(count_non_finite(g), 0u);
+  expect_agreement(compare_with_cpu(scene, fc, g), "moving camera");
+
+  float max_error = 0.0f, max_motion = 0.0f;
+  std::size_t checked = 0;
+  for (std::uint32_t y = 0; y < kHeight; ++y) {
+    for (std::uint32_t x = 0; x < kWidth; ++x) {
+      const std::size_t i = g.index(x, y);
+      if (gpu::gbuffer_is_sky(g.position[i].w)) continue;
+      const glm::vec2 expected =
+          project(fc.prev_view_proj, glm::vec3(g.position[i]), glm::uvec2(kWidth, kHeight)) -
+          glm::vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+      const float error = glm::length(glm::vec2(g.motion[i]) - expected);
+      EXPECT_LE(error, 0.01f) << "pixel (" << x << ", " << y << ") expected motion (" << expected.x
+                              << ", " << expected.y << ") got (" << g.motion[i].x << ", "
+                              << g.motion[i].y << ")";
+      if (error > 0.01f) return;  // one report is enough
+      max_error = std::max(max_error, error);
+      max_motion = std::max(max_motion, glm::length(expected));
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, kWidth * kHeight / 2);
+  EXPECT_GT(max_motion, 2.0f) << "the camera barely moved: the test proves nothing";
+  RecordProperty("max_motion_error_px", std::to_string(max_error));
+}
+
+TEST_F(GBufferTest, MovingInstanceGetsItsObjectMotion) {
+  const Level level = load_level_argument("cornell_lights");
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  test::GBufferHarness harness(device, shaders, scene);
+  const gpu::FrameConstants fc = constants_for(level.camera);
+  const test::GBufferImages still = *harness.render(fc, true);
+
+  // The instance covering the most pixels that is not the biggest mesh (walls are one mesh).
+  std::map<std::uint32_t, std::size_t> coverage;
+  for (const glm::uvec4& id : still.ids) {
+    if (id.x != gpu::kNoInstance) ++coverage[id.x];
+  }
+  std::uint32_t moving = gpu::kNoInstance;
+  std::size_t best = 0;
+  for (const auto& [instance, pixels] : coverage) {
+    if (pixels > best && pixels < still.ids.size() / 4) {
+      moving = instance;
+      best = pixels;
+    }
+  }
+  ASSERT_NE(moving, gpu::kNoInstance);
+  ASSERT_GT(best, 50u);
+
+  std::vector<gpu::GpuInstance> instances = scene.instances;
+  const glm::mat4 delta =
+      glm::translate(glm::mat4(1.0f), glm::vec3(0.04f, 0.03f, -0.05f)) *
+      glm::rotate(glm::mat4(1.0f), glm::radians(4.0f), glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)));
+  instances[moving].prev_object_to_world = delta * instances[moving].object_to_world;
+  harness.set_instances(instances);
+  const test::GBufferImages g = *harness.render(fc, true);
+  EXPECT_EQ(count_non_finite(g), 0u);
+
+  float max_motion = 0.0f;
+  std::size_t moving_pixels = 0;
+  for (std::uint32_t y = 0; y < kHeight; ++y) {
+    for (std::uint32_t x = 0; x < kWidth; ++x) {
+      const std::size_t i = g.index(x, y);
+      ASSERT_EQ(g.ids[i], still.ids[i]) << "current geometry must not change";
+      glm::vec2 expected(0.0f);
+      if (g.ids[i].x == moving) {
+        const glm::vec3 prev = glm::vec3(delta * glm::vec4(glm::vec3(g.position[i]), 1.0f));
+        expected = project(fc.view_proj, prev, glm::uvec2(kWidth, kHeight)) -
+                   glm::vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+        max_motion = std::max(max_motion, glm::length(expected));
+        ++moving_pixels;
+      }
+      const float error = glm::length(glm::vec2(g.motion[i]) - expected);
+      ASSERT_LE(error, 0.01f) << "pixel (" << x << ", " << y << ") instance " << g.ids[i].x
+                              << " expected (" << expected.x << ", " << expected.y << ") got ("
+                              << g.motion[i].x << ", " << g.motion[i].y << ")";
+    }
+  }
+  EXPECT_EQ(moving_pixels, best);
+  EXPECT_GT(max_motion, 0.5f) << "the instance barely moved: the test proves nothing";
+}
+
+}  // namespace
+}  // namespace lantern
