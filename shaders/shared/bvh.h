@@ -110,6 +110,20 @@ LANTERN_FUNC BvhRay bvh_make_ray(vec3 origin, vec3 direction, float tmin, float 
   return ray;
 }
 
+// The shadow-ray segment between two points: origin + t * (target - origin) for t in
+// [t_eps, 1 - t_eps], where t_eps * |target - origin| = kBvhShadowEpsilon * max(1, largest
+// coordinate magnitude of either end), so neither the surface the ray leaves nor the one it reaches
+// counts as a blocker. Returns t_eps, or -1 when the points are closer than two epsilons (then
+// they see each other) or the distance is NaN.
+LANTERN_FUNC float bvh_shadow_t_epsilon(vec3 origin, vec3 target) {
+  vec3 direction = target - origin;
+  float distance = length(direction);
+  vec3 magnitude = max(abs(origin), abs(target));
+  float epsilon = kBvhShadowEpsilon * max(1.0f, max(magnitude.x, max(magnitude.y, magnitude.z)));
+  if (!(distance > 2.0f * epsilon)) return -1.0f;
+  return epsilon / distance;
+}
+
 LANTERN_FUNC bool bvh_node_is_leaf(BvhNode node) {
   return floatBitsToUint(node.bounds_max.w) != 0u;
 }

@@ -240,15 +240,13 @@ LANTERN_FUNC bool bvh_trace_any(LANTERN_BVH_SCENE_PARAM BvhRay ray) {
 // Shadow ray between two surface points: true when nothing blocks the segment. Both ends are
 // pulled in by kBvhShadowEpsilon scaled to the coordinates' magnitude, so neither the surface the
 // ray leaves nor the one it reaches counts as a blocker.
+// (bvh_shadow_t_epsilon in shared/bvh.h: the one epsilon policy, also used by the ray-query
+// backend of shaders/lib/visibility.glsl.)
 LANTERN_FUNC bool bvh_visible(LANTERN_BVH_SCENE_PARAM vec3 origin, vec3 target) {
-  vec3 direction = target - origin;
-  float distance = length(direction);
-  vec3 magnitude = max(abs(origin), abs(target));
-  float epsilon = kBvhShadowEpsilon * max(1.0f, max(magnitude.x, max(magnitude.y, magnitude.z)));
-  if (!(distance > 2.0f * epsilon)) return true;
-  float t_epsilon = epsilon / distance;
+  float t_epsilon = bvh_shadow_t_epsilon(origin, target);
+  if (t_epsilon < 0.0f) return true;
   return !bvh_trace_any(
-      LANTERN_BVH_SCENE bvh_make_ray(origin, direction, t_epsilon, 1.0f - t_epsilon));
+      LANTERN_BVH_SCENE bvh_make_ray(origin, target - origin, t_epsilon, 1.0f - t_epsilon));
 }
 
 LANTERN_END_SHARED

@@ -1,0 +1,115 @@
+// The one visibility interface of every pass (baseline, ReSTIR, reference):
+//   bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit)
+//     Closest triangle hit on origin + t * dir for 0 < t < tmax (dir need not be normalised: t is
+//     in units of dir; pass kVisInfinity for an unbounded ray). On a hit, `hit` holds the instance
+//     index (into the scene's instance array, GpuInstance / BvhInstance order), the primitive
+//     (the mesh's original triangle index), the barycentrics (u, v) of vertices 1 and 2 and t.
+//     On a miss `hit` is zeroed with hit.t = tmax. The caller offsets secondary-ray origins off
+//     their surface; a hit at exactly t = 0 is never reported.
+//   bool vis_visible(vec3 origin, vec3 target)
+//     Shadow ray (any hit): true when nothing blocks the open segment. Epsilon policy (one owner,
+//     bvh_shadow_t_epsilon in shared/bvh.h): both ends are pulled in by
+//     kBvhShadowEpsilon * max(1, largest |coordinate| of either end) in world units, so the
+//     surface the ray leaves and the emitter it reaches never count as blockers; points closer
+//     than two epsilons see each other. Pass surface points and light points as they are.
+// Backend, chosen at compile time (lighting/visibility/visibility_backend.h maps a shader path to
+// its variant; shaders/variants.cmake compiles both):
+//   default                        compute-shader BVH (shaders/lib/bvh_traverse.glsl); BVH arrays
+//                                  as storage buffers, or rgba32ui texel buffers with
+//                                  BVH_TEXEL_BUFFERS (see VIS_BVH_TEXEL_BUFFERS below).
+//   LANTERN_VISIBILITY_RAY_QUERY   GL_EXT_ray_query against the TLAS bound as "scene_tlas".
+// Bindings: set VIS_DESCRIPTOR_SET (default 0), bindings VIS_BINDING_BASE .. + 3 (default 0..3):
+// the BVH uses four (header, nodes, triangles, instances), ray query one (scene_tlas at the base).
+// Bind them with lighting::VisibilityScene::bind (lighting/visibility/visibility_scene.h).
+#ifndef LANTERN_LIB_VISIBILITY_GLSL
+#define LANTERN_LIB_VISIBILITY_GLSL
+
+#include "shared/bvh.h"
+
+#ifndef VIS_DESCRIPTOR_SET
+#define VIS_DESCRIPTOR_SET 0
+#endif
+#ifndef VIS_BINDING_BASE
+#define VIS_BINDING_BASE 0
+#endif
+
+// An unbounded ray's tmax.
+const float kVisInfinity = kBvhMiss;
+
+struct VisHit {
+  uint instance;   // index into the scene's instance array
+  uint primitive;  // original triangle index within the instance's mesh
+  float u;         // barycentric of vertex 1
+  float v;         // barycentric of vertex 2
+  float t;         // hit distance in units of dir
+};
+
+#ifdef LANTERN_VISIBILITY_RAY_QUERY
+
+#extension GL_EXT_ray_query : require
+
+layout(set = VIS_DESCRIPTOR_SET, binding = VIS_BINDING_BASE) uniform accelerationStructureEXT
+    scene_tlas;
+
+bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {
+  hit = VisHit(0u, 0u, 0.0, 0.0, tmax);
+  // NaN/infinite rays miss, as in the BVH backend (ray query leaves them undefined).
+  float finite_check = dot(origin, origin) + dot(dir, dir);
+  if (isnan(finite_check) || isinf(finite_check) || !(tmax > 0.0)) return false;
+  rayQueryEXT query;
+  // All geometry is opaque: the loop runs once and commits the closest triangle itself.
+  rayQueryInitializeEXT(query, scene_tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, dir,
+                        min(tmax, kVisInfinity));
+  while (rayQueryProceedEXT(query)) {
+  }
+  if (rayQueryGetIntersectionTypeEXT(query, true) != gl_RayQueryCommittedIntersectionTriangleEXT)
+    return false;
+  // The TLAS instance custom index is the scene instance index (ray_query_scene.cpp).
+  hit.instance = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(query, true));
+  hit.primitive = uint(rayQueryGetIntersectionPrimitiveIndexEXT(query, true));
+  vec2 bary = rayQueryGetIntersectionBarycentricsEXT(query, true);
+  hit.u = bary.x;
+  hit.v = bary.y;
+  hit.t = rayQueryGetIntersectionTEXT(query, true);
+  return true;
+}
+
+bool vis_visible(vec3 origin, vec3 target) {
+  float t_epsilon = bvh_shadow_t_epsilon(origin, target);
+  if (t_epsilon < 0.0) return true;
+  vec3 dir = target - origin;
+  float finite_check = dot(origin, origin) + dot(dir, dir);
+  if (isnan(finite_check) || isinf(finite_check)) return true;
+  rayQueryEXT query;
+  rayQueryInitializeEXT(query, scene_tlas,
+                        gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFF, origin,
+                        t_epsilon, dir, 1.0 - t_epsilon);
+  while (rayQueryProceedEXT(query)) {
+  }
+  return rayQueryGetIntersectionTypeEXT(query, true) == gl_RayQueryCommittedIntersectionNoneEXT;
+}
+
+#else  // compute-shader BVH
+
+#define BVH_DESCRIPTOR_SET VIS_DESCRIPTOR_SET
+#define BVH_BINDING_BASE VIS_BINDING_BASE
+#ifdef VIS_BVH_TEXEL_BUFFERS
+#define BVH_TEXEL_BUFFERS
+#endif
+#include "lib/bvh_traverse.glsl"
+
+bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {
+  BvhHit h;
+  bool found = bvh_trace_closest(bvh_make_ray(origin, dir, 0.0, tmax), h);
+  hit = VisHit(found ? h.instance : 0u, found ? h.primitive : 0u, found ? h.u : 0.0,
+               found ? h.v : 0.0, h.t);
+  return found;
+}
+
+bool vis_visible(vec3 origin, vec3 target) {
+  return bvh_visible(origin, target);
+}
+
+#endif
+
+#endif
