@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   app::add_render_command(root, options);
   app::add_play_command(root, options);
   app::add_bench_command(root, options);
+  app::add_capture_command(root, options);
 
   try {
     root.parse(argc, argv);

@@ -34,8 +34,11 @@ ImageFormat image_format_for(const fs::path& path) {
 namespace {
 
 // Writes `pixels` (channels per pixel, given type) to a temporary file beside `path`, then renames.
-void write_atomic(const fs::path& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
+// An empty "DateTime" keeps OpenImageIO from stamping the write time into the file, so the same
+// pixels always give the same bytes (deterministic captures compare files bitwise).
+void write_atomic(const fs::path& path, OIIO::ImageSpec spec, OIIO::TypeDesc type,
                   const void* pixels) {
+  spec.attribute("DateTime", "");
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::is_directory(dir))
     throw InputError(fmt::format("{}: directory '{}' does not exist", path.string(), dir.string()));
