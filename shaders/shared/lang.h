@@ -52,14 +52,18 @@ using glm::min;
 using glm::mix;
 using glm::normalize;
 using glm::packHalf2x16;
+using glm::packSnorm2x16;
 using glm::packUnorm2x16;
+using glm::packUnorm4x8;
 using glm::pow;
 using glm::reflect;
 using glm::sin;
 using glm::sqrt;
 using glm::uintBitsToFloat;
 using glm::unpackHalf2x16;
+using glm::unpackSnorm2x16;
 using glm::unpackUnorm2x16;
+using glm::unpackUnorm4x8;
 using std::pow;
 inline bool isnan(float x) { return x != x; }
 inline bool isinf(float x) { return x == x && (x - x) != 0.0f; }

@@ -35,7 +35,7 @@ struct Reservoir {
   float weight_sum;      // sum of the guarded weights w_i seen so far
   float M;               // confidence: number of candidates (or capped history) it summarises
   float W;               // unbiased contribution weight of `selected`; valid after finalize
-  uint pad0;
+  uint age;              // frames since `selected` was drawn as a fresh candidate (debug view)
 };
 LANTERN_STATIC_SIZE(Reservoir, 32);
 
@@ -59,7 +59,7 @@ LANTERN_FUNC Reservoir reservoir_empty() {
   r.weight_sum = 0.0f;
   r.M = 0.0f;
   r.W = 0.0f;
-  r.pad0 = 0u;
+  r.age = 0u;
   return r;
 }
 
@@ -90,7 +90,11 @@ LANTERN_FUNC bool reservoir_add(LANTERN_INOUT(Reservoir) r, LightSample candidat
 LANTERN_FUNC bool reservoir_update(LANTERN_INOUT(Reservoir) r, LightSample candidate, float weight,
                                    float u) {
   r.M += 1.0f;
-  return reservoir_add(r, candidate, weight, u);
+  bool take = reservoir_add(r, candidate, weight, u);
+  if (take) {
+    r.age = 0u;
+  }
+  return take;
 }
 
 // Merges finalized reservoir `other` (from another pixel or frame) into r. target_pdf_here is
@@ -103,7 +107,11 @@ LANTERN_FUNC bool reservoir_merge(LANTERN_INOUT(Reservoir) r, Reservoir other, f
   float w =
       finite_positive_or_zero(mis_weight) * moved.target_pdf * finite_positive_or_zero(other.W);
   r.M += finite_positive_or_zero(other.M);
-  return reservoir_add(r, moved, w, u);
+  bool take = reservoir_add(r, moved, w, u);
+  if (take) {
+    r.age = other.age;
+  }
+  return take;
 }
 
 // Generalized RIS contribution weight: W = weight_sum / p̂(y). Zero when nothing was selected

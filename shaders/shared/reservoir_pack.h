@@ -1,6 +1,8 @@
 // The stored form of a reservoir: 16 bytes per pixel for the reservoir buffers, packed from and
 // unpacked to the working Reservoir (reservoir.h). Layout and precision:
-//   light_index  32-bit light index (kInvalidLight: empty)
+//   light_age    low 24 bits: light index (kPackedNoLight: empty); high 8 bits: the sample's age
+//                in frames, saturating at 255. 24 bits hold every light a scene can bind: 2^24
+//                GpuLights of 64 bytes are 1 GiB, beyond the 128 MiB maxStorageBufferRange.
 //   uv           2 x 16-bit unorm point on the light (error <= 0.5 / 65535)
 //   W            32-bit float contribution weight (exact)
 //   m_target     low 16 bits: M rounded to an integer in [0, 65535]; high 16 bits: p̂(y) as half
@@ -16,7 +18,7 @@
 LANTERN_BEGIN_SHARED
 
 struct PackedReservoir {
-  uint light_index;
+  uint light_age;
   uint uv;
   float W;
   uint m_target;
@@ -24,6 +26,10 @@ struct PackedReservoir {
 LANTERN_STATIC_SIZE(PackedReservoir, 16);
 
 LANTERN_CONST float kPackedMaxM = 65535.0f;
+LANTERN_CONST uint kPackedLightMask = 0xffffffu;
+LANTERN_CONST uint kPackedNoLight = 0xffffffu;  // the 24-bit form of kInvalidLight
+LANTERN_CONST uint kPackedMaxLights = 0xffffffu;  // light indices must stay below this
+LANTERN_CONST uint kPackedMaxAge = 255u;
 LANTERN_CONST float kHalfMax = 65504.0f;
 
 // Half bits of a non-negative p̂: saturating, and never 0 for a positive input (0 would make the
@@ -37,8 +43,9 @@ LANTERN_FUNC uint pack_target_pdf_half(float target_pdf) {
 LANTERN_FUNC PackedReservoir reservoir_pack(Reservoir r) {
   PackedReservoir p;
   float w = finite_positive_or_zero(r.W);
-  bool empty = r.selected.light_index == kInvalidLight || w == 0.0f;
-  p.light_index = empty ? kInvalidLight : r.selected.light_index;
+  bool empty = r.selected.light_index >= kPackedMaxLights || w == 0.0f;
+  uint light = empty ? kPackedNoLight : r.selected.light_index;
+  p.light_age = light | (min(r.age, kPackedMaxAge) << 24u);
   p.uv = packUnorm2x16(vec2(r.selected.u, r.selected.v));
   p.W = empty ? 0.0f : w;
   uint m = uint(min(finite_positive_or_zero(r.M), kPackedMaxM) + 0.5f);
@@ -52,11 +59,12 @@ LANTERN_FUNC Reservoir reservoir_unpack(PackedReservoir p) {
   Reservoir r;
   vec2 uv = unpackUnorm2x16(p.uv);
   float target_pdf = unpackHalf2x16(p.m_target >> 16u).x;
-  r.selected = light_sample_make(p.light_index, uv, target_pdf);
+  uint light = p.light_age & kPackedLightMask;
+  r.selected = light_sample_make(light == kPackedNoLight ? kInvalidLight : light, uv, target_pdf);
   r.W = finite_positive_or_zero(p.W);
   r.weight_sum = reservoir_weight_guard(r.W * r.selected.target_pdf);
   r.M = float(p.m_target & 0xffffu);
-  r.pad0 = 0u;
+  r.age = p.light_age >> 24u;
   return r;
 }
 

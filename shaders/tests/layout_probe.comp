@@ -15,6 +15,8 @@
 #include "shared/reservoir.h"
 #include "shared/reservoir_mis.h"
 #include "shared/reservoir_pack.h"
+#include "shared/restir.h"
+#include "shared/light_eval.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
 #include "shared/scene.h"
@@ -38,6 +40,8 @@ layout(std430, binding = 11) buffer BvhInstanceProbe { BvhInstance bvh_instances
 layout(std430, binding = 12) buffer BvhSceneHeaderProbe { BvhSceneHeader bvh_headers[]; };
 layout(std430, binding = 13) buffer BvhRayProbe { BvhRay bvh_rays[]; };
 layout(std430, binding = 14) buffer BvhHitProbe { BvhHit bvh_hits[]; };
+layout(std430, binding = 15) buffer RestirPushProbe { RestirPush restir_pushes[]; };
+layout(std430, binding = 16) buffer RestirSurfaceProbe { RestirSurface restir_surfaces[]; };
 layout(std430, binding = 17) buffer GpuEnvironmentProbe { GpuEnvironment gpu_environments[]; };
 
 void main() {
@@ -57,5 +61,7 @@ void main() {
   bvh_headers[0] = bvh_headers[1];
   bvh_rays[0] = bvh_rays[1];
   bvh_hits[0] = bvh_hits[1];
+  restir_pushes[0] = restir_pushes[1];
+  restir_surfaces[0] = restir_surfaces[1];
   gpu_environments[0] = gpu_environments[1];
 }

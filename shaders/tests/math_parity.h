@@ -43,7 +43,7 @@ LANTERN_FUNC void math_parity_eval(uint index, LANTERN_OUT(uvec4) o0, LANTERN_OU
   }
   reservoir_finalize(r);
   PackedReservoir packed = reservoir_pack(r);
-  o0 = uvec4(first, floatBitsToUint(uniform01), packed.light_index, packed.m_target);
+  o0 = uvec4(first, floatBitsToUint(uniform01), packed.light_age, packed.m_target);
   o1 = uvec4(floatBitsToUint(packed.W), packed.uv, floatBitsToUint(r.weight_sum),
              floatBitsToUint(r.M));
 

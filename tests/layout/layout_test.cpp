@@ -19,6 +19,7 @@
 #include "shared/lights.h"
 #include "shared/reservoir.h"
 #include "shared/reservoir_pack.h"
+#include "shared/restir.h"
 #include "shared/scene.h"
 #include "spirv_layout.h"
 
@@ -64,11 +65,19 @@ const std::vector<StructLayout>& cpp_layouts() {
        sizeof(gpu::Reservoir),
        {LANTERN_MEMBER(Reservoir, selected), LANTERN_MEMBER(Reservoir, weight_sum),
         LANTERN_MEMBER(Reservoir, M), LANTERN_MEMBER(Reservoir, W),
-        LANTERN_MEMBER(Reservoir, pad0)}},
+        LANTERN_MEMBER(Reservoir, age)}},
       {"PackedReservoir",
        sizeof(gpu::PackedReservoir),
-       {LANTERN_MEMBER(PackedReservoir, light_index), LANTERN_MEMBER(PackedReservoir, uv),
+       {LANTERN_MEMBER(PackedReservoir, light_age), LANTERN_MEMBER(PackedReservoir, uv),
         LANTERN_MEMBER(PackedReservoir, W), LANTERN_MEMBER(PackedReservoir, m_target)}},
+      {"RestirPush",
+       sizeof(gpu::RestirPush),
+       {LANTERN_MEMBER(RestirPush, frame), LANTERN_MEMBER(RestirPush, lights),
+        LANTERN_MEMBER(RestirPush, sampling), LANTERN_MEMBER(RestirPush, spatial),
+        LANTERN_MEMBER(RestirPush, reuse), LANTERN_MEMBER(RestirPush, similarity)}},
+      {"RestirSurface",
+       sizeof(gpu::RestirSurface),
+       {LANTERN_MEMBER(RestirSurface, position_depth), LANTERN_MEMBER(RestirSurface, packed)}},
       {"FrameConstants",
        sizeof(gpu::FrameConstants),
        {LANTERN_MEMBER(FrameConstants, view_proj), LANTERN_MEMBER(FrameConstants, prev_view_proj),

@@ -1,0 +1,52 @@
+// ReSTIR DI as a lighting Integrator: per frame, restir.initial -> restir.temporal ->
+// restir.spatial x N -> restir.shade, with the reservoir buffers each pass reads and writes
+// chosen by ReservoirBuffers (reservoir_buffers.h) and mapped to render-graph resources here:
+// "restir.reservoirs" (history: this frame's final reservoirs), "restir.surfaces" (history: the
+// packed per-pixel surfaces, for next frame's disocclusion test), "restir.reservoirs.a/.b"
+// (transient scratch), "restir.temporal_status" (transient, for the disocclusion view).
+#pragma once
+
+#include <memory>
+
+#include "lighting/frame/frame_inputs.h"
+#include "lighting/restir/reservoir_buffers.h"
+#include "lighting/restir/restir_initial_pass.h"
+#include "lighting/restir/restir_settings.h"
+#include "lighting/restir/restir_shade_pass.h"
+#include "lighting/restir/restir_spatial_pass.h"
+#include "lighting/restir/restir_temporal_pass.h"
+
+namespace lantern::lighting {
+
+class RestirIntegrator final : public Integrator {
+ public:
+  RestirIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                   const RestirSettings& settings);
+
+  const char* name() const override { return "restir"; }
+  void warm_up() override;
+  [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
+                                                        const FrameInputs& inputs,
+                                                        runtime::graph::BufferHandle hdr) override;
+
+  const RestirSettings& settings() const { return settings_; }
+  // Takes effect next frame; a change of the chain's shape keeps history (Final is always kept).
+  void set_settings(const RestirSettings& settings) { settings_ = settings; }
+  // The plan of the last frame added (for tests and logs).
+  const std::vector<ReservoirStep>& last_plan() const { return last_plan_; }
+
+  // The push constants a frame with these inputs gets (the pass index and flags aside).
+  static gpu::RestirPush make_push(const RestirSettings& settings, const FrameInputs& inputs);
+
+ private:
+  runtime::Device& device_;
+  RestirSettings settings_;
+  RestirInitialPass initial_;
+  RestirTemporalPass temporal_;
+  RestirSpatialPass spatial_;
+  RestirShadePass shade_;
+  ReservoirBuffers buffers_;
+  std::vector<ReservoirStep> last_plan_;
+};
+
+}  // namespace lantern::lighting

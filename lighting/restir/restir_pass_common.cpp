@@ -1,0 +1,40 @@
+// Dispatch shape and name-based binding helpers of the restir.* passes.
+#include "lighting/restir/restir_pass_common.h"
+
+#include <numeric>
+
+#include "shared/restir.h"
+
+namespace lantern::lighting::restir_detail {
+
+std::uint32_t tile_count(std::uint32_t width, std::uint32_t height) {
+  return ((width + gpu::kRestirTileSize - 1) / gpu::kRestirTileSize) *
+         ((height + gpu::kRestirTileSize - 1) / gpu::kRestirTileSize);
+}
+
+std::uint32_t tile_stride(std::uint32_t count) {
+  if (count < 3 || count > 65535) return 1;
+  auto stride = static_cast<std::uint32_t>(static_cast<double>(count) * 0.6180339887);
+  while (std::gcd(stride, count) != 1) ++stride;
+  return stride;
+}
+
+void bind_buffer(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
+                 std::string_view name, runtime::graph::BufferHandle h) {
+  b.buffer(name, ctx.buffer(h), 0, VK_WHOLE_SIZE);
+}
+
+void bind_image(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
+                std::string_view name, runtime::graph::ImageHandle h) {
+  b.image_view(name, ctx.view(h), VK_IMAGE_LAYOUT_GENERAL);
+}
+
+void bind_visibility(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
+                     const SceneHandles& scene) {
+  bind_buffer(b, ctx, "BvhHeaderBuffer", scene.bvh_header);
+  bind_buffer(b, ctx, "BvhNodeBuffer", scene.bvh_nodes);
+  bind_buffer(b, ctx, "BvhTriangleBuffer", scene.bvh_triangles);
+  bind_buffer(b, ctx, "BvhInstanceBuffer", scene.bvh_instances);
+}
+
+}  // namespace lantern::lighting::restir_detail

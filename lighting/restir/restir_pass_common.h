@@ -1,0 +1,31 @@
+// What the restir.* pass files share: the shuffled 8x8 tile dispatch shape, and binding graph
+// resources by the names the shaders give them (scene buffers, G-buffer images, the BVH behind
+// shaders/lib/visibility.glsl's compute backend).
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "lighting/frame/frame_inputs.h"
+#include "runtime/gpu/bindings.h"
+#include "runtime/graph/pass_context.h"
+
+namespace lantern::lighting::restir_detail {
+
+// Number of 8x8 tiles (= workgroups) covering width x height.
+std::uint32_t tile_count(std::uint32_t width, std::uint32_t height);
+// A stride near count / golden ratio, coprime to count: g -> g * stride mod count scatters the
+// tiles so both lavapipe threads get sky and geometry (shared/PLATFORM.md).
+std::uint32_t tile_stride(std::uint32_t count);
+
+// Binds graph buffer `h` as the storage buffer named `name`.
+void bind_buffer(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
+                 std::string_view name, runtime::graph::BufferHandle h);
+// Binds graph image `h` as the storage image named `name` (layout GENERAL).
+void bind_image(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
+                std::string_view name, runtime::graph::ImageHandle h);
+// Binds the four BVH buffers lib/visibility.glsl's compute backend reads.
+void bind_visibility(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
+                     const SceneHandles& scene);
+
+}  // namespace lantern::lighting::restir_detail

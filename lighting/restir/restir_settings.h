@@ -1,0 +1,94 @@
+// ReSTIR DI knobs: every one settable by name (`--set KEY=VALUE`, a level's "restir" block, the
+// play panel later), grouped into presets. Each field says when to change it. The GPU sees them
+// through gpu::RestirPush (shaders/shared/restir.h), filled by RestirIntegrator.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lantern::lighting {
+
+enum class RestirBiasCorrection : std::uint32_t { None = 0, Balance = 1, Pairwise = 2 };
+
+enum class RestirDebugView : std::uint32_t {
+  None = 0,          // radiance
+  W = 1,             // unbiased contribution weight of the final sample
+  M = 2,             // confidence of the final reservoir relative to the M cap
+  Age = 3,           // frames since the final sample was drawn
+  Light = 4,         // which light was selected (hashed colour)
+  Disocclusion = 5,  // where restir.temporal found no history
+  Motion = 6,        // the G-buffer's motion vectors
+};
+
+struct RestirSettings {
+  // Light candidates per pixel from the power alias table. Raise for many-light scenes with
+  // little reuse (fast camera, short history); lower when the initial pass dominates frame time.
+  std::uint32_t light_candidates = 8;
+  // BSDF-sampled candidates (MIS-combined with light candidates): raise for glossy surfaces near
+  // large area lights, where light sampling misses the highlight; each one costs a closest-hit ray.
+  std::uint32_t bsdf_candidates = 0;
+  // Reuse last frame's reservoirs along motion vectors. Turn off to see the spatial-only result
+  // or when history is worthless (every frame a cut).
+  bool temporal = true;
+  // History confidence cap as a multiple of the current M (light + BSDF candidates). Lower it
+  // when lights move or flicker and stale samples linger; raise it for static scenes.
+  float m_cap_factor = 20.0f;
+  // Spatial reuse passes. More passes spread good samples further (less noise) at a full pass's
+  // cost each; 0 for temporal-only.
+  std::uint32_t spatial_passes = 1;
+  // Neighbours per spatial pass. More neighbours lower noise at linear (none/pairwise) or
+  // quadratic (balance) cost.
+  std::uint32_t neighbours = 4;
+  // Extra neighbours where a pixel's history is short (just disoccluded): raise when
+  // disocclusions stay noisy for several frames.
+  std::uint32_t disocclusion_boost = 2;
+  // Search radius of spatial neighbours in pixels. Larger finds more light over flat areas but
+  // rejects more neighbours on busy geometry; scale it with resolution.
+  float radius = 16.0f;
+  // How MIS weights combine reservoirs: none (1/M, fastest, darkens contact shadows), balance
+  // (unbiased, O(k^2) target evaluations), pairwise (unbiased, O(k)).
+  RestirBiasCorrection bias_correction = RestirBiasCorrection::Pairwise;
+  // Shadow-test the initial pick and drop it when occluded: fewer occluded samples spread by
+  // reuse (much less noise in shadowed areas), one more ray per pixel, slight darkening bias.
+  bool initial_visibility = false;
+  // Boiling filter 0..1: drops reservoirs far above their tile's mean weight (the bright
+  // "boiling" blobs long histories make). 0 is off (unbiased); raise to 0.2-0.5 if blobs appear.
+  float boiling_filter = 0.0f;
+  // Disocclusion / neighbour similarity: relative view-depth difference allowed. Lower on thin
+  // geometry that leaks; raise when reuse is rejected on steep surfaces.
+  float depth_threshold = 0.1f;
+  // Minimum cosine between normals for reuse (0.9 = 25 degrees). Lower on bumpy surfaces.
+  float normal_threshold = 0.9f;
+  // What hdr shows: radiance, or one of the debug views above.
+  RestirDebugView debug_view = RestirDebugView::None;
+
+  // Current M: candidates drawn per pixel per frame.
+  std::uint32_t candidates() const { return light_candidates + bsdf_candidates; }
+  float m_cap() const { return m_cap_factor * static_cast<float>(candidates()); }
+};
+
+// "fast" | "balanced" | "quality"; lantern::InputError naming the value otherwise.
+RestirSettings restir_preset(std::string_view name);
+std::vector<std::string> restir_preset_names();
+
+// Sets one knob by its key (the field names above: light_candidates, bsdf_candidates, temporal,
+// m_cap (alias of m_cap_factor), spatial_passes, neighbours, disocclusion_boost, radius,
+// bias_correction (none|balance|pairwise), initial_visibility, boiling_filter, depth_threshold,
+// normal_threshold, debug_view (none|w|m|age|light|disocclusion|motion)).
+// lantern::InputError naming the key and the value for unknown keys, unparsable values and
+// values outside the allowed range (e.g. light_candidates = 0 or 10^9).
+void apply_setting(RestirSettings& settings, std::string_view key, std::string_view value);
+
+// Presets then settings in order: what --preset P --set K=V ... means.
+RestirSettings make_restir_settings(
+    std::string_view preset, const std::vector<std::pair<std::string, std::string>>& settings);
+
+// Every key with its current value ("key=value" lines), for logs and bench JSON.
+std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& settings);
+
+const char* bias_correction_name(RestirBiasCorrection mode);
+const char* debug_view_name(RestirDebugView view);
+
+}  // namespace lantern::lighting

@@ -1,0 +1,78 @@
+// Shared GLSL of the restir.* passes: push constants, the light list, the shuffled tile -> pixel
+// mapping, decoding a RestirSurface into a shading point, and the target function p̂ evaluated
+// from that decoded point. Every pass evaluates p̂ through restir_contribution() on a packed
+// surface, so all domains use exactly the same target function (needed for unbiased MIS).
+// Before including: the pass declares nothing; bindings 8 (frame constants) and 9 (lights) are
+// taken here, 0..3 by lib/visibility.glsl where included.
+#ifndef LANTERN_RESTIR_COMMON_GLSL
+#define LANTERN_RESTIR_COMMON_GLSL
+
+#include "shared/color.h"
+#include "shared/common_math.h"
+#include "shared/light_eval.h"
+#include "shared/lights.h"
+#include "shared/reservoir.h"
+#include "shared/reservoir_mis.h"
+#include "shared/reservoir_pack.h"
+#include "shared/restir.h"
+#include "shared/rng.h"
+#include "shared/scene.h"
+
+layout(local_size_x = kRestirTileSize, local_size_y = kRestirTileSize) in;
+
+layout(push_constant) uniform Push { RestirPush push; };
+
+layout(std430, binding = 8) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
+layout(std430, binding = 9) readonly buffer LightBuffer { GpuLight l[]; } scene_lights;
+
+// Pixel of this invocation (shuffled 8x8 tiles); false outside the image.
+bool restir_pixel(out uvec2 pixel) {
+  uvec2 size = push.frame.xy;
+  pixel = restir_tile_origin(gl_WorkGroupID.x, push.lights.z, size) + gl_LocalInvocationID.xy;
+  return pixel.x < size.x && pixel.y < size.y;
+}
+
+uint restir_index(uvec2 pixel) { return pixel.y * push.frame.x + pixel.x; }
+
+// A surface decoded once for many p̂ evaluations.
+struct ShadingPoint {
+  vec3 x;
+  vec3 n;
+  vec3 ng;
+  vec3 v;
+  vec3 albedo;
+  float roughness;
+  float metallic;
+  float specular;
+  bool valid;
+};
+
+ShadingPoint restir_shading_point(RestirSurface s, vec3 camera) {
+  ShadingPoint p;
+  p.valid = restir_surface_valid(s);
+  p.x = restir_surface_position(s);
+  p.n = restir_surface_normal(s);
+  p.ng = restir_surface_geometric_normal(s);
+  vec3 to_camera = camera - p.x;
+  p.v = dot(to_camera, to_camera) > 0.0 ? normalize(to_camera) : p.n;
+  p.albedo = restir_surface_albedo(s);
+  p.roughness = restir_surface_roughness(s);
+  p.metallic = restir_surface_metallic(s);
+  p.specular = restir_surface_specular(s);
+  return p;
+}
+
+// Unshadowed contribution of light sample (light, uv) at p (zero for a light index out of range).
+vec3 restir_contribution(ShadingPoint p, uint light, vec2 uv) {
+  if (!p.valid || light >= push.lights.x) return vec3(0.0);
+  return light_eval_contribution(scene_lights.l[light], uv, p.x, p.n, p.ng, p.v, p.albedo,
+                                 p.roughness, p.metallic, p.specular, push.reuse.w);
+}
+
+// p̂ of sample s at p.
+float restir_target(ShadingPoint p, LightSample s) {
+  if (s.light_index == kInvalidLight) return 0.0;
+  return light_eval_target(restir_contribution(p, s.light_index, vec2(s.u, s.v)));
+}
+
+#endif

@@ -1,0 +1,154 @@
+// restir.initial: per pixel, packs the G-buffer into a RestirSurface and resamples
+// push.sampling.x light candidates (power alias table x uniform point on the light) plus
+// push.sampling.y BSDF candidates (a closest-hit ray; an emissive triangle hit is a candidate),
+// combined by the balance heuristic over the two strategies, with target p̂ = luminance of the
+// unshadowed contribution. Optionally shadow-tests the pick (kRestirFlagInitialVisibility).
+// Reads: gbuffer position/normal/albedo_roughness/emission_metallic/ids, scene materials,
+// instances, lights, alias table, BVH (BSDF candidates, visibility). Writes: restir_surfaces
+// (history resource "restir.surfaces"), reservoirs_out. History: none read.
+// Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "lib/visibility.glsl"
+#include "restir/restir_common.glsl"
+#include "shared/alias_table.h"
+#include "shared/brdf.h"
+#include "shared/sampling.h"
+
+layout(binding = 10, rgba32f) readonly uniform image2D gbuffer_position;
+layout(binding = 11, rgba32f) readonly uniform image2D gbuffer_normal;
+layout(binding = 12, rgba16f) readonly uniform image2D gbuffer_albedo_roughness;
+layout(binding = 13, rgba32f) readonly uniform image2D gbuffer_emission_metallic;
+layout(binding = 14, rgba32ui) readonly uniform uimage2D gbuffer_ids;
+layout(std430, binding = 15) readonly buffer MaterialBuffer { GpuMaterial m[]; } scene_materials;
+layout(std430, binding = 16) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
+layout(std430, binding = 17) readonly buffer AliasBuffer { AliasEntry e[]; } light_alias;
+layout(std430, binding = 18) writeonly buffer SurfaceOut { RestirSurface s[]; } restir_surfaces;
+layout(std430, binding = 19) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
+
+// Probability of the GGX lobe in the BSDF sampling mixture (the rest is cosine-weighted).
+float specular_lobe_probability(ShadingPoint p) {
+  return clamp(max(p.metallic, 0.5 * p.specular * (1.0 - p.roughness)), 0.0, 1.0);
+}
+
+float bsdf_direction_pdf(ShadingPoint p, vec3 l) {
+  float ps = specular_lobe_probability(p);
+  return ps * ggx_vndf_pdf(p.n, p.v, l, p.roughness) + (1.0 - ps) * cosine_hemisphere_pdf(p.n, l);
+}
+
+// BSDF strategy density of light point y (area measure) seen from p: solid-angle pdf * G.
+float bsdf_area_pdf(ShadingPoint p, GpuLight light, vec3 y) {
+  if (light_kind(light) != kLightTriangle) return 0.0;
+  vec3 to_light = y - p.x;
+  float dist2 = dot(to_light, to_light);
+  if (!(dist2 > 0.0)) return 0.0;
+  vec3 l = to_light * inversesqrt(dist2);
+  vec3 light_normal = cross(light.p1.xyz, light.p2.xyz);
+  float len2 = dot(light_normal, light_normal);
+  float cos_light = len2 > 0.0 ? -dot(light_normal, l) * inversesqrt(len2) : 0.0;
+  return cos_light > 0.0 ? bsdf_direction_pdf(p, l) * safe_ratio(cos_light, dist2) : 0.0;
+}
+
+// Light strategy density of (light, uv): selection pdf * point density.
+float light_strategy_pdf(uint index) {
+  return light_alias.e[index].pdf * light_eval_point_pdf(scene_lights.l[index]);
+}
+
+// The uv a shader will see after the reservoir is stored: evaluating there keeps p̂ and W exact.
+vec2 stored_uv(vec2 uv) { return unpackUnorm2x16(packUnorm2x16(uv)); }
+
+Reservoir resample(ShadingPoint p, inout uint rng) {
+  Reservoir r = reservoir_empty();
+  uint light_count = push.lights.x;
+  float m_light = float(push.sampling.x);
+  float m_bsdf = float(push.sampling.y);
+  if (light_count == 0u) {
+    r.M = m_light + m_bsdf;
+    return r;
+  }
+  for (uint i = 0u; i < push.sampling.x; ++i) {
+    float u0 = rng_next_float(rng);
+    float u1 = rng_next_float(rng);
+    vec2 uv = stored_uv(rng_next_vec2(rng));
+    float u_pick = rng_next_float(rng);
+    uint slot = alias_slot(light_count, u0);
+    uint index = alias_select(u1, light_alias.e[slot], slot);
+    float target = light_eval_target(restir_contribution(p, index, uv));
+    float denominator = m_light * light_strategy_pdf(index);
+    if (push.sampling.y > 0u && target > 0.0) {
+      vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, push.reuse.w);
+      denominator += m_bsdf * bsdf_area_pdf(p, scene_lights.l[index], y);
+    }
+    reservoir_update(r, light_sample_make(index, uv, target), safe_ratio(target, denominator),
+                     u_pick);
+  }
+  for (uint j = 0u; j < push.sampling.y; ++j) {
+    float u_lobe = rng_next_float(rng);
+    vec2 u_dir = rng_next_vec2(rng);
+    float u_pick = rng_next_float(rng);
+    vec3 l = u_lobe < specular_lobe_probability(p) ? ggx_vndf_sample(p.n, p.v, p.roughness, u_dir)
+                                                   : cosine_sample_hemisphere(p.n, u_dir);
+    VisHit hit;
+    uint index = kInvalidLight;
+    vec2 uv = vec2(0.0);
+    vec3 m = abs(p.x);
+    vec3 origin = p.x + p.ng * (kBvhShadowEpsilon * max(1.0, max(m.x, max(m.y, m.z))));
+    if (dot(l, p.ng) > 0.0 && vis_trace_closest(origin, l, kVisInfinity, hit)) {
+      uint first = scene_instances.i[hit.instance].bvh.y;
+      if (first != kInvalidLight && first + hit.primitive < light_count) {
+        index = first + hit.primitive;
+        uv = stored_uv(triangle_barycentrics_to_uv(hit.u, hit.v));
+      }
+    }
+    float weight = 0.0;
+    float target = 0.0;
+    if (index != kInvalidLight && light_kind(scene_lights.l[index]) == kLightTriangle) {
+      target = light_eval_target(restir_contribution(p, index, uv));
+      vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, push.reuse.w);
+      float denominator = m_light * light_strategy_pdf(index) +
+                          m_bsdf * bsdf_area_pdf(p, scene_lights.l[index], y);
+      weight = safe_ratio(target, denominator);
+    }
+    reservoir_update(r, light_sample_make(index, uv, target), weight, u_pick);
+  }
+  reservoir_finalize(r);
+  return r;
+}
+
+void main() {
+  uvec2 pixel;
+  if (!restir_pixel(pixel)) return;
+  uint index = restir_index(pixel);
+  ivec2 ip = ivec2(pixel);
+  vec4 position = imageLoad(gbuffer_position, ip);
+  RestirSurface surface = restir_surface_sky();
+  if (!gbuffer_is_sky(position.w)) {
+    vec4 normals = imageLoad(gbuffer_normal, ip);
+    vec4 albedo_roughness = imageLoad(gbuffer_albedo_roughness, ip);
+    float metallic = imageLoad(gbuffer_emission_metallic, ip).w;
+    uint material = imageLoad(gbuffer_ids, ip).y;
+    float specular = scene_materials.m[material].params.z;
+    surface = restir_surface_pack(position, oct_decode(normals.xy), oct_decode(normals.zw),
+                                  albedo_roughness.rgb, albedo_roughness.a, metallic, specular,
+                                  material);
+  }
+  restir_surfaces.s[index] = surface;
+
+  ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
+  Reservoir r = reservoir_empty();
+  if (p.valid) {
+    uint rng = rng_init(pixel, push.frame.z, push.frame.w, kRestirRngInitial);
+    r = resample(p, rng);
+    if ((push.lights.w & kRestirFlagInitialVisibility) != 0u && reservoir_has_sample(r)) {
+      GpuLight light = scene_lights.l[r.selected.light_index];
+      vec3 y = light_eval_position(light, vec2(r.selected.u, r.selected.v), p.x, push.reuse.w);
+      if (!vis_visible(p.x, y)) {
+        // Keep M (the candidates were drawn) but no sample: the pick lights nothing here.
+        r.W = 0.0;
+        r.selected.light_index = kInvalidLight;
+      }
+    }
+  }
+  reservoirs_out.r[index] = reservoir_pack(r);
+}

@@ -1,0 +1,73 @@
+// restir.shade: per pixel, the final reservoir's sample shaded with one visibility ray:
+// radiance = G-buffer emission + c(x, y) V(x, y) W (c = BRDF x cos x Le x G, shared/light_eval.h);
+// sky pixels get the frame's uniform environment radiance. With a debug view (push.sampling.w)
+// writes that view instead. Never writes NaN/Inf.
+// Reads: restir_surfaces, reservoirs_in (the final reservoirs), gbuffer emission_metallic and
+// motion, temporal_status, frame constants, lights, BVH. Writes: hdr (vec4 per pixel).
+// History: none. Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "lib/visibility.glsl"
+#include "restir/restir_common.glsl"
+
+layout(binding = 10, rgba32f) readonly uniform image2D gbuffer_emission_metallic;
+layout(binding = 11, rgba32f) readonly uniform image2D gbuffer_motion;
+layout(std430, binding = 12) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
+layout(std430, binding = 13) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
+layout(std430, binding = 14) readonly buffer StatusIn { uint status[]; } temporal_status;
+layout(std430, binding = 15) writeonly buffer HdrOut { vec4 pixels[]; } hdr;
+
+vec3 hash_colour(uint x) {
+  uint h = pcg_hash(x);
+  return vec3(float(h & 0xffu), float((h >> 8u) & 0xffu), float((h >> 16u) & 0xffu)) / 255.0;
+}
+
+vec3 debug_view(uint view, uvec2 pixel, uint index, Reservoir r, bool surface) {
+  if (view == kRestirDebugW) return vec3(r.W / (1.0 + r.W));
+  if (view == kRestirDebugM) return vec3(safe_ratio(r.M, push.reuse.y));
+  if (view == kRestirDebugAge) return vec3(reservoir_has_sample(r) ? float(r.age) / 32.0 : 0.0);
+  if (view == kRestirDebugLight) {
+    return reservoir_has_sample(r) ? hash_colour(r.selected.light_index) : vec3(0.0);
+  }
+  if (view == kRestirDebugDisocclusion) {
+    if (!surface) return vec3(0.0);
+    uint status = temporal_status.status[index];
+    if (status == kRestirStatusNoHistory) return vec3(1.0, 0.0, 0.0);
+    return status == kRestirStatusReprojected ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 1.0, 0.0);
+  }
+  if (view == kRestirDebugMotion) {
+    vec2 motion = imageLoad(gbuffer_motion, ivec2(pixel)).xy;
+    return vec3(0.5 + motion / 16.0, 0.5);
+  }
+  return vec3(0.0);
+}
+
+void main() {
+  uvec2 pixel;
+  if (!restir_pixel(pixel)) return;
+  uint index = restir_index(pixel);
+  RestirSurface surface = restir_surfaces.s[index];
+  Reservoir r = reservoir_unpack(reservoirs_in.r[index]);
+  vec3 value;
+  bool valid = restir_surface_valid(surface);
+  if (push.sampling.w != kRestirDebugNone) {
+    value = debug_view(push.sampling.w, pixel, index, r, valid);
+  } else if (!valid) {
+    value = frame_constants.frame.environment.rgb;
+  } else {
+    value = imageLoad(gbuffer_emission_metallic, ivec2(pixel)).rgb;
+    if (reservoir_has_sample(r)) {
+      ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
+      vec2 uv = vec2(r.selected.u, r.selected.v);
+      vec3 c = restir_contribution(p, r.selected.light_index, uv);
+      if (c != vec3(0.0)) {
+        vec3 y = light_eval_position(scene_lights.l[r.selected.light_index], uv, p.x, push.reuse.w);
+        if (vis_visible(p.x, y)) value += c * r.W;
+      }
+    }
+  }
+  // Never write NaN/Inf: a non-finite value counts as black.
+  if (!(is_finite(value.x) && is_finite(value.y) && is_finite(value.z))) value = vec3(0.0);
+  hdr.pixels[index] = vec4(max(value, vec3(0.0)), 1.0);
+}

@@ -1,0 +1,108 @@
+// restir.temporal: merges each pixel's initial reservoir with last frame's final reservoir at the
+// reprojected pixel (motion vector; then up to 3 jittered retries within 1.5 px), when the
+// surface there passes the disocclusion test (relative view depth against the depth the previous
+// camera saw this point at, normal, material, roughness). The history sample's light is remapped
+// through light_previous_to_current; a removed light drops the history sample (M kept). History confidence M is
+// capped (push.reuse.y). MIS weights per push.sampling.z. Optional boiling filter over the tile.
+// Reads: restir_surfaces, surfaces_history, reservoirs_in, reservoirs_history, gbuffer_motion,
+// light_remap, frame constants, lights. Writes: reservoirs_out, temporal_status.
+// History: "restir.surfaces" and "restir.reservoirs" of last frame; without
+// kRestirFlagHistoryValid the history bindings are stand-ins and are not read.
+// Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "restir/restir_reuse.glsl"
+
+layout(binding = 10, rgba32f) readonly uniform image2D gbuffer_motion;
+layout(std430, binding = 11) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
+layout(std430, binding = 12) readonly buffer SurfaceHistory { RestirSurface s[]; } surfaces_history;
+layout(std430, binding = 13) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
+layout(std430, binding = 14) readonly buffer ReservoirHistory { PackedReservoir r[]; } reservoirs_history;
+layout(std430, binding = 15) readonly buffer RemapBuffer { uint index[]; } light_remap;
+layout(std430, binding = 16) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
+layout(std430, binding = 17) writeonly buffer StatusOut { uint status[]; } temporal_status;
+
+shared float s_weights[kRestirTileSize * kRestirTileSize];
+
+// Finds last frame's pixel for this surface; -1 when disoccluded. status: kRestirStatus*.
+ivec2 find_history(uvec2 pixel, RestirSurface surface, inout uint rng, out uint status) {
+  status = kRestirStatusNoHistory;
+  ivec2 size = ivec2(push.frame.xy);
+  vec2 motion = imageLoad(gbuffer_motion, ivec2(pixel)).xy;
+  if (!(is_finite(motion.x) && is_finite(motion.y))) return ivec2(-1);
+  vec2 previous = vec2(pixel) + 0.5 + motion;
+  vec4 clip = frame_constants.frame.prev_view_proj * vec4(restir_surface_position(surface), 1.0);
+  float expected_depth = clip.w;  // Vulkan perspective: clip w = linear view depth
+  for (uint t = 0u; t < kRestirTemporalTries; ++t) {
+    vec2 jitter = t == 0u ? vec2(0.0) : (rng_next_vec2(rng) - 0.5) * 3.0;
+    ivec2 q = ivec2(floor(previous + jitter));
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+    RestirSurface old = surfaces_history.s[q.y * size.x + q.x];
+    if (restir_surfaces_similar(surface, expected_depth, old, push.similarity)) {
+      status = kRestirStatusReprojected + t;
+      return q;
+    }
+  }
+  return ivec2(-1);
+}
+
+void main() {
+  uvec2 pixel;
+  bool inside = restir_pixel(pixel);
+  uint index = inside ? restir_index(pixel) : 0u;
+  Reservoir r = reservoir_empty();
+  uint status = kRestirStatusNoHistory;
+  if (inside) {
+    RestirSurface surface = restir_surfaces.s[index];
+    r = reservoir_unpack(reservoirs_in.r[index]);
+    if (restir_surface_valid(surface) && (push.lights.w & kRestirFlagHistoryValid) != 0u) {
+      uint rng = rng_init(pixel, push.frame.z, push.frame.w, kRestirRngTemporal);
+      ivec2 q = find_history(pixel, surface, rng, status);
+      if (q.x >= 0) {
+        uint q_index = uint(q.y) * push.frame.x + uint(q.x);
+        Reservoir history = reservoir_unpack(reservoirs_history.r[q_index]);
+        history.age = min(history.age + 1u, kPackedMaxAge);
+        uint light = history.selected.light_index;
+        light = light < push.lights.y ? light_remap.index[light] : kInvalidLight;
+        if (light == kInvalidLight || light >= push.lights.x) {
+          // A removed light: the sample is gone, its confidence stays. The history domain then
+          // produced "nothing" (zero contribution) this time, which keeps the MIS weights of the
+          // canonical sample independent of the history's outcome: dropping M as well would
+          // over-weight the surviving lights' history samples (measured +114% on a 100:1 pair).
+          history = reservoir_empty();
+        } else {
+          history.selected.light_index = light;
+        }
+        reservoir_cap_m(history, push.reuse.y);
+        if (history.M > 0.0) {
+          g_reservoirs[0] = r;
+          g_points[0] = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
+          g_reservoirs[1] = history;
+          g_points[1] = restir_shading_point(surfaces_history.s[q_index],
+                                             frame_constants.frame.prev_camera_position.xyz);
+          r = restir_combine(2u, push.sampling.z, rng);
+        }
+      }
+    }
+  }
+
+  // Boiling filter: drop reservoirs whose weight is far above the tile's mean non-zero weight.
+  if (push.reuse.z > 0.0) {
+    uint local = gl_LocalInvocationIndex;
+    s_weights[local] = reservoir_has_sample(r) ? r.W * r.selected.target_pdf : 0.0;
+    barrier();
+    float sum = 0.0;
+    float count = 0.0;
+    for (uint i = 0u; i < kRestirTileSize * kRestirTileSize; ++i) {
+      float w = s_weights[i];
+      sum += w;
+      count += w > 0.0 ? 1.0 : 0.0;
+    }
+    float multiplier = mix(32.0, 2.0, clamp(push.reuse.z, 0.0, 1.0));
+    if (count > 0.0 && s_weights[local] > multiplier * sum / count) r = reservoir_empty();
+  }
+  if (!inside) return;
+  reservoirs_out.r[index] = reservoir_pack(r);
+  temporal_status.status[index] = status;
+}

@@ -1,0 +1,110 @@
+// One light sample y = (light, uv) seen from a surface point x, shared by the ReSTIR passes and
+// CPU tests: the point on the light, the unshadowed contribution f(x, l) Le G, and the density of
+// drawing y by light sampling. The measure is the light's own: area for triangles (uv -> uniform
+// point), counting for point/spot/directional lights. So a sample means the same point at every
+// pixel and every frame, and reservoirs move between pixels without a Jacobian.
+//
+//   contribution c(x, y) = f(v, l) cos(n, l) * Le * G,  G = cos_light / d^2 (triangles),
+//                          falloff (point/spot), 1 (directional)
+//   an estimate of the direct light is c(x, y) V(x, y) / p(y); ReSTIR's target is luminance(c).
+// Matches integrators.baseline (which divides by the solid-angle pdf: the same ratio).
+#ifndef LANTERN_SHARED_LIGHT_EVAL_H
+#define LANTERN_SHARED_LIGHT_EVAL_H
+
+#include "shared/brdf.h"
+#include "shared/color.h"
+#include "shared/common_math.h"
+#include "shared/lang.h"
+#include "shared/lights.h"
+#include "shared/sampling.h"
+
+LANTERN_BEGIN_SHARED
+
+// Shadow rays to directional lights end this many scene radii away.
+LANTERN_CONST float kDirectionalShadowRadii = 4.0f;
+
+// The point the sample lights x from (for the shadow ray). uv in [0,1]^2.
+LANTERN_FUNC vec3 light_eval_position(GpuLight light, vec2 uv, vec3 x, float scene_radius) {
+  uint kind = light_kind(light);
+  if (kind == kLightTriangle) {
+    vec3 p0 = vec3(light.p0);
+    return triangle_point(p0, p0 + vec3(light.p1), p0 + vec3(light.p2),
+                          triangle_sample_barycentrics(uv));
+  }
+  if (kind == kLightDirectional) {
+    return x + directional_light_to_light(vec3(light.p1)) * (kDirectionalShadowRadii * scene_radius);
+  }
+  return vec3(light.p0);
+}
+
+// Density of y = (light, uv) given the light was chosen: 1 / area for triangles (0 for a
+// degenerate one), 1 for punctual and directional lights. Multiply by the selection pdf.
+LANTERN_FUNC float light_eval_point_pdf(GpuLight light) {
+  if (light_kind(light) != kLightTriangle) {
+    return 1.0f;
+  }
+  vec3 p0 = vec3(light.p0);
+  return safe_ratio(1.0f, triangle_area(p0, p0 + vec3(light.p1), p0 + vec3(light.p2)));
+}
+
+// Unshadowed contribution c(x, y) (see the header). n: shading normal, ng: geometric normal, both
+// on the viewer's side; v: unit direction to the viewer. Zero below either normal, behind a
+// one-sided triangle, outside a spot cone, and for non-finite inputs.
+LANTERN_FUNC vec3 light_eval_contribution(GpuLight light, vec2 uv, vec3 x, vec3 n, vec3 ng, vec3 v,
+                                          vec3 albedo, float roughness, float metallic,
+                                          float specular, float scene_radius) {
+  uint kind = light_kind(light);
+  vec3 l;
+  float geometry;  // G (triangles) or distance falloff x cone (point, spot) or 1
+  if (kind == kLightDirectional) {
+    l = directional_light_to_light(vec3(light.p1));
+    geometry = 1.0f;
+  } else {
+    vec3 target = light_eval_position(light, uv, x, scene_radius);
+    vec3 to_light = target - x;
+    float dist2 = dot(to_light, to_light);
+    if (!(dist2 > 0.0f)) {
+      return vec3(0.0f);
+    }
+    l = to_light * inversesqrt(dist2);
+    if (kind == kLightTriangle) {
+      vec3 light_normal = cross(vec3(light.p1), vec3(light.p2));
+      float len2 = dot(light_normal, light_normal);
+      float cos_light = len2 > 0.0f ? -dot(light_normal, l) * inversesqrt(len2) : 0.0f;
+      geometry = cos_light > 0.0f ? safe_ratio(cos_light, dist2) : 0.0f;
+    } else {
+      geometry = punctual_distance_falloff(dist2, 0.0f);
+      if (kind == kLightSpot) {
+        vec3 axis = vec3(light.p1);
+        float axis_len2 = dot(axis, axis);
+        float cos_theta = axis_len2 > 0.0f ? dot(axis, -l) * inversesqrt(axis_len2) : -1.0f;
+        geometry *= spot_cone_falloff(cos_theta, light.p2.x, light.p2.y);
+      }
+    }
+  }
+  if (!(geometry > 0.0f) || dot(ng, l) <= 0.0f) {
+    return vec3(0.0f);
+  }
+  vec3 f = brdf_eval(n, v, l, albedo, roughness, metallic, specular);
+  vec3 c = f * vec3(light.radiance) * geometry;
+  bool finite = is_finite(c.x) && is_finite(c.y) && is_finite(c.z);
+  return finite ? max(c, vec3(0.0f)) : vec3(0.0f);
+}
+
+// ReSTIR's target function p̂(y) at x: luminance of the unshadowed contribution, guarded.
+LANTERN_FUNC float light_eval_target(vec3 contribution) {
+  return finite_positive_or_zero(luminance(contribution));
+}
+
+// Inverse of triangle_sample_barycentrics: the uv that lands on barycentrics (b0, b1, b2), for a
+// light hit by a BSDF-sampled ray. Clamped to [0,1]^2.
+LANTERN_FUNC vec2 triangle_barycentrics_to_uv(float b1, float b2) {
+  float one_minus_b0 = clamp(b1 + b2, 0.0f, 1.0f);
+  float u = one_minus_b0 * one_minus_b0;
+  float v = one_minus_b0 > 0.0f ? clamp(b1 / one_minus_b0, 0.0f, 1.0f) : 0.0f;
+  return vec2(u, v);
+}
+
+LANTERN_END_SHARED
+
+#endif

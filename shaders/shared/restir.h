@@ -1,0 +1,146 @@
+// ReSTIR DI constants and records shared by lighting/restir/*.cpp and shaders/restir/*.comp: the
+// push constants every restir.* pass receives, the compact per-pixel surface record the passes
+// resample with (and the temporal pass keeps as history), debug views and flags. The knobs behind
+// the push constants, with when to change each, are lighting/restir/restir_settings.h.
+#ifndef LANTERN_SHARED_RESTIR_H
+#define LANTERN_SHARED_RESTIR_H
+
+#include "shared/common_math.h"
+#include "shared/gbuffer.h"
+#include "shared/lang.h"
+
+LANTERN_BEGIN_SHARED
+
+// Pixels per side of the square tile one workgroup handles (shuffled over the image like
+// integrators.baseline: lavapipe gives each CPU thread a contiguous range of workgroups).
+LANTERN_CONST uint kRestirTileSize = 8u;
+
+// Upper bounds the shaders size their loops and arrays by (settings are validated against them).
+LANTERN_CONST uint kRestirMaxLightCandidates = 256u;
+LANTERN_CONST uint kRestirMaxBsdfCandidates = 16u;
+LANTERN_CONST uint kRestirMaxNeighbours = 8u;   // spatial neighbours per pass, boost included
+LANTERN_CONST uint kRestirMaxSpatialPasses = 4u;
+LANTERN_CONST uint kRestirTemporalTries = 4u;   // reprojected pixel, then 3 jittered retries
+
+// RestirPush.lights.w flags.
+LANTERN_CONST uint kRestirFlagHistoryValid = 1u;       // last frame's reservoirs may be reused
+LANTERN_CONST uint kRestirFlagInitialVisibility = 2u;  // shadow-test the initial pick
+LANTERN_CONST uint kRestirFlagLastSpatial = 4u;        // this spatial pass writes the history
+
+// Debug views (`debug_view` setting): written into hdr instead of radiance.
+LANTERN_CONST uint kRestirDebugNone = 0u;
+LANTERN_CONST uint kRestirDebugW = 1u;             // W (grey, log-ish: W / (1 + W))
+LANTERN_CONST uint kRestirDebugM = 2u;             // M / M cap
+LANTERN_CONST uint kRestirDebugAge = 3u;           // sample age / 32 frames
+LANTERN_CONST uint kRestirDebugLight = 4u;         // hashed colour of the selected light
+LANTERN_CONST uint kRestirDebugDisocclusion = 5u;  // red: no history, green: reprojected, yellow: retry
+LANTERN_CONST uint kRestirDebugMotion = 6u;        // motion vector, 0.5 + motion / 16 px in r, g
+LANTERN_CONST uint kRestirDebugCount = 7u;
+
+// restir.temporal's per-pixel status (buffer of uint, read by the disocclusion view).
+LANTERN_CONST uint kRestirStatusNoHistory = 0u;
+LANTERN_CONST uint kRestirStatusReprojected = 1u;  // 1 + retry index when a retry matched
+
+// RNG streams (rng_init's `pass`) of the restir passes.
+LANTERN_CONST uint kRestirRngInitial = 0x52490u;
+LANTERN_CONST uint kRestirRngTemporal = 0x52491u;
+LANTERN_CONST uint kRestirRngSpatial = 0x52492u;  // + pass index
+LANTERN_CONST uint kRestirRngShade = 0x524a0u;
+
+struct RestirPush {
+  uvec4 frame;       // x, y: render size; z: frame index; w: seed
+  uvec4 lights;      // x: light count; y: previous light count; z: tile stride; w: kRestirFlag*
+  uvec4 sampling;    // x: light candidates; y: BSDF candidates; z: kBiasCorrection*; w: debug view
+  uvec4 spatial;     // x: neighbours; y: spatial pass index; z: extra neighbours when M is short;
+                     // w: M below which a pixel counts as short of history
+  vec4 reuse;        // x: spatial radius (pixels); y: temporal M cap (absolute); z: boiling filter
+                     // strength 0..1; w: scene radius (directional shadow rays)
+  vec4 similarity;   // x: max relative depth difference; y: min cos between normals;
+                     // z: max roughness difference; w: unused
+};
+LANTERN_STATIC_SIZE(RestirPush, 96);
+
+// The per-pixel surface the passes resample at, packed from the G-buffer by restir.initial
+// (and kept one frame as history for restir.temporal's disocclusion test). 32 bytes.
+struct RestirSurface {
+  vec4 position_depth;  // xyz world position; w linear view depth (0: sky, no surface)
+  uvec4 packed;         // x: oct shading normal (snorm 2x16); y: oct geometric normal;
+                        // z: albedo rgb + roughness (unorm 4x8); w: metallic (unorm 8 bits),
+                        // specular factor (bits 8-15), material id low 16 bits (bits 16-31)
+};
+LANTERN_STATIC_SIZE(RestirSurface, 32);
+
+LANTERN_FUNC RestirSurface restir_surface_sky() {
+  RestirSurface s;
+  s.position_depth = vec4(0.0f);
+  s.packed = uvec4(0u);
+  return s;
+}
+
+LANTERN_FUNC RestirSurface restir_surface_pack(vec4 position_depth, vec3 n, vec3 ng, vec3 albedo,
+                                               float roughness, float metallic, float specular,
+                                               uint material) {
+  RestirSurface s;
+  bool finite = is_finite(position_depth.x) && is_finite(position_depth.y) &&
+                is_finite(position_depth.z) && is_finite(position_depth.w);
+  if (!finite || gbuffer_is_sky(position_depth.w)) {
+    return restir_surface_sky();
+  }
+  s.position_depth = position_depth;
+  s.packed.x = packSnorm2x16(oct_encode(n));
+  s.packed.y = packSnorm2x16(oct_encode(ng));
+  s.packed.z = packUnorm4x8(vec4(clamp(albedo, vec3(0.0f), vec3(1.0f)), clamp(roughness, 0.0f, 1.0f)));
+  uint m = uint(clamp(metallic, 0.0f, 1.0f) * 255.0f + 0.5f);
+  uint sp = uint(clamp(specular, 0.0f, 1.0f) * 255.0f + 0.5f);
+  s.packed.w = m | (sp << 8u) | ((material & 0xffffu) << 16u);
+  return s;
+}
+
+LANTERN_FUNC bool restir_surface_valid(RestirSurface s) { return !gbuffer_is_sky(s.position_depth.w); }
+LANTERN_FUNC vec3 restir_surface_position(RestirSurface s) { return vec3(s.position_depth); }
+LANTERN_FUNC float restir_surface_depth(RestirSurface s) { return s.position_depth.w; }
+LANTERN_FUNC vec3 restir_surface_normal(RestirSurface s) { return oct_decode(unpackSnorm2x16(s.packed.x)); }
+LANTERN_FUNC vec3 restir_surface_geometric_normal(RestirSurface s) {
+  return oct_decode(unpackSnorm2x16(s.packed.y));
+}
+LANTERN_FUNC vec3 restir_surface_albedo(RestirSurface s) { return vec3(unpackUnorm4x8(s.packed.z)); }
+LANTERN_FUNC float restir_surface_roughness(RestirSurface s) { return unpackUnorm4x8(s.packed.z).w; }
+LANTERN_FUNC float restir_surface_metallic(RestirSurface s) { return float(s.packed.w & 0xffu) / 255.0f; }
+LANTERN_FUNC float restir_surface_specular(RestirSurface s) {
+  return float((s.packed.w >> 8u) & 0xffu) / 255.0f;
+}
+LANTERN_FUNC uint restir_surface_material(RestirSurface s) { return s.packed.w >> 16u; }
+
+// Whether `other` is close enough to `s` to reuse its reservoir: both are surfaces, the view depth
+// differs by at most similarity.x relative (`expected_depth` is s's depth as `other`'s camera saw
+// it: its own depth for spatial neighbours, its reprojected depth for history), normals within
+// acos(similarity.y), same material (low 16 bits of the id) and roughness within similarity.z.
+LANTERN_FUNC bool restir_surfaces_similar(RestirSurface s, float expected_depth,
+                                          RestirSurface other, vec4 similarity) {
+  if (!restir_surface_valid(s) || !restir_surface_valid(other)) {
+    return false;
+  }
+  float d_other = restir_surface_depth(other);
+  if (!(abs(expected_depth - d_other) <= similarity.x * max(expected_depth, d_other))) {
+    return false;
+  }
+  if (dot(restir_surface_normal(s), restir_surface_normal(other)) < similarity.y) {
+    return false;
+  }
+  if (restir_surface_material(s) != restir_surface_material(other)) {
+    return false;
+  }
+  return abs(restir_surface_roughness(s) - restir_surface_roughness(other)) <= similarity.z;
+}
+
+// 8x8 tile g of the shuffled dispatch -> top-left pixel (see kRestirTileSize).
+LANTERN_FUNC uvec2 restir_tile_origin(uint group, uint stride, uvec2 size) {
+  uint tiles_x = (size.x + kRestirTileSize - 1u) / kRestirTileSize;
+  uint tiles_y = (size.y + kRestirTileSize - 1u) / kRestirTileSize;
+  uint tile = (group * stride) % max(tiles_x * tiles_y, 1u);
+  return uvec2(tile % tiles_x, tile / tiles_x) * kRestirTileSize;
+}
+
+LANTERN_END_SHARED
+
+#endif

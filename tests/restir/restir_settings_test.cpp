@@ -1,0 +1,89 @@
+// RestirSettings: presets, every key settable, bad keys and values rejected with InputError
+// naming the key and value.
+#include "lighting/restir/restir_settings.h"
+
+#include <gtest/gtest.h>
+
+#include "engine/core/error.h"
+
+namespace lantern::lighting {
+namespace {
+
+std::string error_of(std::string_view key, std::string_view value) {
+  RestirSettings s;
+  try {
+    apply_setting(s, key, value);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RestirSettings, PresetsDiffer) {
+  const RestirSettings fast = restir_preset("fast");
+  const RestirSettings balanced = restir_preset("balanced");
+  const RestirSettings quality = restir_preset("quality");
+  EXPECT_LT(fast.light_candidates, balanced.light_candidates);
+  EXPECT_LT(balanced.light_candidates, quality.light_candidates);
+  EXPECT_EQ(fast.bias_correction, RestirBiasCorrection::None);
+  EXPECT_EQ(balanced.bias_correction, RestirBiasCorrection::Pairwise);
+  EXPECT_EQ(quality.bias_correction, RestirBiasCorrection::Balance);
+  EXPECT_THROW(restir_preset("ultra"), InputError);
+  EXPECT_EQ(balanced.m_cap(), 20.0f * balanced.candidates()) << "default M cap: 20x current M";
+}
+
+TEST(RestirSettings, EveryDescribedKeyRoundTrips) {
+  // Applying each key's own described value to the defaults changes nothing: every key parses.
+  const RestirSettings q = restir_preset("quality");
+  for (const auto& [key, value] : describe(q)) {
+    RestirSettings s = restir_preset("fast");
+    EXPECT_NO_THROW(apply_setting(s, key, value)) << key << "=" << value;
+  }
+  RestirSettings s = make_restir_settings("fast", describe(q));
+  EXPECT_EQ(describe(s), describe(q));
+}
+
+TEST(RestirSettings, AppliesValues) {
+  RestirSettings s = make_restir_settings(
+      "balanced", {{"light_candidates", "32"}, {"temporal", "off"}, {"bias_correction", "balance"},
+                   {"radius", "8.5"}, {"debug_view", "disocclusion"}, {"m_cap", "5"}});
+  EXPECT_EQ(s.light_candidates, 32u);
+  EXPECT_FALSE(s.temporal);
+  EXPECT_EQ(s.bias_correction, RestirBiasCorrection::Balance);
+  EXPECT_FLOAT_EQ(s.radius, 8.5f);
+  EXPECT_EQ(s.debug_view, RestirDebugView::Disocclusion);
+  EXPECT_FLOAT_EQ(s.m_cap(), 5.0f * 32.0f);
+}
+
+TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
+  EXPECT_NE(error_of("light_candidate", "8").find("light_candidate"), std::string::npos);
+  EXPECT_NE(error_of("light_candidate", "8").find("light_candidates"), std::string::npos)
+      << "the message lists the valid keys";
+  for (auto [key, value] : std::vector<std::pair<std::string, std::string>>{
+           {"light_candidates", "0"},
+           {"light_candidates", "1000000000"},
+           {"light_candidates", "-3"},
+           {"light_candidates", "8x"},
+           {"light_candidates", ""},
+           {"bsdf_candidates", "17"},
+           {"spatial_passes", "5"},
+           {"neighbours", "9"},
+           {"radius", "0"},
+           {"radius", "nan"},
+           {"radius", "inf"},
+           {"m_cap", "0.5"},
+           {"boiling_filter", "1.5"},
+           {"bias_correction", "unbiased"},
+           {"temporal", "maybe"},
+           {"debug_view", "normals"},
+       }) {
+    const std::string message = error_of(key, value);
+    EXPECT_NE(message.find(key), std::string::npos) << key << "=" << value << ": " << message;
+    if (!value.empty()) {
+      EXPECT_NE(message.find(value), std::string::npos) << key << "=" << value << ": " << message;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lantern::lighting
