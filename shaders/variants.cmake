@@ -2,12 +2,12 @@
 # The default variant of every stage is compiled by shaders/CMakeLists.txt.
 
 # Visibility backends (shaders/lib/visibility.glsl, lighting/visibility/visibility_backend.h):
-# every pass that includes lib/visibility.glsl gets a "rayquery" variant (and the probe a texel
-# one for the A/B benchmark).
+# every pass that includes lib/visibility.glsl gets a "rayquery" variant (and the probe a
+# storage-buffer BVH one for the A/B benchmark). Add new passes to LANTERN_VISIBILITY_SHADERS.
 set(LANTERN_VISIBILITY_SHADERS
   ${CMAKE_CURRENT_SOURCE_DIR}/tests/visibility_probe.comp)
 foreach(src IN LISTS LANTERN_VISIBILITY_SHADERS)
   lantern_compile_shader(${src} rayquery DEFINES LANTERN_VISIBILITY_RAY_QUERY)
 endforeach()
-lantern_compile_shader(${CMAKE_CURRENT_SOURCE_DIR}/tests/visibility_probe.comp texel
-  DEFINES VIS_BVH_TEXEL_BUFFERS)
+lantern_compile_shader(${CMAKE_CURRENT_SOURCE_DIR}/tests/visibility_probe.comp storage
+  DEFINES VIS_BVH_STORAGE_BUFFERS)

@@ -55,6 +55,8 @@ void SceneBvh::refit_mesh(std::uint32_t id, std::span<const glm::vec3> positions
 void SceneBvh::set_instances(std::span<const BvhInstanceDesc> instances) {
   instances_.clear();
   instances_.reserve(instances.size());
+  instance_meshes_.clear();
+  instance_meshes_.reserve(instances.size());
   std::vector<Aabb> world_bounds;
   std::vector<std::uint32_t> placed;  // indices of instances that go into the TLAS
   for (std::size_t i = 0; i < instances.size(); ++i) {
@@ -74,6 +76,7 @@ void SceneBvh::set_instances(std::span<const BvhInstanceDesc> instances) {
     inst.triangle_offset = mesh_triangle_offset_[desc.mesh];
     inst.user_id = desc.user_id;
     instances_.push_back(inst);
+    instance_meshes_.push_back(desc.mesh);
     const MeshBvh& mesh = meshes_[desc.mesh];
     if (mesh.empty()) continue;
     world_bounds.push_back(transform_aabb(desc.object_to_world, mesh.bounds()));

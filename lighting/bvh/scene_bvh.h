@@ -43,6 +43,9 @@ class SceneBvh {
   const std::vector<gpu::BvhTriangle>& triangles() const { return triangles_; }
   const std::vector<gpu::BvhInstance>& instances() const { return instances_; }
   gpu::BvhSceneView view() const;
+  // Mesh id of instance i (as given to set_instances): for other backends building their own
+  // structures from the same scene (lighting/visibility/ray_query_scene.h).
+  std::uint32_t instance_mesh(std::size_t i) const { return instance_meshes_.at(i); }
 
   // CPU queries (same code as the GPU). Rays are in world space.
   bool trace_closest(const gpu::BvhRay& ray, gpu::BvhHit& hit) const;
@@ -58,6 +61,7 @@ class SceneBvh {
   std::vector<gpu::BvhNode> nodes_;
   std::vector<gpu::BvhTriangle> triangles_;
   std::vector<gpu::BvhInstance> instances_;
+  std::vector<std::uint32_t> instance_meshes_;
   gpu::BvhSceneHeader header_{};
 };
 

@@ -90,6 +90,18 @@ Bindings& Bindings::acceleration_structure(std::string_view name,
   return *this;
 }
 
+Bindings& Bindings::texel_buffer(std::string_view name, VkBufferView view) {
+  slot(name, {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER},
+       "texel_buffer")
+      .texel_view = view;
+  return *this;
+}
+
+bool Bindings::has(std::string_view name) const {
+  return std::any_of(slots_.begin(), slots_.end(),
+                     [&](const Slot& s) { return s.binding->name == name; });
+}
+
 bool Bindings::is_bound(std::string_view name) const {
   return std::any_of(slots_.begin(), slots_.end(),
                      [&](const Slot& s) { return s.bound && s.binding->name == name; });
@@ -119,6 +131,10 @@ std::vector<VkWriteDescriptorSet> Bindings::writes() const {
         s.structure_write.accelerationStructureCount = 1;
         s.structure_write.pAccelerationStructures = &s.structure;
         w.pNext = &s.structure_write;
+        break;
+      case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+      case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
+        w.pTexelBufferView = &s.texel_view;
         break;
       default:
         w.pImageInfo = &s.image;

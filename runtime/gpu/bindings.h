@@ -36,6 +36,10 @@ class Bindings {
   Bindings& image_view(std::string_view name, VkImageView view, VkImageLayout layout,
                        VkSampler sampler = VK_NULL_HANDLE);
   Bindings& acceleration_structure(std::string_view name, VkAccelerationStructureKHR structure);
+  // Uniform or storage texel buffer (samplerBuffer / imageBuffer): a view (runtime/gpu/buffer_view.h).
+  Bindings& texel_buffer(std::string_view name, VkBufferView view);
+  // Whether the shader declares a binding of this name (for helpers that bind per variant).
+  bool has(std::string_view name) const;
 
   const Pipeline& pipeline() const { return *pipeline_; }
   bool is_bound(std::string_view name) const;
@@ -50,6 +54,7 @@ class Bindings {
     VkDescriptorBufferInfo buffer{};
     VkDescriptorImageInfo image{};
     VkAccelerationStructureKHR structure = VK_NULL_HANDLE;
+    VkBufferView texel_view = VK_NULL_HANDLE;
     VkWriteDescriptorSetAccelerationStructureKHR structure_write{
         VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
   };

@@ -3,7 +3,7 @@
 // bvh_trace_any(BvhRay) and bvh_visible(origin, target) — the code the CPU tests run.
 // Before including, a shader may define BVH_DESCRIPTOR_SET and BVH_BINDING_BASE (default 0 and 0;
 // the four bindings are BASE + kBvhBinding*), and BVH_TEXEL_BUFFERS to read nodes, triangles and
-// instances from rgba32ui texel buffers (usamplerBuffer) instead of storage buffers. Data is always
+// instances from rgba32ui uniform texel buffers (utextureBuffer) instead of storage buffers. Data is always
 // fetched as uvec4 and bit-cast, so the uint fields packed in float lanes are never altered.
 #ifndef LANTERN_LIB_BVH_TRAVERSE_GLSL
 #define LANTERN_LIB_BVH_TRAVERSE_GLSL
@@ -28,11 +28,13 @@ layout(std430, set = BVH_DESCRIPTOR_SET, binding = BVH_BINDING_BASE + kBvhBindin
 };
 
 #ifdef BVH_TEXEL_BUFFERS
-layout(set = BVH_DESCRIPTOR_SET, binding = BVH_BINDING_BASE + kBvhBindingNodes) uniform usamplerBuffer
+// utextureBuffer (no sampler): a plain uniform texel buffer descriptor, read with texelFetch.
+#extension GL_EXT_samplerless_texture_functions : require
+layout(set = BVH_DESCRIPTOR_SET, binding = BVH_BINDING_BASE + kBvhBindingNodes) uniform utextureBuffer
     bvh_node_texels;
-layout(set = BVH_DESCRIPTOR_SET, binding = BVH_BINDING_BASE + kBvhBindingTriangles) uniform usamplerBuffer
+layout(set = BVH_DESCRIPTOR_SET, binding = BVH_BINDING_BASE + kBvhBindingTriangles) uniform utextureBuffer
     bvh_triangle_texels;
-layout(set = BVH_DESCRIPTOR_SET, binding = BVH_BINDING_BASE + kBvhBindingInstances) uniform usamplerBuffer
+layout(set = BVH_DESCRIPTOR_SET, binding = BVH_BINDING_BASE + kBvhBindingInstances) uniform utextureBuffer
     bvh_instance_texels;
 uvec4 bvh_node_texel(uint i) { return texelFetch(bvh_node_texels, int(i)); }
 uvec4 bvh_triangle_texel(uint i) { return texelFetch(bvh_triangle_texels, int(i)); }

@@ -1,0 +1,73 @@
+// Buffer views (buffer_view.h).
+#include "runtime/gpu/buffer_view.h"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <utility>
+
+#include "engine/core/error.h"
+#include "runtime/core/device.h"
+#include "runtime/core/vk_check.h"
+#include "runtime/gpu/buffer.h"
+
+namespace lantern::runtime {
+namespace {
+
+VkDeviceSize texel_bytes(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R32G32B32A32_UINT:
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+    case VK_FORMAT_R32G32B32A32_SINT:
+      return 16;
+    case VK_FORMAT_R32G32_UINT:
+    case VK_FORMAT_R32G32_SFLOAT:
+      return 8;
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R32_SFLOAT:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+}  // namespace
+
+BufferView::BufferView(Device& device, const Buffer& buffer, VkFormat format, std::string_view name)
+    : device_(&device) {
+  const VkDeviceSize texel = texel_bytes(format);
+  if (texel == 0)
+    throw RuntimeError(
+        fmt::format("buffer view '{}': unsupported format {}", name, static_cast<int>(format)));
+  const VkDeviceSize elements = buffer.size() / texel;
+  if (elements > device.properties().limits.maxTexelBufferElements)
+    throw RuntimeError(
+        fmt::format("buffer view '{}': {} texels exceed the device's maxTexelBufferElements ({})",
+                    name, elements, device.properties().limits.maxTexelBufferElements));
+  VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  info.buffer = buffer.handle();
+  info.format = format;
+  info.offset = 0;
+  info.range = elements * texel;
+  VK_CHECK(vkCreateBufferView(device.handle(), &info, nullptr, &view_));
+  device.set_object_name(VK_OBJECT_TYPE_BUFFER_VIEW, reinterpret_cast<std::uint64_t>(view_), name);
+}
+
+BufferView::~BufferView() {
+  if (view_ != VK_NULL_HANDLE) vkDestroyBufferView(device_->handle(), view_, nullptr);
+}
+
+BufferView::BufferView(BufferView&& other) noexcept
+    : device_(std::exchange(other.device_, nullptr)),
+      view_(std::exchange(other.view_, VK_NULL_HANDLE)) {}
+
+BufferView& BufferView::operator=(BufferView&& other) noexcept {
+  if (this != &other) {
+    if (view_ != VK_NULL_HANDLE) vkDestroyBufferView(device_->handle(), view_, nullptr);
+    device_ = std::exchange(other.device_, nullptr);
+    view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+}  // namespace lantern::runtime
