@@ -12,7 +12,7 @@ packages=(
   libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev
   libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev spirv-headers
   libgtest-dev libgmock-dev libbenchmark-dev
-  xvfb xauth ffmpeg
+  xvfb xauth ffmpeg fonts-dejavu-core
 )
 backports_packages=(mesa-vulkan-drivers)
 min_mesa="25"

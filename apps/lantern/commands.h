@@ -45,6 +45,7 @@ void add_play_command(CLI::App& root, CommonOptions& options);
 
 void add_bench_command(CLI::App& root, CommonOptions& options);
 void add_capture_command(CLI::App& root, CommonOptions& options);
+void add_trade_command(CLI::App& root, CommonOptions& options);
 
 // The integrator configuration a command runs: `integrator` by name, the --preset, the level's
 // settings block for that integrator ("restir.radius" in the level is "radius" for restir), then

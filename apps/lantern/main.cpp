@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   app::add_play_command(root, options);
   app::add_bench_command(root, options);
   app::add_capture_command(root, options);
+  app::add_trade_command(root, options);
 
   try {
     root.parse(argc, argv);

@@ -1,0 +1,311 @@
+// `lantern trade LEVEL [--presets a,b,...] [--variant NAME:K=V;K=V] [--frames N] --out DIR`
+// (CLI.md): the speed/accuracy trade, measured. Each ReSTIR preset (and --variant), and the
+// baseline, runs the level's path for N frames; frame ms is the median GPU frame time and the
+// error is the relMSE against cached converged references at a few frames spread over the run
+// (lighting/integrators/reference_cache.h). Also measured: the baseline at equal time (as many
+// baseline frames of the same instant averaged as fit in one ReSTIR frame). Writes trade.json,
+// trade.csv and trade.png (error against ms, log-log, Pareto front marked).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "apps/lantern/commands.h"
+#include "apps/lantern/progress.h"
+#include "engine/core/error.h"
+#include "engine/core/log.h"
+#include "engine/level/level_loader.h"
+#include "engine/perf/pareto.h"
+#include "engine/perf/statistics.h"
+#include "lighting/frame/headless_session.h"
+#include "lighting/integrators/offline_render.h"
+#include "lighting/integrators/reference_cache.h"
+#include "runtime/core/device.h"
+#include "runtime/gpu/shader_library.h"
+#include "runtime/image/image_metrics.h"
+#include "runtime/image/log_log_plot.h"
+
+namespace lantern::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TradeOptions {
+  std::string level;
+  std::string presets = "fast,balanced,quality";
+  std::vector<std::string> variants;  // NAME:KEY=VALUE;KEY=VALUE
+  std::string out;
+  std::uint32_t eval_frames = 4;
+  std::uint32_t reference_spp = 64;
+  std::uint32_t reference_frames = 16;
+  bool no_baseline = false;
+};
+
+struct Config {
+  std::string name;
+  lighting::IntegratorConfig integrator;
+};
+
+struct Row {
+  Config config;
+  double frame_ms = 0.0;
+  double frame_wall_ms = 0.0;
+  std::vector<double> relmse;  // per evaluated frame
+  double mean_relmse() const {
+    double s = 0.0;
+    for (double e : relmse) s += e;
+    return relmse.empty() ? 0.0 : s / static_cast<double>(relmse.size());
+  }
+};
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const std::size_t end = std::min(s.find(sep, start), s.size());
+    if (end > start) out.push_back(s.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+// Frames K at which the error is measured: `count` spread over [0, frames), always the last.
+std::vector<std::uint32_t> eval_frames(std::uint32_t frames, std::uint32_t count) {
+  std::set<std::uint32_t> ks;
+  count = std::max(1u, std::min(count, frames));
+  for (std::uint32_t i = 1; i <= count; ++i) ks.insert(frames * i / count - 1);
+  return {ks.begin(), ks.end()};
+}
+
+std::vector<Config> configs(const TradeOptions& o, const CommonOptions& common,
+                            const Level& level) {
+  std::vector<Config> out;
+  for (const std::string& preset : split(o.presets, ',')) {
+    if (preset != "fast" && preset != "balanced" && preset != "quality") {
+      throw InputError(fmt::format("--presets: unknown preset '{}' (fast, balanced, quality)",
+                                   preset));
+    }
+    CommonOptions c = common;
+    c.preset = preset;
+    out.push_back({preset, integrator_config("restir", c, level)});
+  }
+  for (const std::string& v : o.variants) {
+    const std::size_t colon = v.find(':');
+    if (colon == std::string::npos || colon == 0) {
+      throw InputError(fmt::format("--variant {}: expected NAME:KEY=VALUE;KEY=VALUE", v));
+    }
+    CommonOptions c = common;
+    for (const std::string& kv : split(v.substr(colon + 1), ';')) c.settings.push_back(kv);
+    out.push_back({v.substr(0, colon), integrator_config("restir", c, level)});
+  }
+  if (!o.no_baseline) out.push_back({"baseline", integrator_config("baseline", common, level)});
+  if (out.empty()) throw InputError("trade: nothing to compare (no presets, variants or baseline)");
+  return out;
+}
+
+nlohmann::json settings_json(const lighting::IntegratorConfig& c) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [k, v] : c.settings) j[k] = v;
+  return j;
+}
+
+void run_trade(const TradeOptions& o, const CommonOptions& common) {
+  const auto [width, height] = parse_size(common.size);
+  const std::uint32_t frames = common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 16u;
+  if (o.eval_frames == 0 || o.reference_spp == 0 || o.reference_frames == 0) {
+    throw InputError("--eval-frames, --reference-spp and --reference-frames must be positive");
+  }
+  const fs::path out(o.out);
+  if (fs::exists(out) && !fs::is_directory(out)) {
+    throw InputError(fmt::format("--out {}: exists and is not a directory", o.out));
+  }
+  const auto level = std::make_shared<const Level>(load_level_argument(o.level));
+  const std::vector<Config> cfgs = configs(o, common, *level);
+  const std::vector<std::uint32_t> ks = eval_frames(frames, o.eval_frames);
+
+  runtime::Device device({.selector = common.device});
+  runtime::ShaderLibrary shaders;
+  Progress progress("trade", ks.size() + cfgs.size() * frames, common.quiet);
+  std::uint64_t done = 0;
+
+  // References first (cached on disk: later runs skip the expensive part).
+  std::vector<runtime::ImageRGBA32F> references;
+  lighting::ReferenceRequest ref_request{.width = width,
+                                         .height = height,
+                                         .frame = 0,
+                                         .spp = o.reference_spp,
+                                         .frames = o.reference_frames,
+                                         .seed = common.seed + 1000u,
+                                         .settings = {}};
+  for (std::uint32_t k : ks) {
+    ref_request.frame = k;
+    lighting::ReferenceImage ref = lighting::reference_image(device, shaders, level, ref_request);
+    progress.update(++done, fmt::format("reference frame {}{}", k, ref.cache_hit ? " (cached)" : ""));
+    references.push_back(std::move(ref.image));
+  }
+
+  std::vector<Row> rows;
+  for (const Config& cfg : cfgs) {
+    Row row{cfg, 0.0, 0.0, {}};
+    lighting::HeadlessSession session(
+        device, shaders, level,
+        {.integrator = cfg.integrator, .width = width, .height = height, .seed = common.seed});
+    session.warm_up();
+    std::vector<double> gpu, wall;
+    std::size_t next = 0;
+    for (std::uint32_t k = 0; k < frames; ++k) {
+      const bool evaluate = next < ks.size() && ks[next] == k;
+      runtime::ImageRGBA32F image;
+      const lighting::FrameTiming t = session.render(session.step_world(), evaluate ? &image : nullptr);
+      gpu.push_back(t.gpu_ms);
+      wall.push_back(t.wall_ms);
+      if (evaluate) row.relmse.push_back(runtime::relative_mse(image, references[next++]));
+      progress.update(++done, fmt::format("{} frame {}", cfg.name, k));
+    }
+    row.frame_ms = perf::summarize(gpu).median;
+    row.frame_wall_ms = perf::summarize(wall).median;
+    rows.push_back(std::move(row));
+  }
+  progress.finish();
+
+  // Baseline at equal time: for each ReSTIR row, ceil-free round(restir ms / baseline ms) baseline
+  // frames of the same instant averaged (what the baseline buys with the same GPU time).
+  const auto baseline = std::find_if(rows.begin(), rows.end(), [](const Row& r) {
+    return r.config.integrator.kind == lighting::IntegratorKind::Baseline;
+  });
+  nlohmann::json equal_time = nlohmann::json::array();
+  if (baseline != rows.end() && baseline->frame_ms > 0.0) {
+    for (const Row& r : rows) {
+      if (r.config.integrator.kind != lighting::IntegratorKind::Restir) continue;
+      const auto spp = static_cast<std::uint32_t>(
+          std::clamp(std::lround(r.frame_ms / baseline->frame_ms), 1l, 256l));
+      double sum = 0.0;
+      for (std::size_t i = 0; i < ks.size(); ++i) {
+        lighting::OfflineRenderRequest req;
+        req.integrator = baseline->config.integrator;
+        req.width = width;
+        req.height = height;
+        req.frames = spp;
+        req.first_frame = ks[i];
+        req.average = true;
+        req.seed = common.seed;
+        req.animate = false;
+        sum += runtime::relative_mse(
+            lighting::render_offline(device, shaders, level, req).images.at(0), references[i]);
+      }
+      const double base_err = sum / static_cast<double>(ks.size());
+      equal_time.push_back({{"restir", r.config.name},
+                            {"restir_frame_ms", r.frame_ms},
+                            {"restir_relmse", r.mean_relmse()},
+                            {"baseline_frames_averaged", spp},
+                            {"baseline_relmse", base_err},
+                            {"relmse_ratio", r.mean_relmse() > 0.0 ? base_err / r.mean_relmse() : 0.0}});
+    }
+  }
+
+  // Pareto front over (frame ms, relMSE).
+  std::vector<std::pair<double, double>> points;
+  for (const Row& r : rows) points.emplace_back(r.frame_ms, r.mean_relmse());
+  const std::vector<std::size_t> front = perf::pareto_front(points);
+  auto on_front = [&](std::size_t i) {
+    return std::find(front.begin(), front.end(), i) != front.end();
+  };
+
+  fs::create_directories(out);
+  nlohmann::json jrows = nlohmann::json::array();
+  std::string csv = "name,integrator,frame_ms,frame_wall_ms,relmse,pareto,settings\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    const char* integrator = lighting::integrator_name(r.config.integrator.kind);
+    jrows.push_back({{"name", r.config.name},
+                     {"integrator", integrator},
+                     {"preset", r.config.integrator.preset},
+                     {"frame_ms", r.frame_ms},
+                     {"frame_wall_ms", r.frame_wall_ms},
+                     {"relmse", r.mean_relmse()},
+                     {"relmse_per_frame", r.relmse},
+                     {"pareto", on_front(i)},
+                     {"settings", settings_json(r.config.integrator)}});
+    std::string settings;
+    for (const auto& [k, v] : r.config.integrator.settings) settings += fmt::format("{}={};", k, v);
+    csv += fmt::format("{},{},{:.4f},{:.4f},{:.6g},{},{}\n", r.config.name, integrator, r.frame_ms,
+                       r.frame_wall_ms, r.mean_relmse(), on_front(i) ? 1 : 0, settings);
+  }
+  const nlohmann::json j = {
+      {"level", level->name},
+      {"size", {width, height}},
+      {"frames", frames},
+      {"seed", common.seed},
+      {"device", device.info().name},
+      {"evaluated_frames", ks},
+      {"reference", {{"integrator", "reference"},
+                     {"spp_per_frame", o.reference_spp},
+                     {"frames_averaged", o.reference_frames},
+                     {"seed", ref_request.seed}}},
+      {"rows", jrows},
+      {"equal_time", equal_time},
+  };
+  std::ofstream(out / "trade.json") << j.dump(2) << '\n';
+  std::ofstream(out / "trade.csv") << csv;
+
+  runtime::LogLogPlot plot;
+  plot.title = fmt::format("{} {}x{}: error vs frame time ({} frames)", level->name, width,
+                           height, frames);
+  plot.x_label = "GPU frame time (ms)";
+  plot.y_label = "relMSE vs reference";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    plot.points.push_back({rows[i].frame_ms, rows[i].mean_relmse(), rows[i].config.name,
+                           on_front(i)});
+  }
+  for (std::size_t i : front) plot.line.emplace_back(rows[i].frame_ms, rows[i].mean_relmse());
+  runtime::write_log_log_plot(out / "trade.png", plot);
+
+  std::printf("%-14s %-9s %10s %12s %s\n", "config", "integr.", "frame ms", "relMSE", "pareto");
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    std::printf("%-14s %-9s %10.2f %12.4g %s\n", rows[i].config.name.c_str(),
+                lighting::integrator_name(rows[i].config.integrator.kind), rows[i].frame_ms,
+                rows[i].mean_relmse(), on_front(i) ? "*" : "");
+  }
+  for (const auto& e : equal_time) {
+    std::printf("equal time vs %s: baseline x%d frames relMSE %.4g = %.1fx ReSTIR's\n",
+                e["restir"].get<std::string>().c_str(), e["baseline_frames_averaged"].get<int>(),
+                e["baseline_relmse"].get<double>(), e["relmse_ratio"].get<double>());
+  }
+  if (device.validation_enabled() && device.validation_errors() > 0) {
+    throw RuntimeError(fmt::format("{} Vulkan validation error(s)", device.validation_errors()));
+  }
+}
+
+}  // namespace
+
+void add_trade_command(CLI::App& root, CommonOptions& options) {
+  auto opts = std::make_shared<TradeOptions>();
+  auto* cmd = root.add_subcommand("trade", "Speed/accuracy sweep: trade.json, trade.csv, trade.png");
+  add_common_flags(*cmd, options);
+  cmd->add_option("LEVEL", opts->level,
+                  "Level: a .json/.gltf/.glb file or a name under content/levels/")
+      ->required();
+  cmd->add_option("--presets", opts->presets, "ReSTIR presets to run, comma-separated")
+      ->capture_default_str();
+  cmd->add_option("--variant", opts->variants,
+                  "Extra ReSTIR configuration NAME:KEY=VALUE;KEY=VALUE (repeatable)");
+  cmd->add_flag("--no-baseline", opts->no_baseline, "Leave the baseline out");
+  cmd->add_option("--eval-frames", opts->eval_frames, "Frames at which the error is measured")
+      ->capture_default_str();
+  cmd->add_option("--reference-spp", opts->reference_spp, "Reference samples per pixel per frame")
+      ->capture_default_str();
+  cmd->add_option("--reference-frames", opts->reference_frames,
+                  "Reference frames averaged (total spp = spp x frames)")
+      ->capture_default_str();
+  cmd->add_option("--out", opts->out, "Output directory")->required();
+  cmd->callback([opts, &options] { run_trade(*opts, options); });
+}
+
+}  // namespace lantern::app
