@@ -208,7 +208,12 @@ struct Importer {
     const std::string place = fmt::format("node {}", index);
     if (index < 0 || static_cast<std::size_t>(index) >= model.nodes.size())
       fail(place, "does not exist");
-    if (depth > model.nodes.size()) fail(place, "node hierarchy has a cycle");
+    // glTF node hierarchies are disjoint trees: a node reached twice is a cycle or a node with
+    // two parents (a DAG, whose traversal would be exponential in its depth).
+    if (node_parent[static_cast<std::size_t>(index)] != kUnvisited)
+      fail(place, "is reached twice (node hierarchy has a cycle or a node with two parents)");
+    if (depth > kMaxNodeDepth)
+      fail(place, fmt::format("node hierarchy is deeper than {} levels", kMaxNodeDepth));
     const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(index)];
     const glm::mat4 world = parent * local_matrix(node);
     if (!all_finite(world[0]) || !all_finite(world[1]) || !all_finite(world[2]) ||
@@ -433,6 +438,7 @@ struct Importer {
   }
 
   static constexpr int kUnvisited = -2;
+  static constexpr std::size_t kMaxNodeDepth = 1024;  // recursion depth of visit()
 };
 
 }  // namespace

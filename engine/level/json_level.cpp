@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -13,6 +14,9 @@
 #include "engine/level/json_level_reader.h"
 
 namespace lantern {
+namespace {
+constexpr long kMaxSettingsDepth = 32;
+}  // namespace
 
 void read_json_level(const std::filesystem::path& file, Level& level,
                      LoadDiagnostics& diagnostics) {
@@ -159,6 +163,11 @@ void JsonLevelReader::read_settings(const nlohmann::json& value, const std::stri
     const std::string ptr = pointer + "/" + pointer_token(it.key());
     const nlohmann::json& v = it.value();
     if (v.is_object()) {
+      // Recursion depth = nesting in the file: bounded, so a deeply nested document cannot
+      // overflow the stack. JSON pointer tokens escape '/', so '/' counts the levels.
+      if (std::count(ptr.begin(), ptr.end(), '/') > kMaxSettingsDepth)
+        throw InputError(fmt::format("{}: {}: settings nest deeper than {} levels", file_.string(),
+                                     ptr, kMaxSettingsDepth));
       read_settings(v, key, ptr);
     } else if (v.is_string()) {
       level().settings[key] = v.get<std::string>();

@@ -42,6 +42,8 @@ void write_atomic(const fs::path& path, OIIO::ImageSpec spec, OIIO::TypeDesc typ
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::is_directory(dir))
     throw InputError(fmt::format("{}: directory '{}' does not exist", path.string(), dir.string()));
+  if (fs::is_directory(path))
+    throw InputError(fmt::format("{}: is a directory, not an image file", path.string()));
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out) throw RuntimeError(fmt::format("{}: {}", path.string(), OIIO::geterror()));
   const fs::path temp = dir / fmt::format(".{}.{}.partial", path.filename().string(), getpid());
@@ -54,7 +56,8 @@ void write_atomic(const fs::path& path, OIIO::ImageSpec spec, OIIO::TypeDesc typ
   std::error_code ec;
   fs::rename(temp, path, ec);
   if (ec) {
-    fs::remove(temp, ec);
+    std::error_code ignored;  // keep `ec`: it is the reason the user sees
+    fs::remove(temp, ignored);
     throw RuntimeError(fmt::format("{}: could not move image into place: {}", path.string(),
                                    ec.message()));
   }
