@@ -204,7 +204,27 @@ struct Importer {
     return t;
   }
 
-  void visit(int index, const glm::mat4& parent, int parent_index, std::size_t depth) {
+  // Depth-first, parents before children, children in file order. An explicit stack, not
+  // recursion: the hierarchy depth comes from the file and must not bound the call stack.
+  void visit(int root, const glm::mat4& placement) {
+    struct Pending {
+      int index;
+      int parent_index;
+      glm::mat4 parent_world;
+    };
+    std::vector<Pending> stack{{root, -1, placement}};
+    while (!stack.empty()) {
+      const Pending p = stack.back();
+      stack.pop_back();
+      const glm::mat4 world = visit_node(p.index, p.parent_world, p.parent_index);
+      const std::vector<int>& children = model.nodes[static_cast<std::size_t>(p.index)].children;
+      for (auto it = children.rbegin(); it != children.rend(); ++it)
+        stack.push_back({*it, p.index, world});
+    }
+  }
+
+  // One node: its world matrix (returned), instances and light.
+  glm::mat4 visit_node(int index, const glm::mat4& parent, int parent_index) {
     const std::string place = fmt::format("node {}", index);
     if (index < 0 || static_cast<std::size_t>(index) >= model.nodes.size())
       fail(place, "does not exist");
@@ -212,8 +232,6 @@ struct Importer {
     // two parents (a DAG, whose traversal would be exponential in its depth).
     if (node_parent[static_cast<std::size_t>(index)] != kUnvisited)
       fail(place, "is reached twice (node hierarchy has a cycle or a node with two parents)");
-    if (depth > kMaxNodeDepth)
-      fail(place, fmt::format("node hierarchy is deeper than {} levels", kMaxNodeDepth));
     const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(index)];
     const glm::mat4 world = parent * local_matrix(node);
     if (!all_finite(world[0]) || !all_finite(world[1]) || !all_finite(world[2]) ||
@@ -239,7 +257,7 @@ struct Importer {
     }
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
       add_light(index, it->second, world);
-    for (int child : node.children) visit(child, world, index, depth + 1);
+    return world;
   }
 
   void add_light(int node_index, const tinygltf::Value& ext, const glm::mat4& world) {
@@ -438,7 +456,6 @@ struct Importer {
   }
 
   static constexpr int kUnvisited = -2;
-  static constexpr std::size_t kMaxNodeDepth = 1024;  // recursion depth of visit()
 };
 
 }  // namespace
@@ -488,7 +505,7 @@ GltfImport import_gltf(const std::filesystem::path& file, const glm::mat4& place
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
       if (!is_child[i]) roots.push_back(static_cast<int>(i));
   }
-  for (int r : roots) im.visit(r, placement, -1, 0);
+  for (int r : roots) im.visit(r, placement);
 
   int camera_node = -1;
   result.camera = im.camera(camera_node);
