@@ -1,6 +1,6 @@
-// `lantern info LEVEL [--json FILE]`: what the level contains (CLI.md). What the engine enables
-// for it (sampling structures, shader variants, memory) is added to LevelSummary::enabled by the
-// lighting layer once it exists; this command prints whatever is there.
+// `lantern info LEVEL [--json FILE]`: what the level contains (CLI.md) and what the lighting
+// module builds for it, why, and the memory each part takes (lighting/scene/scene_requirements.h)
+// at the --size given.
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/level/level_loader.h"
 #include "engine/scene/level_summary.h"
+#include "lighting/scene/scene_requirements.h"
 
 namespace lantern::app {
 namespace {
@@ -20,9 +21,11 @@ struct InfoOptions {
   std::string json;
 };
 
-void run_info(const InfoOptions& o) {
+void run_info(const InfoOptions& o, const CommonOptions& common) {
   const Level level = load_level_argument(o.level);
-  const LevelSummary summary = summarize(level);
+  LevelSummary summary = summarize(level);
+  const auto [width, height] = parse_size(common.size);
+  lighting::describe_requirements(level, width, height, summary);
   std::fputs(to_text(summary).c_str(), stdout);
   if (!o.json.empty()) {
     std::ofstream out(o.json, std::ios::binary | std::ios::trunc);
@@ -43,7 +46,7 @@ void add_info_command(CLI::App& root, CommonOptions& options) {
                   "Level: a .json/.gltf/.glb file or a name under content/levels/")
       ->required();
   cmd->add_option("--json", opts->json, "Also write the summary as JSON to FILE");
-  cmd->callback([opts] { run_info(*opts); });
+  cmd->callback([opts, &options] { run_info(*opts, options); });
 }
 
 }  // namespace lantern::app

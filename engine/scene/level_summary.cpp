@@ -79,8 +79,21 @@ std::string to_text(const LevelSummary& s) {
   for (const auto& p : s.paths)
     out += fmt::format("    {:<18}{:.2f} s, {} keys{}\n", p.name, p.duration, p.keys,
                        p.loop ? ", loops" : "");
-  for (const auto& [section, value] : s.enabled)
-    out += fmt::format("  {}\n    {}\n", section, value.dump());
+  if (!s.enabled.empty()) out += "enabled for this level\n";
+  auto text = [](const nlohmann::json& v) {
+    return v.is_string() ? v.get<std::string>() : v.dump();
+  };
+  for (const auto& [section, value] : s.enabled) {
+    out += fmt::format("  {}\n", section);
+    if (value.is_object()) {
+      for (const auto& [key, field] : value.items())
+        out += fmt::format("    {:<16}{}\n", key, text(field));
+    } else if (value.is_array()) {
+      for (const auto& item : value) out += fmt::format("    {}\n", text(item));
+    } else {
+      out += fmt::format("    {}\n", text(value));
+    }
+  }
   return out;
 }
 

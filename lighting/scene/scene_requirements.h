@@ -1,0 +1,21 @@
+// What the lighting module builds for a level, and why (`lantern info`): the light-sampling
+// structure sized by the emitters present, environment sampling only with an environment map,
+// the visibility structure, the geometry buffers and the per-frame images at a render size, each
+// with its memory. Computed on the CPU from the same SceneData/EnvironmentDistribution the
+// renderer uploads, so the figures are the real buffer sizes (one zeroed element stands in for
+// an empty array, as on the device).
+#pragma once
+
+#include <cstdint>
+
+#include "engine/scene/level.h"
+#include "engine/scene/level_summary.h"
+
+namespace lantern::lighting {
+
+// Adds the sections "light_sampling", "environment", "visibility", "geometry", "per_frame" and
+// "shader_variants" to summary.enabled. Throws InputError on bad level data.
+void describe_requirements(const Level& level, std::uint32_t width, std::uint32_t height,
+                           LevelSummary& summary);
+
+}  // namespace lantern::lighting
