@@ -6,6 +6,7 @@
 #include "engine/core/error.h"
 #include "lighting/integrators/baseline_integrator.h"
 #include "lighting/integrators/reference_integrator.h"
+#include "lighting/restir/restir_integrator.h"
 
 namespace lantern::lighting {
 
@@ -29,12 +30,7 @@ const char* integrator_name(IntegratorKind kind) {
   return "?";
 }
 
-void require_implemented(IntegratorKind kind) {
-  if (kind == IntegratorKind::Restir) {
-    throw InputError(fmt::format("integrator '{}' is not implemented yet (use baseline)",
-                                 integrator_name(kind)));
-  }
-}
+void require_implemented(IntegratorKind) {}
 
 std::unique_ptr<Integrator> make_integrator(runtime::Device& device,
                                             runtime::ShaderLibrary& shaders,
@@ -57,7 +53,14 @@ std::unique_ptr<Integrator> make_integrator(runtime::Device& device,
       return std::make_unique<ReferenceIntegrator>(
           device, shaders, parse_reference_settings(config.settings, config.spp));
     case IntegratorKind::Restir:
-      break;
+      if (config.spp > 1) {
+        throw InputError(fmt::format(
+            "--spp {}: the restir integrator shades 1 sample per pixel per frame (set "
+            "light_candidates, spatial_passes and neighbours with --set instead)",
+            config.spp));
+      }
+      return std::make_unique<RestirIntegrator>(
+          device, shaders, make_restir_settings(config.preset, config.settings));
   }
   throw InputError(fmt::format("integrator '{}' is not implemented yet (use baseline)",
                                integrator_name(config.kind)));

@@ -10,6 +10,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
+// Storage-buffer BVH: the frame's scene exposes the BVH as graph buffers, not texel views yet
+// (VisibilityScene owns those); texel fetches would be 1.2-1.4x faster for shadow rays.
+#define VIS_BVH_STORAGE_BUFFERS
 #include "lib/visibility.glsl"
 #include "restir/restir_common.glsl"
 #include "shared/alias_table.h"
