@@ -122,6 +122,16 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
     log::info("scene update (CPU): median {:.2f} ms, max {:.2f} ms", update[update.size() / 2],
               update.back());
   }
+  if (result.scene_updates.size() > 1) {
+    // The last frame's breakdown (frame 0 only applies the first snapshot).
+    const lighting::SceneUpdateStats& s = result.scene_updates.back();
+    log::info(
+        "last scene update: {:.2f} ms (instances {:.2f}: {} moved, TLAS {}; lights {:.2f}: {} "
+        "instances / {} triangles re-extracted, alias {}), {} bytes uploaded",
+        s.cpu_ms, s.instance_ms, s.moved_instances, s.tlas_rebuilt ? "rebuilt" : "kept",
+        s.light_ms, s.reextracted_instances, s.reextracted_triangles,
+        s.alias_rebuilt ? "rebuilt" : "kept", s.upload_bytes);
+  }
   if (device.validation_enabled() && device.validation_errors() > 0) {
     throw RuntimeError(fmt::format("{} Vulkan validation error(s)", device.validation_errors()));
   }

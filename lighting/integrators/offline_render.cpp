@@ -108,6 +108,7 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
     graph.begin_frame();
     const runtime::graph::BufferHandle hdr = renderer.add_frame(graph, *snapshot);
     result.scene_update_ms.push_back(renderer.scene().last_update().cpu_ms);
+    result.scene_updates.push_back(renderer.scene().last_update());
     const runtime::graph::ImageHandle output = renderer.add_output_pass(
         graph, hdr, target.import_output(graph, *target_frame), 0.0f);
     target.add_delivery(graph, *target_frame, output);

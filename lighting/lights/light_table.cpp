@@ -9,6 +9,29 @@
 namespace lantern::lighting {
 
 bool LightTable::update(std::span<const LightEmitter> emitters) {
+  // Fast path (every frame of a level whose lights only move or change power): the same ids in
+  // the same order map every light to itself, no hashing needed.
+  if (emitters.size() == ids_.size() && !emitters.empty()) {
+    bool same = true;
+    for (std::size_t i = 0; i < emitters.size() && same; ++i) same = emitters[i].stable_id == ids_[i];
+    if (same) {
+      bool power_changed = false;
+      for (std::size_t i = 0; i < emitters.size(); ++i) {
+        lights_[i] = emitters[i].light;
+        power_changed = power_changed || powers_[i] != emitters[i].power;
+        powers_[i] = emitters[i].power;
+      }
+      prev_to_cur_.resize(ids_.size());
+      cur_to_prev_.resize(ids_.size());
+      for (std::uint32_t i = 0; i < ids_.size(); ++i) prev_to_cur_[i] = cur_to_prev_[i] = i;
+      if (!power_changed) return false;
+      double total = 0.0;
+      for (float p : powers_) total += p;
+      alias_ = total > 0.0 ? AliasTable(powers_) : AliasTable();
+      ++alias_rebuilds_;
+      return true;
+    }
+  }
   // Index the previous frame's ids, then map each current emitter to its previous slot.
   std::unordered_map<std::uint64_t, std::uint32_t> previous;
   previous.reserve(ids_.size());

@@ -95,7 +95,7 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level)
     const std::span<const std::byte> src = cpu_bytes(static_cast<Slot>(s));
     std::copy(src.begin(), src.end(), bytes.begin());
     runtime::upload_buffer(device_, arrays_[s].buffer, std::span<const std::byte>(bytes));
-    arrays_[s].dirty_begin = arrays_[s].dirty_end = 0;
+    arrays_[s].dirty.clear();
   }
 }
 
@@ -134,15 +134,7 @@ std::span<const std::byte> GpuScene::cpu_bytes(Slot slot) const {
 }
 
 void GpuScene::mark_dirty(Slot slot, std::uint64_t begin, std::uint64_t end) {
-  DeviceArray& a = arrays_[slot];
-  if (begin >= end) return;
-  if (a.dirty_begin >= a.dirty_end) {
-    a.dirty_begin = begin;
-    a.dirty_end = end;
-  } else {
-    a.dirty_begin = std::min(a.dirty_begin, begin);
-    a.dirty_end = std::max(a.dirty_end, end);
-  }
+  if (begin < end) arrays_[slot].dirty.emplace_back(begin, end);
 }
 
 void GpuScene::mark_all_dirty(Slot slot) { mark_dirty(slot, 0, cpu_bytes(slot).size()); }
@@ -250,6 +242,8 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
     append_triangle_emitters(mesh, e.world, e.radiance * std::max(scale, 0.0f), e.instance,
                              scratch);
     std::copy(scratch.begin(), scratch.end(), emitters_.begin() + e.first);
+    mark_dirty(kLights, std::uint64_t{e.first} * sizeof(gpu::GpuLight),
+               std::uint64_t{e.first + e.count} * sizeof(gpu::GpuLight));
     ++stats_.reextracted_instances;
     stats_.reextracted_triangles += e.count;
     changed = true;
@@ -271,6 +265,8 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
                   })) {
     emitters_.resize(triangle_emitters_);
     emitters_.insert(emitters_.end(), analytic.begin(), analytic.end());
+    mark_dirty(kLights, std::uint64_t{triangle_emitters_} * sizeof(gpu::GpuLight),
+               emitters_.size() * sizeof(gpu::GpuLight));
     changed = true;
   }
 
@@ -279,8 +275,7 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
     stats_.lights_changed = true;
     stats_.alias_rebuilt = data_.lights.update(emitters_);
     remap_ = data_.lights.previous_to_current();
-    ensure_capacity(kLights);
-    mark_all_dirty(kLights);
+    ensure_capacity(kLights);  // ranges marked above (everything when the buffer grew)
     if (stats_.alias_rebuilt) {
       ensure_capacity(kAlias);
       mark_all_dirty(kAlias);
@@ -330,17 +325,36 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
     retired_.pop_front();
   }
 
-  // Stage this frame's changes into the ring slot no frame in flight uses.
+  // Merge each buffer's dirty ranges (sorted, gaps under 4 KiB joined, clamped to the array).
   struct Copy {
     Slot slot;
-    VkBufferCopy region;
+    std::vector<VkBufferCopy> regions;
   };
   std::vector<Copy> copies;
   std::uint64_t total = 0;
   for (std::uint32_t s = 0; s < kSlotCount; ++s) {
-    const DeviceArray& a = arrays_[s];
-    if (a.dirty_end > a.dirty_begin) total += ((a.dirty_end - a.dirty_begin + 15) / 16) * 16;
+    DeviceArray& a = arrays_[s];
+    if (a.dirty.empty()) continue;
+    const std::uint64_t size = cpu_bytes(static_cast<Slot>(s)).size();
+    std::sort(a.dirty.begin(), a.dirty.end());
+    Copy copy{static_cast<Slot>(s), {}};
+    for (auto [begin, end] : a.dirty) {
+      end = std::min(end, size);
+      if (begin >= end) continue;
+      if (!copy.regions.empty() &&
+          begin <= copy.regions.back().dstOffset + copy.regions.back().size + 4096) {
+        VkBufferCopy& last = copy.regions.back();
+        last.size = std::max(last.dstOffset + last.size, end) - last.dstOffset;
+      } else {
+        copy.regions.push_back(VkBufferCopy{0, begin, end - begin});
+      }
+    }
+    a.dirty.clear();
+    for (const VkBufferCopy& r : copy.regions) total += (r.size + 15) / 16 * 16;
+    if (!copy.regions.empty()) copies.push_back(std::move(copy));
   }
+
+  // Stage them into the ring slot no frame in flight uses.
   runtime::Buffer& staging = staging_[uploads_ % kStagingSlots];
   if (total > 0 && (!staging || staging.size() < total)) {
     staging = runtime::Buffer(
@@ -350,18 +364,13 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
                   .name = fmt::format("scene.staging.{}", uploads_ % kStagingSlots)});
   }
   std::uint64_t offset = 0;
-  for (std::uint32_t s = 0; s < kSlotCount; ++s) {
-    DeviceArray& a = arrays_[s];
-    if (a.dirty_end <= a.dirty_begin) continue;
-    const std::span<const std::byte> src = cpu_bytes(static_cast<Slot>(s));
-    const std::uint64_t end = std::min<std::uint64_t>(a.dirty_end, src.size());
-    if (a.dirty_begin < end) {
-      const std::uint64_t n = end - a.dirty_begin;
-      std::memcpy(staging.mapped() + offset, src.data() + a.dirty_begin, n);
-      copies.push_back({static_cast<Slot>(s), VkBufferCopy{offset, a.dirty_begin, n}});
-      offset += ((n + 15) / 16) * 16;
+  for (Copy& c : copies) {
+    const std::span<const std::byte> src = cpu_bytes(c.slot);
+    for (VkBufferCopy& r : c.regions) {
+      std::memcpy(staging.mapped() + offset, src.data() + r.dstOffset, r.size);
+      r.srcOffset = offset;
+      offset += (r.size + 15) / 16 * 16;
     }
-    a.dirty_begin = a.dirty_end = 0;
   }
   stats_.upload_bytes = offset;
   ++uploads_;
@@ -394,7 +403,7 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
                    VK_IMAGE_LAYOUT_UNDEFINED}});
   struct Data {
     runtime::graph::BufferHandle source;
-    std::vector<std::pair<runtime::graph::BufferHandle, VkBufferCopy>> copies;
+    std::vector<std::pair<runtime::graph::BufferHandle, std::vector<VkBufferCopy>>> copies;
   };
   graph.add_pass<Data>(
       "scene.upload", runtime::graph::PassKind::Transfer,
@@ -404,13 +413,14 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
         for (const Copy& c : copies) {
           runtime::graph::BufferHandle& h = handle_of(out, c.slot);  // one copy per buffer
           h = b.write(h, runtime::graph::Access::TransferDst);
-          d.copies.emplace_back(h, c.region);
+          d.copies.emplace_back(h, c.regions);
         }
       },
       [](runtime::graph::PassContext& ctx, const Data& d) {
         const VkBuffer src = ctx.buffer(d.source);
-        for (const auto& [h, region] : d.copies) {
-          vkCmdCopyBuffer(ctx.cmd(), src, ctx.buffer(h), 1, &region);
+        for (const auto& [h, regions] : d.copies) {
+          vkCmdCopyBuffer(ctx.cmd(), src, ctx.buffer(h), static_cast<std::uint32_t>(regions.size()),
+                          regions.data());
         }
       });
   return out;

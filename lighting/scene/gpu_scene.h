@@ -117,9 +117,8 @@ class GpuScene {
   struct DeviceArray {
     runtime::Buffer buffer;
     bool read_only = false;
-    // Pending upload: byte range [dirty_begin, dirty_end) of the CPU array.
-    std::uint64_t dirty_begin = 0;
-    std::uint64_t dirty_end = 0;
+    // Pending upload: byte ranges [begin, end) of the CPU array (merged at upload).
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> dirty;
   };
   struct EmissiveInstance {
     std::uint32_t instance = 0;     // Level instance index
