@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "shared/restir.h"
@@ -70,41 +71,89 @@ TEST_F(RestirGpuTest, UnbiasedAgainstBaselineOnStaticCornell) {
   for (double v : sum) reference_mean += v;
   reference_mean /= static_cast<double>(sum.size()) * kBaselineFrames;
 
-  for (const char* mode : {"balance", "pairwise", "none"}) {
-    RenderHarness h(device, shaders, cornell(),
-                    test::make_restir(device, shaders, {{"bias_correction", mode}}), kW, kH);
-    runtime::ImageAccumulator acc;
+  // asserted: overall mean within 1% (the issue's criterion). lit: the lit-surface mean too.
+  // OPEN (report of issue 5): with temporal reuse the lit-surface mean of 64 frames reads high
+  // (+4.6% pairwise, +6.5% balance, +20% with 1 candidate) while RIS alone and spatial reuse
+  // alone are within 0.4%; over 512 frames it falls to +2.1% / +1.8% / +7.4% (RIS +0.7%, the
+  // reference's own noise): long-lived heavy-tailed history samples mix slowly, but a small
+  // systematic bias is not excluded. The overall mean hides it (emitters dominate).
+  // LANTERN_RESTIR_BIAS_STRICT=1 asserts the lit-surface bound for every configuration.
+  struct Config {
+    const char* name;
+    std::vector<std::pair<std::string, std::string>> settings;
+    bool asserted;
+    bool lit;
+  };
+  const std::vector<Config> configs = {
+      {"balance", {{"bias_correction", "balance"}}, true, false},
+      {"pairwise", {{"bias_correction", "pairwise"}}, true, false},
+      {"none", {{"bias_correction", "none"}}, false, false},
+      {"ris", {{"temporal", "off"}, {"spatial_passes", "0"}}, true, true},
+      {"spatial", {{"temporal", "off"}, {"bias_correction", "pairwise"}}, true, true},
+      {"spatial-b", {{"temporal", "off"}, {"bias_correction", "balance"}}, true, true},
+      {"temporal", {{"spatial_passes", "0"}}, false, false},
+      {"t-cap1", {{"spatial_passes", "0"}, {"m_cap", "1"}}, false, false},
+      {"t-M1", {{"spatial_passes", "0"}, {"light_candidates", "1"}}, false, false},
+  };
+  const bool strict = std::getenv("LANTERN_RESTIR_BIAS_STRICT") != nullptr;
+  for (const Config& config : configs) {
+    const char* mode = config.name;
+    RenderHarness h(device, shaders, cornell(), test::make_restir(device, shaders, config.settings),
+                    kW, kH);
+    std::vector<double> rsum(kW * kH * 3, 0.0), rsum2(kW * kH * 3, 0.0);
     FrameSnapshot r = first;
-    for (int f = 0; f < 64; ++f) {
+    // LANTERN_RESTIR_BIAS_FRAMES overrides the 64 frames (investigating slow-mixing chains).
+    const int kFrames = std::getenv("LANTERN_RESTIR_BIAS_FRAMES")
+                            ? std::atoi(std::getenv("LANTERN_RESTIR_BIAS_FRAMES"))
+                            : 64;
+    for (int f = 0; f < kFrames; ++f) {
       const ImageRGBA32F img = h.render(r);
       ASSERT_TRUE(test::all_finite(img));
-      acc.add(img);
+      for (std::size_t p = 0; p < std::size_t{kW} * kH; ++p)
+        for (int c = 0; c < 3; ++c) {
+          const double v = img.pixels[4 * p + c];
+          rsum[3 * p + c] += v;
+          rsum2[3 * p + c] += v * v;
+        }
       r = test::frozen(r);
     }
-    const ImageRGBA32F mean = acc.mean();
-    const double restir_mean = runtime::mean_rgb(mean);
-    const double rel = (restir_mean - reference_mean) / reference_mean;
-    // z-score of the per-pixel difference against the baseline's standard error (ReSTIR frames
-    // are correlated, so this understates ReSTIR's own error: a summary, not a test).
+    // Overall mean, and the mean over lit surfaces only (reference < 5: directly seen emitters,
+    // up to 1e4 here and identical in both, would otherwise swamp the lighting's share).
+    double restir_total = 0.0, lit_restir = 0.0, lit_reference = 0.0;
     double z_abs_sum = 0.0;
-    std::size_t over3 = 0, n = 0;
-    for (std::size_t p = 0; p < std::size_t{kW} * kH; ++p)
-      for (int c = 0; c < 3; ++c) {
-        const double m = sum[3 * p + c] / kBaselineFrames;
-        const double var = std::max(sum2[3 * p + c] / kBaselineFrames - m * m, 0.0);
-        const double se = std::sqrt(var / kBaselineFrames);
-        if (se <= 0.0) continue;
-        const double z = (mean.pixels[4 * p + c] - m) / se;
-        z_abs_sum += std::abs(z);
-        over3 += std::abs(z) > 3.0 ? 1 : 0;
-        ++n;
+    std::size_t over3 = 0, n = 0, lit = 0;
+    for (std::size_t i = 0; i < rsum.size(); ++i) {
+      const double m_ref = sum[i] / kBaselineFrames;
+      const double m = rsum[i] / kFrames;  // NOLINT
+      restir_total += m;
+      if (m_ref < 5.0) {
+        lit_restir += m;
+        lit_reference += m_ref;
+        ++lit;
       }
-    std::printf("[restir bias] %-8s mean %.5f reference %.5f relative %+.3f%%  mean|z| %.2f  "
-                "|z|>3 %.1f%% of %zu\n",
-                mode, restir_mean, reference_mean, 100.0 * rel, z_abs_sum / double(n),
-                100.0 * double(over3) / double(n), n);
-    if (std::string(mode) != "none") {
-      EXPECT_LT(std::abs(rel), 0.01) << mode << " mode must be within 1% of the reference";
+      // z-score against both standard errors (ReSTIR frames are correlated, so its own error is
+      // understated and |z| overstated: a summary, not a test).
+      const double var_ref = std::max(sum2[i] / kBaselineFrames - m_ref * m_ref, 0.0);
+      const double var = std::max(rsum2[i] / kFrames - m * m, 0.0);
+      const double se = std::sqrt(var_ref / kBaselineFrames + var / kFrames);
+      if (se <= 0.0) continue;
+      const double z = (m - m_ref) / se;
+      z_abs_sum += std::abs(z);
+      over3 += std::abs(z) > 3.0 ? 1 : 0;
+      ++n;
+    }
+    const double restir_mean = restir_total / double(rsum.size());
+    const double rel = (restir_mean - reference_mean) / reference_mean;
+    const double rel_lit = (lit_restir - lit_reference) / lit_reference;
+    std::printf("[restir bias] %-8s mean %.5f reference %.5f relative %+.3f%%; lit surfaces "
+                "(%zu channels) %+.3f%%; mean|z| %.2f, |z|>3 %.1f%% of %zu\n",
+                mode, restir_mean, reference_mean, 100.0 * rel, lit, 100.0 * rel_lit,
+                z_abs_sum / double(n), 100.0 * double(over3) / double(n), n);
+    if (config.asserted || strict) {
+      EXPECT_LT(std::abs(rel), 0.01) << mode << ": overall mean within 1% of the reference";
+    }
+    if (config.lit || strict) {
+      EXPECT_LT(std::abs(rel_lit), 0.01) << mode << ": lit-surface mean within 1%";
     }
   }
 }
@@ -269,7 +318,16 @@ TEST_F(RestirGpuTest, CameraCutUsesNoHistory) {
   double reused = 0.0;
   for (int f = 0; f < 4; ++f) {
     const ImageRGBA32F img = debug.render(s);
-    if (f == 3) reused = 1.0 - no_history_fraction(img);
+    if (f == 3) {
+      reused = 1.0 - no_history_fraction(img);
+      std::size_t green = 0, yellow = 0;
+      for (std::size_t p = 0; p < std::size_t{kW} * kH; ++p) {
+        green += img.pixels[4 * p] == 0.0f && img.pixels[4 * p + 1] == 1.0f ? 1 : 0;
+        yellow += img.pixels[4 * p] == 1.0f && img.pixels[4 * p + 1] == 1.0f ? 1 : 0;
+      }
+      std::printf("[restir cut] static view: %zu reprojected at once, %zu after a retry\n", green,
+                  yellow);
+    }
     s = test::frozen(s);
   }
   s.camera_cut = true;
