@@ -40,8 +40,8 @@ void play(const PlayOptions& play_options, const CommonOptions& common) {
   runtime::DeviceOptions device_options{.selector = common.device};
   const auto glfw = runtime::enable_presentation(device_options);
   runtime::Device device(device_options);
-  runtime::Window window({.title = fmt::format("lantern - {}", play_options.level),
-                          .width = width, .height = height});
+  runtime::Window window(
+      {.title = fmt::format("lantern - {}", play_options.level), .width = width, .height = height});
   runtime::WindowTarget target(device, window, {.render_width = width, .render_height = height});
   runtime::ShaderLibrary shaders;
 
@@ -66,7 +66,8 @@ void play(const PlayOptions& play_options, const CommonOptions& common) {
   runtime::graph::GraphExecutor executor(device);
 
   std::uint32_t frames = 0;
-  const std::uint32_t max_frames = common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 0;
+  const std::uint32_t max_frames =
+      common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 0;
   log::info("play: {} at {}x{}, baseline integrator, exposure {:.3g} (Esc quits)",
             play_options.level, width, height, exposure);
   while (!window.should_close() && !window.input().key_down(GLFW_KEY_ESCAPE) &&

@@ -106,8 +106,8 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
       lighting::render_offline(device, shaders, level, request);
   write_images(o.out, result.images, o.exposure);
   log::info("{} {} frame(s) from frame {} at {}x{}: median {:.2f} ms/frame (GPU); wrote {}",
-            lighting::integrator_name(request.integrator.kind), request.frames,
-            request.first_frame, width, height, result.median_frame_ms(), o.out);
+            lighting::integrator_name(request.integrator.kind), request.frames, request.first_frame,
+            width, height, result.median_frame_ms(), o.out);
   // Median GPU ms per pass, in the order of the first frame.
   if (!result.pass_ms.empty()) {
     std::string passes;
@@ -128,9 +128,9 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
     log::info(
         "last scene update: {:.2f} ms (instances {:.2f}: {} moved, TLAS {}; lights {:.2f}: {} "
         "instances / {} triangles re-extracted, alias {}), {} bytes uploaded",
-        s.cpu_ms, s.instance_ms, s.moved_instances, s.tlas_rebuilt ? "rebuilt" : "kept",
-        s.light_ms, s.reextracted_instances, s.reextracted_triangles,
-        s.alias_rebuilt ? "rebuilt" : "kept", s.upload_bytes);
+        s.cpu_ms, s.instance_ms, s.moved_instances, s.tlas_rebuilt ? "rebuilt" : "kept", s.light_ms,
+        s.reextracted_instances, s.reextracted_triangles, s.alias_rebuilt ? "rebuilt" : "kept",
+        s.upload_bytes);
   }
   if (device.validation_enabled() && device.validation_errors() > 0) {
     throw RuntimeError(fmt::format("{} Vulkan validation error(s)", device.validation_errors()));

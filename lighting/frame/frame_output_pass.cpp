@@ -25,10 +25,10 @@ runtime::graph::ImageHandle add_frame_output_pass(runtime::graph::RenderGraph& g
         d.target = b.write(target, runtime::graph::Access::StorageWrite);
       },
       [&pipeline, push](runtime::graph::PassContext& ctx, const Data& d) {
-        pipeline.bind(ctx.cmd(), runtime::Bindings(pipeline)
-                                     .buffer("hdr", ctx.buffer(d.hdr), 0, VK_WHOLE_SIZE)
-                                     .image_view("target", ctx.view(d.target),
-                                                 VK_IMAGE_LAYOUT_GENERAL));
+        pipeline.bind(ctx.cmd(),
+                      runtime::Bindings(pipeline)
+                          .buffer("hdr", ctx.buffer(d.hdr), 0, VK_WHOLE_SIZE)
+                          .image_view("target", ctx.view(d.target), VK_IMAGE_LAYOUT_GENERAL));
         pipeline.push_constants(ctx.cmd(), push);
         pipeline.dispatch_threads(ctx.cmd(), push.width, push.height);
       });

@@ -24,8 +24,8 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
       height_(height),
       seed_(seed) {
   if (width == 0 || height == 0) {
-    throw InputError(fmt::format("frame renderer: render size {}x{} must be positive", width,
-                                 height));
+    throw InputError(
+        fmt::format("frame renderer: render size {}x{} must be positive", width, height));
   }
   if (!integrator_) throw InputError("frame renderer: no integrator");
   scene_ = std::make_unique<GpuScene>(device, std::move(level));
@@ -33,12 +33,12 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
   output_ = std::make_unique<runtime::ComputePipeline>(
       device, shaders.load("frame/frame_output.comp"),
       runtime::ComputePipelineDesc{.name = "frame.output", .constants = {}});
-  log::debug("scene '{}': {} instances, {} BVH triangles, {} lights ({} emissive triangles), "
-             "{:.1f} MiB",
-             scene_->level().name, scene_->instance_count(),
-             scene_->data().bvh.triangles().size(), scene_->light_record_count(),
-             scene_->emissive_triangles(),
-             static_cast<double>(scene_->bytes()) / (1024.0 * 1024.0));
+  log::debug(
+      "scene '{}': {} instances, {} BVH triangles, {} lights ({} emissive triangles), "
+      "{:.1f} MiB",
+      scene_->level().name, scene_->instance_count(), scene_->data().bvh.triangles().size(),
+      scene_->light_record_count(), scene_->emissive_triangles(),
+      static_cast<double>(scene_->bytes()) / (1024.0 * 1024.0));
 }
 
 FrameRenderer::~FrameRenderer() = default;
@@ -51,8 +51,8 @@ void FrameRenderer::warm_up() {
 
 void FrameRenderer::resize(std::uint32_t width, std::uint32_t height) {
   if (width == 0 || height == 0) {
-    throw InputError(fmt::format("frame renderer: render size {}x{} must be positive", width,
-                                 height));
+    throw InputError(
+        fmt::format("frame renderer: render size {}x{} must be positive", width, height));
   }
   if (width == width_ && height == height_) return;
   width_ = width;
@@ -66,8 +66,8 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   scene_->update(snapshot);
   const FrameCounts counts{scene_->light_count(), scene_->instance_count(),
                            scene_->emissive_triangles()};
-  scene_->set_frame_constants(make_frame_constants(snapshot, width_, height_, frames_, seed_,
-                                                   counts, history_valid));
+  scene_->set_frame_constants(
+      make_frame_constants(snapshot, width_, height_, frames_, seed_, counts, history_valid));
   if (!history_valid) graph.invalidate_history();
 
   const SceneHandles scene = scene_->add_upload_pass(graph, scene_->import(graph));

@@ -2,13 +2,13 @@
 //   scene.upload (GpuScene: instances with previous transforms, TLAS, lights + remap, constants)
 //   -> gbuffer (lighting/gbuffer/gbuffer_pass.h) -> the integrator's passes -> the HDR buffer.
 // It owns the GpuScene, the G-buffer pass and the Integrator; the caller owns the graph, the
-// executor and the target (see lighting/integrators/offline_render.cpp and apps/lantern/cmd_play.cpp).
+// executor and the target (see lighting/integrators/offline_render.cpp and
+// apps/lantern/cmd_play.cpp).
 //
-//   FrameRenderer renderer(device, shaders, level, make_integrator(device, shaders, config), w, h, 1);
-//   renderer.warm_up();
-//   graph.begin_frame();
-//   BufferHandle hdr = renderer.add_frame(graph, world.step());
-//   renderer.add_output_pass(graph, hdr, target.import_output(graph, frame), 0.0f);  // linear
+//   FrameRenderer renderer(device, shaders, level, make_integrator(device, shaders, config), w, h,
+//   1); renderer.warm_up(); graph.begin_frame(); BufferHandle hdr = renderer.add_frame(graph,
+//   world.step()); renderer.add_output_pass(graph, hdr, target.import_output(graph, frame), 0.0f);
+//   // linear
 #pragma once
 
 #include <cstdint>

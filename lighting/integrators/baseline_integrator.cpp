@@ -66,8 +66,7 @@ BufferHandle BaselineIntegrator::add_passes(runtime::graph::RenderGraph& graph,
         bindings.buffer("radiance", ctx.buffer(d.hdr), 0, VK_WHOLE_SIZE)
             .image_view("gbuffer_position", ctx.view(d.position), VK_IMAGE_LAYOUT_GENERAL)
             .image_view("gbuffer_normal", ctx.view(d.normal), VK_IMAGE_LAYOUT_GENERAL)
-            .image_view("gbuffer_emission_metallic", ctx.view(d.emission),
-                        VK_IMAGE_LAYOUT_GENERAL)
+            .image_view("gbuffer_emission_metallic", ctx.view(d.emission), VK_IMAGE_LAYOUT_GENERAL)
             .image_view("gbuffer_ids", ctx.view(d.ids), VK_IMAGE_LAYOUT_GENERAL);
         pipeline_.bind(ctx.cmd(), bindings);
         pipeline_.push_constants(ctx.cmd(), push);

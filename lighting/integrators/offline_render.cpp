@@ -1,4 +1,5 @@
-// render_offline: World + FrameRenderer + HeadlessTarget through the render graph (offline_render.h).
+// render_offline: World + FrameRenderer + HeadlessTarget through the render graph
+// (offline_render.h).
 #include "lighting/integrators/offline_render.h"
 
 #include <fmt/format.h>
@@ -41,7 +42,9 @@ FrameSnapshot frozen_copy(const FrameSnapshot& s) {
 
 }  // namespace
 
-double OfflineRenderResult::median_frame_ms() const { return median(frame_ms); }
+double OfflineRenderResult::median_frame_ms() const {
+  return median(frame_ms);
+}
 
 double OfflineRenderResult::median_pass_ms(const std::string& name) const {
   std::vector<double> values;
@@ -73,11 +76,11 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
                                  request.width, request.height, request.frames));
   }
   std::unique_ptr<Integrator> integrator = make_integrator(device, shaders, request.integrator);
-  World world(level, {.threads = 1,
-                      .seed = request.seed,
-                      .fixed_dt = 1.0 / 60.0,
-                      .aspect = static_cast<float>(request.width) /
-                                static_cast<float>(request.height)});
+  World world(level,
+              {.threads = 1,
+               .seed = request.seed,
+               .fixed_dt = 1.0 / 60.0,
+               .aspect = static_cast<float>(request.width) / static_cast<float>(request.height)});
   FrameRenderer renderer(device, shaders, level, std::move(integrator), request.width,
                          request.height, request.seed);
   renderer.warm_up();
@@ -109,8 +112,8 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
     const runtime::graph::BufferHandle hdr = renderer.add_frame(graph, *snapshot);
     result.scene_update_ms.push_back(renderer.scene().last_update().cpu_ms);
     result.scene_updates.push_back(renderer.scene().last_update());
-    const runtime::graph::ImageHandle output = renderer.add_output_pass(
-        graph, hdr, target.import_output(graph, *target_frame), 0.0f);
+    const runtime::graph::ImageHandle output =
+        renderer.add_output_pass(graph, hdr, target.import_output(graph, *target_frame), 0.0f);
     target.add_delivery(graph, *target_frame, output);
     graph.bake(executor.compile_options());
     executor.record(graph, target_frame->cmd, &timer);

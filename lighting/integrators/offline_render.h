@@ -46,7 +46,7 @@ struct OfflineRenderResult {
   std::vector<double> frame_ms;
   std::vector<double> frame_wall_ms;  // CPU wall time per frame: update, record, submit, wait
   std::vector<std::vector<std::pair<std::string, double>>> pass_ms;  // per frame: pass -> ms
-  std::vector<double> scene_update_ms;  // CPU cost of GpuScene::update per frame
+  std::vector<double> scene_update_ms;          // CPU cost of GpuScene::update per frame
   std::vector<SceneUpdateStats> scene_updates;  // what each frame's scene update did
   double median_frame_ms() const;
   // Median GPU ms of pass `name` over the frames (0 when it never ran).

@@ -13,7 +13,8 @@ bool LightTable::update(std::span<const LightEmitter> emitters) {
   // the same order map every light to itself, no hashing needed.
   if (emitters.size() == ids_.size() && !emitters.empty()) {
     bool same = true;
-    for (std::size_t i = 0; i < emitters.size() && same; ++i) same = emitters[i].stable_id == ids_[i];
+    for (std::size_t i = 0; i < emitters.size() && same; ++i)
+      same = emitters[i].stable_id == ids_[i];
     if (same) {
       bool power_changed = false;
       for (std::size_t i = 0; i < emitters.size(); ++i) {

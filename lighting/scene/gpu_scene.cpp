@@ -42,8 +42,8 @@ std::span<const std::byte> bytes_of(const std::vector<T>& v) {
 // How an imported scene buffer may have been used by the previous frames (conservative: any
 // stage, any access), so the first use this frame is ordered after all of them.
 constexpr runtime::graph::AccessState kAnyPriorUse{
-    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-    VK_IMAGE_LAYOUT_UNDEFINED};
+    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+    VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
 
 std::uint32_t float_bits(float f) {
   std::uint32_t u = 0;
@@ -87,8 +87,7 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level)
   constants_.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
 
   for (std::uint32_t s = 0; s < kSlotCount; ++s) {
-    arrays_[s].read_only =
-        s == kVertices || s == kIndices || s == kMaterials || s == kBvhTriangles;
+    arrays_[s].read_only = s == kVertices || s == kIndices || s == kMaterials || s == kBvhTriangles;
     ensure_capacity(static_cast<Slot>(s));
     // Everything starts uploaded (blocking, setup time); per-frame changes go through the graph.
     std::vector<std::byte> bytes(arrays_[s].buffer.size());  // zero-filled past the array
@@ -137,7 +136,9 @@ void GpuScene::mark_dirty(Slot slot, std::uint64_t begin, std::uint64_t end) {
   if (begin < end) arrays_[slot].dirty.emplace_back(begin, end);
 }
 
-void GpuScene::mark_all_dirty(Slot slot) { mark_dirty(slot, 0, cpu_bytes(slot).size()); }
+void GpuScene::mark_all_dirty(Slot slot) {
+  mark_dirty(slot, 0, cpu_bytes(slot).size());
+}
 
 void GpuScene::ensure_capacity(Slot slot) {
   DeviceArray& a = arrays_[slot];
@@ -357,11 +358,11 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
   // Stage them into the ring slot no frame in flight uses.
   runtime::Buffer& staging = staging_[uploads_ % kStagingSlots];
   if (total > 0 && (!staging || staging.size() < total)) {
-    staging = runtime::Buffer(
-        device_, {.size = std::max<VkDeviceSize>(total + total / 4, 4096),
-                  .usage = 0,
-                  .memory = runtime::MemoryUsage::Upload,
-                  .name = fmt::format("scene.staging.{}", uploads_ % kStagingSlots)});
+    staging = runtime::Buffer(device_,
+                              {.size = std::max<VkDeviceSize>(total + total / 4, 4096),
+                               .usage = 0,
+                               .memory = runtime::MemoryUsage::Upload,
+                               .name = fmt::format("scene.staging.{}", uploads_ % kStagingSlots)});
   }
   std::uint64_t offset = 0;
   for (Copy& c : copies) {
@@ -379,28 +380,40 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
   if (copies.empty()) return out;
   auto handle_of = [](SceneHandles& h, Slot s) -> runtime::graph::BufferHandle& {
     switch (s) {
-      case kFrameConstants: return h.frame_constants;
-      case kVertices: return h.vertices;
-      case kIndices: return h.indices;
-      case kMaterials: return h.materials;
-      case kInstances: return h.instances;
-      case kLights: return h.lights;
-      case kAlias: return h.alias;
-      case kBvhHeader: return h.bvh_header;
-      case kBvhNodes: return h.bvh_nodes;
-      case kBvhTriangles: return h.bvh_triangles;
-      case kBvhInstances: return h.bvh_instances;
+      case kFrameConstants:
+        return h.frame_constants;
+      case kVertices:
+        return h.vertices;
+      case kIndices:
+        return h.indices;
+      case kMaterials:
+        return h.materials;
+      case kInstances:
+        return h.instances;
+      case kLights:
+        return h.lights;
+      case kAlias:
+        return h.alias;
+      case kBvhHeader:
+        return h.bvh_header;
+      case kBvhNodes:
+        return h.bvh_nodes;
+      case kBvhTriangles:
+        return h.bvh_triangles;
+      case kBvhInstances:
+        return h.bvh_instances;
       case kRemap:
-      case kSlotCount: break;
+      case kSlotCount:
+        break;
     }
     return h.light_previous_to_current;
   };
 
-  const runtime::graph::BufferHandle source = graph.import_buffer(
-      "scene.staging", staging.handle(), {staging.size()},
-      {.read_only = true,
-       .initial = {VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT,
-                   VK_IMAGE_LAYOUT_UNDEFINED}});
+  const runtime::graph::BufferHandle source =
+      graph.import_buffer("scene.staging", staging.handle(), {staging.size()},
+                          {.read_only = true,
+                           .initial = {VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT,
+                                       VK_IMAGE_LAYOUT_UNDEFINED}});
   struct Data {
     runtime::graph::BufferHandle source;
     std::vector<std::pair<runtime::graph::BufferHandle, std::vector<VkBufferCopy>>> copies;

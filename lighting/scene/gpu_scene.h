@@ -38,9 +38,9 @@ namespace lantern::lighting {
 
 // What the last update() did and cost (CPU).
 struct SceneUpdateStats {
-  double cpu_ms = 0.0;           // whole update()
-  double instance_ms = 0.0;      // transforms + TLAS rebuild
-  double light_ms = 0.0;         // emitter extraction + light table (ids, remap, alias)
+  double cpu_ms = 0.0;       // whole update()
+  double instance_ms = 0.0;  // transforms + TLAS rebuild
+  double light_ms = 0.0;     // emitter extraction + light table (ids, remap, alias)
   std::uint32_t moved_instances = 0;
   std::uint32_t reextracted_instances = 0;  // emissive instances whose triangles were rebuilt
   std::uint32_t reextracted_triangles = 0;
@@ -78,10 +78,14 @@ class GpuScene {
 
   // Lights in the alias table (0 when no light has power: nothing can be sampled).
   std::uint32_t light_count() const;
-  std::uint32_t light_record_count() const { return static_cast<std::uint32_t>(data_.lights.lights().size()); }
+  std::uint32_t light_record_count() const {
+    return static_cast<std::uint32_t>(data_.lights.lights().size());
+  }
   // Entries of light_previous_to_current (last frame's light count).
   std::uint32_t previous_light_count() const { return static_cast<std::uint32_t>(remap_.size()); }
-  std::uint32_t instance_count() const { return static_cast<std::uint32_t>(data_.instances.size()); }
+  std::uint32_t instance_count() const {
+    return static_cast<std::uint32_t>(data_.instances.size());
+  }
   std::uint32_t emissive_triangles() const { return data_.emissive_triangles; }
   float scene_radius() const { return scene_radius_; }
   std::uint64_t bytes() const;
@@ -121,12 +125,12 @@ class GpuScene {
     std::vector<std::pair<std::uint64_t, std::uint64_t>> dirty;
   };
   struct EmissiveInstance {
-    std::uint32_t instance = 0;     // Level instance index
-    std::uint32_t first = 0;        // first emitter in emitters_
+    std::uint32_t instance = 0;  // Level instance index
+    std::uint32_t first = 0;     // first emitter in emitters_
     std::uint32_t count = 0;
     glm::mat4 world{1.0f};
     float scale = 1.0f;
-    glm::vec3 radiance{0.0f};       // material emission at scale 1
+    glm::vec3 radiance{0.0f};  // material emission at scale 1
   };
 
   std::span<const std::byte> cpu_bytes(Slot slot) const;
@@ -142,7 +146,7 @@ class GpuScene {
   SceneData data_;
   float scene_radius_ = 1.0f;
   gpu::FrameConstants constants_{};
-  std::vector<std::uint32_t> remap_;  // previous light -> current
+  std::vector<std::uint32_t> remap_;    // previous light -> current
   std::vector<LightEmitter> emitters_;  // triangles (instance order), then analytic lights
   std::uint32_t triangle_emitters_ = 0;
   std::vector<EmissiveInstance> emissive_;

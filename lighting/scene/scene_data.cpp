@@ -57,8 +57,7 @@ void append_triangle_emitters(const Mesh& mesh, const glm::mat4& world, const gl
 
 LightEmitter analytic_emitter(std::uint32_t index, LightType type, const glm::vec3& position,
                               const glm::vec3& direction, const glm::vec3& intensity,
-                              float inner_cone, float outer_cone, float range,
-                              float scene_radius) {
+                              float inner_cone, float outer_cone, float range, float scene_radius) {
   LightEmitter e;
   e.stable_id = kAnalyticLightIdBase | index;
   e.light.radiance = glm::vec4(intensity, 0.0f);

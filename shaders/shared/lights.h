@@ -20,7 +20,8 @@ LANTERN_CONST uint kInvalidLight = 0xffffffffu;
 struct GpuLight {
   vec4 p0;        // xyz: position or triangle v0; w: kind (as float bits: use light_kind())
   vec4 p1;        // xyz: edge v1-v0 or direction; w: unused
-  vec4 p2;        // xyz: edge v2-v0, or (cos outer, cos inner, 0) for spots; w: unused
+  vec4 p2;        // xyz: edge v2-v0, or (cos outer, cos inner, 0) for spots; w: point/spot
+                  // range (punctual_distance_falloff's; 0 = pure inverse square), else 0
   vec4 radiance;  // rgb: W/(sr m^2) for triangles, W/sr for point/spot, W/m^2 for directional
 };
 LANTERN_STATIC_SIZE(GpuLight, 64);

@@ -19,7 +19,8 @@ class FrameHarness {
   FrameHarness(runtime::Device& device, runtime::ShaderLibrary& shaders,
                std::shared_ptr<const Level> level, std::uint32_t width, std::uint32_t height)
       : renderer_(device, shaders, level,
-                  lighting::make_integrator(device, shaders, {.kind = lighting::IntegratorKind::Baseline}),
+                  lighting::make_integrator(device, shaders,
+                                            {.kind = lighting::IntegratorKind::Baseline}),
                   width, height, 1),
         target_(device, {.width = width, .height = height}),
         executor_(device) {

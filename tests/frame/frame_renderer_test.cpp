@@ -140,8 +140,8 @@ TEST_F(FrameRendererTest, RemovedLightMapsToInvalidAndLeavesTheImage) {
   EXPECT_EQ(scene.light_count(), 1u);
   EXPECT_EQ(harness.renderer().last_inputs().previous_light_count, 2u);
   // The remap reached the device too.
-  const std::vector<std::uint32_t> remap = runtime::read_buffer<std::uint32_t>(
-      device, scene.device_buffer(lighting::GpuScene::kRemap));
+  const std::vector<std::uint32_t> remap =
+      runtime::read_buffer<std::uint32_t>(device, scene.device_buffer(lighting::GpuScene::kRemap));
   ASSERT_GE(remap.size(), 2u);
   EXPECT_EQ(remap[0], 0u);
   EXPECT_EQ(remap[1], gpu::kInvalidLight);
@@ -158,6 +158,44 @@ TEST_F(FrameRendererTest, RemovedLightMapsToInvalidAndLeavesTheImage) {
   EXPECT_EQ(scene.light_previous_to_current().size(), 1u);
   EXPECT_EQ(scene.light_previous_to_current()[0], 0u);
   EXPECT_EQ(again.count_non_finite(), 0u);
+}
+
+TEST_F(FrameRendererTest, LightBuffersGrowWhenLightsAppear) {
+  auto level = std::make_shared<const Level>(two_light_level());
+  World world(level, {.threads = 1, .seed = 1, .fixed_dt = 1.0 / 60.0, .aspect = 41.0f / 31.0f});
+  test::FrameHarness harness(device, shaders, level, 41, 31);
+  const FrameSnapshot first = world.step();
+  harness.render(first);
+  const auto& scene = harness.renderer().scene();
+  const VkDeviceSize initial_bytes = scene.device_buffer(lighting::GpuScene::kLights).size();
+
+  // 300 more dim point lights (new stable ids) over the plane: the light buffers must grow.
+  FrameSnapshot more = first;
+  more.camera_cut = false;
+  for (std::uint32_t k = 0; k < 300; ++k) {
+    SnapshotLight l = first.lights[0];
+    l.stable_id = 100 + k;
+    l.intensity = 0.01f;
+    l.position = glm::vec3(-5.0f + 0.03f * static_cast<float>(k), 1.0f, 3.0f);
+    more.lights.push_back(l);
+  }
+  for (int frame = 0; frame < 3; ++frame) {  // reuse after growth: old buffers retired safely
+    const runtime::ImageRGBA32F image = harness.render(more);
+    EXPECT_EQ(image.count_non_finite(), 0u);
+  }
+  EXPECT_EQ(scene.light_record_count(), 302u);
+  EXPECT_GE(scene.device_buffer(lighting::GpuScene::kLights).size(),
+            302u * sizeof(gpu::GpuLight));
+  EXPECT_GT(scene.device_buffer(lighting::GpuScene::kLights).size(), initial_bytes);
+  const std::vector<gpu::GpuLight> lights = runtime::read_buffer<gpu::GpuLight>(
+      device, scene.device_buffer(lighting::GpuScene::kLights));
+  EXPECT_EQ(lights[301].p0.x, more.lights[301].position.x);
+  // Back to two: the two survivors keep their ids, the 300 map to kInvalidLight.
+  harness.render(first);
+  ASSERT_EQ(scene.light_previous_to_current().size(), 302u);
+  EXPECT_EQ(scene.light_previous_to_current()[0], 0u);
+  EXPECT_EQ(scene.light_previous_to_current()[1], 1u);
+  EXPECT_EQ(scene.light_previous_to_current()[2], gpu::kInvalidLight);
 }
 
 }  // namespace
