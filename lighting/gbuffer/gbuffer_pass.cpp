@@ -1,8 +1,11 @@
-// gbuffer: raster G-buffer pass (see gbuffer_pass.h and shaders/gbuffer/gbuffer.{vert,frag}).
+// gbuffer: the G-buffer of shaders/shared/gbuffer.h (see gbuffer_pass.h for the passes).
 // Reads: scene frame constants, vertices, indices, materials, instances. Writes: gbuffer.position,
-// .normal, .albedo_roughness, .emission_metallic, .ids, .motion, .depth (transient).
-// History: none. Shape: gbuffer.draws (instance_count threads) then one indirect draw per
-// instance inside one dynamic-rendering scope.
+// .normal, .albedo_roughness, .emission_metallic, .ids, .motion (returned), plus internal
+// transients (gbuffer.chunks, .dispatch, .draw, .triangles, .clip, .visibility, .depth).
+// History: none. Shape (visibility method): gbuffer.draws (one workgroup) -> gbuffer.cull
+// (indirect, one workgroup per 128 triangles of an instance) -> gbuffer (one indirect draw of the
+// kept triangles) -> gbuffer.resolve (one full-screen triangle). Forward method: gbuffer.draws ->
+// gbuffer (one indirect draw per instance).
 #include "lighting/gbuffer/gbuffer_pass.h"
 
 #include <fmt/format.h>
@@ -13,6 +16,7 @@
 
 #include "engine/core/error.h"
 #include "gbuffer/gbuffer_push.h"
+#include "lighting/scene/gpu_scene.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/bindings.h"
 #include "runtime/gpu/buffer.h"
@@ -32,7 +36,7 @@ using runtime::graph::PassContext;
 using runtime::graph::PassKind;
 using runtime::graph::RenderGraph;
 
-// Attachment order = fragment output locations in shaders/gbuffer/gbuffer.frag.
+// Attachment order = fragment output locations in gbuffer.frag and gbuffer_resolve.frag.
 constexpr std::array<VkFormat, 6> kColorFormats = {
     VK_FORMAT_R32G32B32A32_SFLOAT,  // position
     VK_FORMAT_R32G32B32A32_SFLOAT,  // normal
@@ -44,14 +48,20 @@ constexpr std::array<VkFormat, 6> kColorFormats = {
 constexpr std::array<const char*, 6> kColorNames = {
     "gbuffer.position",          "gbuffer.normal", "gbuffer.albedo_roughness",
     "gbuffer.emission_metallic", "gbuffer.ids",    "gbuffer.motion"};
+constexpr std::size_t kIdsAttachment = 4;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+// gbuffer.visibility: the gbuffer.cull list entry of the closest triangle; kNoInstance = sky.
+constexpr VkFormat kVisibilityFormat = VK_FORMAT_R32_UINT;
 constexpr std::uint32_t kDrawCommandBytes = sizeof(VkDrawIndirectCommand);
 static_assert(kDrawCommandBytes == 16, "gbuffer_draws.comp writes one uvec4 per draw");
+constexpr std::uint64_t kDispatchBytes = 16;       // VkDispatchIndirectCommand + padding
+constexpr std::uint64_t kTriangleRecordBytes = 8;  // uvec2 (instance, triangle)
+constexpr std::uint64_t kTriangleClipBytes = 48;   // three vec4 clip positions
 
 // What a sky pixel holds: position.w = 0, ids.x = kNoInstance, everything else 0.
 VkClearColorValue clear_value(std::size_t attachment) {
   VkClearColorValue value{};
-  if (attachment == 4) {
+  if (attachment == kIdsAttachment) {
     value.uint32[0] = gpu::kNoInstance;
     value.uint32[1] = gpu::kNoInstance;
     value.uint32[2] = gpu::kNoInstance;
@@ -60,40 +70,142 @@ VkClearColorValue clear_value(std::size_t attachment) {
   return value;
 }
 
-struct DrawsData {
-  BufferHandle instances;
-  BufferHandle draws;
+VkClearColorValue visibility_clear() {
+  VkClearColorValue value{};
+  value.uint32[0] = gpu::kNoInstance;
+  return value;
+}
+
+struct SceneBuffers {
+  BufferHandle frame_constants, vertices, indices, materials, instances;
+
+  static SceneBuffers read(PassBuilder& b, const SceneHandles& scene, bool materials) {
+    SceneBuffers out{scene.frame_constants, scene.vertices, scene.indices, scene.materials,
+                     scene.instances};
+    for (BufferHandle h : {scene.frame_constants, scene.vertices, scene.indices, scene.instances}) {
+      b.read(h, Access::StorageRead);
+    }
+    if (materials) b.read(scene.materials, Access::StorageRead);
+    return out;
+  }
+
+  // Binds the ones the pipeline's shaders declare, by their GLSL block names.
+  void bind(runtime::Bindings& bindings, PassContext& ctx) const {
+    const std::pair<const char*, BufferHandle> all[] = {{"frame_constants", frame_constants},
+                                                        {"scene_vertices", vertices},
+                                                        {"scene_indices", indices},
+                                                        {"scene_materials", materials},
+                                                        {"scene_instances", instances}};
+    for (const auto& [name, handle] : all) {
+      if (bindings.has(name)) bindings.buffer(name, ctx.buffer(handle), 0, VK_WHOLE_SIZE);
+    }
+  }
 };
 
-struct RasterData {
-  BufferHandle frame_constants, vertices, indices, materials, instances, draws;
+struct DrawsData {
+  BufferHandle instances, chunks, dispatch, draw;
+};
+
+struct CullData {
+  SceneBuffers scene;
+  BufferHandle chunks, dispatch, draw, triangles, clip;
+};
+
+struct VisibilityData {
+  BufferHandle draw, clip;
+  ImageHandle visibility, depth;
+};
+
+struct ResolveData {
+  SceneBuffers scene;
+  BufferHandle triangles;
+  ImageHandle visibility;
+  std::array<ImageHandle, 6> colors;
+};
+
+struct ForwardData {
+  SceneBuffers scene;
+  BufferHandle draws;
   std::array<ImageHandle, 6> colors;
   ImageHandle depth;
 };
 
+runtime::GraphicsPipelineDesc raster_desc(const char* name, std::vector<VkFormat> colors,
+                                          bool depth) {
+  return runtime::GraphicsPipelineDesc{.name = name,
+                                       .color_formats = std::move(colors),
+                                       .depth_format = depth ? kDepthFormat : VK_FORMAT_UNDEFINED,
+                                       .cull_mode = VK_CULL_MODE_NONE,
+                                       .depth_test = depth,
+                                       .depth_write = depth,
+                                       .depth_compare = VK_COMPARE_OP_LESS};
+}
+
+GBufferHandles handles(const std::array<ImageHandle, 6>& colors) {
+  GBufferHandles out;
+  out.position = colors[0];
+  out.normal = colors[1];
+  out.albedo_roughness = colors[2];
+  out.emission_metallic = colors[3];
+  out.ids = colors[4];
+  out.motion = colors[5];
+  return out;
+}
+
 }  // namespace
 
-GBufferPass::GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shaders)
-    : device_(device),
-      draws_(device, shaders.load("gbuffer/gbuffer_draws.comp"),
-             runtime::ComputePipelineDesc{.name = "gbuffer.draws", .constants = {}}),
-      raster_(device, shaders.load("gbuffer/gbuffer.vert"), shaders.load("gbuffer/gbuffer.frag"),
-              runtime::GraphicsPipelineDesc{
-                  .name = "gbuffer",
-                  .color_formats = {kColorFormats.begin(), kColorFormats.end()},
-                  .depth_format = kDepthFormat,
-                  .cull_mode = VK_CULL_MODE_NONE,
-                  .depth_compare = VK_COMPARE_OP_LESS}) {}
+GBufferPass::GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                         const GBufferPassOptions& options)
+    : device_(device), options_(options) {
+  const bool forward = options_.method == GBufferMethod::Forward;
+  draws_.emplace(
+      device, shaders.load("gbuffer/gbuffer_draws.comp"),
+      runtime::ComputePipelineDesc{.name = "gbuffer.draws",
+                                   .constants = runtime::SpecConstants().set("kForward", forward)});
+  const std::vector<VkFormat> colors(kColorFormats.begin(), kColorFormats.end());
+  if (forward) {
+    raster_.emplace(device, shaders.load("gbuffer/gbuffer.vert"),
+                    shaders.load("gbuffer/gbuffer.frag"), raster_desc("gbuffer", colors, true));
+    return;
+  }
+  cull_.emplace(device, shaders.load("gbuffer/gbuffer_cull.comp"),
+                runtime::ComputePipelineDesc{.name = "gbuffer.cull", .constants = {}});
+  raster_.emplace(device, shaders.load("gbuffer/gbuffer_visibility.vert"),
+                  shaders.load("gbuffer/gbuffer_visibility.frag"),
+                  raster_desc("gbuffer", {kVisibilityFormat}, true));
+  resolve_.emplace(device, shaders.load("gbuffer/gbuffer_resolve.vert"),
+                   shaders.load("gbuffer/gbuffer_resolve.frag"),
+                   raster_desc("gbuffer.resolve", colors, false));
+}
 
 GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& scene,
-                                     const GpuScene& /*gpu_scene*/, std::uint32_t width,
+                                     const GpuScene& gpu_scene, std::uint32_t width,
                                      std::uint32_t height, std::uint32_t instance_count) {
-  return add_pass(graph, scene, width, height, instance_count);
+  const std::vector<gpu::GpuInstance>& instances = gpu_scene.data().instances;
+  if (instances.size() < instance_count) {
+    throw RuntimeError(fmt::format("gbuffer: {} instances drawn but the scene holds {} records",
+                                   instance_count, instances.size()));
+  }
+  return add_pass(graph, scene, width, height,
+                  std::span<const gpu::GpuInstance>(instances.data(), instance_count));
+}
+
+std::uint64_t GBufferPass::triangle_count(std::span<const gpu::GpuInstance> instances) {
+  std::uint64_t triangles = 0;
+  for (const gpu::GpuInstance& instance : instances) triangles += instance.geometry.z / 3;
+  return triangles;
 }
 
 GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& scene,
                                      std::uint32_t width, std::uint32_t height,
-                                     std::uint32_t instance_count) {
+                                     std::span<const gpu::GpuInstance> instances) {
+  return add_pass(graph, scene, width, height, static_cast<std::uint32_t>(instances.size()),
+                  triangle_count(instances));
+}
+
+GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& scene,
+                                     std::uint32_t width, std::uint32_t height,
+                                     std::uint32_t instance_count, std::uint64_t triangles) {
   if (width == 0 || height == 0) {
     throw InputError(fmt::format("gbuffer: render size {}x{} must be positive", width, height));
   }
@@ -105,7 +217,137 @@ GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& sce
       throw RuntimeError(fmt::format("gbuffer: scene handle '{}' is not set", name));
     }
   }
+  if (triangles > 0xffffffffull / 3) {
+    throw RuntimeError(fmt::format("gbuffer: {} triangles exceed one draw", triangles));
+  }
+  if (instance_count == 0) triangles = 0;
+  return options_.method == GBufferMethod::Forward
+             ? add_forward(graph, scene, width, height, instance_count)
+             : add_visibility(graph, scene, width, height, instance_count,
+                              static_cast<std::uint32_t>(triangles));
+}
 
+GBufferHandles GBufferPass::add_visibility(RenderGraph& graph, const SceneHandles& scene,
+                                           std::uint32_t width, std::uint32_t height,
+                                           std::uint32_t instance_count, std::uint32_t triangles) {
+  // Buffers are never empty (a scene without triangles still gets its draw of 0 vertices).
+  const std::uint64_t capacity = std::max<std::uint64_t>(triangles, 1);
+  const gpu::GBufferDrawsPush push{instance_count, static_cast<std::uint32_t>(capacity)};
+
+  const DrawsData& d = graph.add_pass<DrawsData>(
+      "gbuffer.draws", PassKind::Compute,
+      [&](PassBuilder& b, DrawsData& data) {
+        data.instances = scene.instances;
+        b.read(scene.instances, Access::StorageRead);
+        data.chunks =
+            b.write(graph.create_buffer("gbuffer.chunks",
+                                        {4 * std::uint64_t{std::max(instance_count, 1u)}}),
+                    Access::StorageWrite);
+        data.dispatch = b.write(graph.create_buffer("gbuffer.dispatch", {kDispatchBytes}),
+                                Access::StorageWrite);
+        data.draw =
+            b.write(graph.create_buffer("gbuffer.draw", {kDrawCommandBytes}), Access::StorageWrite);
+      },
+      [this, push](PassContext& ctx, const DrawsData& data) {
+        runtime::Bindings bindings(*draws_);
+        bindings.buffer("scene_instances", ctx.buffer(data.instances), 0, VK_WHOLE_SIZE)
+            .buffer("gbuffer_chunks", ctx.buffer(data.chunks), 0, VK_WHOLE_SIZE)
+            .buffer("gbuffer_dispatch", ctx.buffer(data.dispatch), 0, VK_WHOLE_SIZE)
+            .buffer("gbuffer_draw", ctx.buffer(data.draw), 0, VK_WHOLE_SIZE);
+        draws_->bind(ctx.cmd(), bindings);
+        draws_->push_constants(ctx.cmd(), push);
+        draws_->dispatch(ctx.cmd(), 1);
+      });
+
+  const CullData& c = graph.add_pass<CullData>(
+      "gbuffer.cull", PassKind::Compute,
+      [&](PassBuilder& b, CullData& data) {
+        data.scene = SceneBuffers::read(b, scene, false);
+        data.chunks = d.chunks;
+        b.read(d.chunks, Access::StorageRead);
+        data.dispatch = d.dispatch;
+        b.read(d.dispatch, Access::IndirectBuffer);
+        data.draw = b.write(d.draw, Access::StorageReadWrite);
+        data.triangles =
+            b.write(graph.create_buffer("gbuffer.triangles", {capacity * kTriangleRecordBytes}),
+                    Access::StorageWrite);
+        data.clip = b.write(graph.create_buffer("gbuffer.clip", {capacity * kTriangleClipBytes}),
+                            Access::StorageWrite);
+      },
+      [this, push](PassContext& ctx, const CullData& data) {
+        if (push.instance_count == 0) return;
+        runtime::Bindings bindings(*cull_);
+        data.scene.bind(bindings, ctx);
+        bindings.buffer("gbuffer_chunks", ctx.buffer(data.chunks), 0, VK_WHOLE_SIZE)
+            .buffer("gbuffer_triangles", ctx.buffer(data.triangles), 0, VK_WHOLE_SIZE)
+            .buffer("gbuffer_clip", ctx.buffer(data.clip), 0, VK_WHOLE_SIZE)
+            .buffer("gbuffer_draw", ctx.buffer(data.draw), 0, VK_WHOLE_SIZE);
+        cull_->bind(ctx.cmd(), bindings);
+        cull_->push_constants(ctx.cmd(), push);
+        vkCmdDispatchIndirect(ctx.cmd(), ctx.buffer(data.dispatch), 0);
+      });
+
+  const VisibilityData& v = graph.add_pass<VisibilityData>(
+      "gbuffer", PassKind::Graphics,
+      [&](PassBuilder& b, VisibilityData& data) {
+        data.draw = c.draw;
+        b.read(c.draw, Access::IndirectBuffer);
+        data.clip = c.clip;
+        b.read(c.clip, Access::StorageRead);
+        data.visibility = b.write(
+            graph.create_image("gbuffer.visibility", {{width, height, 1}, kVisibilityFormat}),
+            Access::ColorAttachment);
+        data.depth =
+            b.write(graph.create_image("gbuffer.depth", {{width, height, 1}, kDepthFormat}),
+                    Access::DepthAttachment);
+      },
+      [this, width, height](PassContext& ctx, const VisibilityData& data) {
+        const VkCommandBuffer cmd = ctx.cmd();
+        const std::array<runtime::ColorTarget, 1> targets = {
+            runtime::ColorTarget{.view = ctx.view(data.visibility), .clear = visibility_clear()}};
+        const runtime::DepthTarget depth{.view = ctx.view(data.depth), .clear = 1.0f};
+        runtime::begin_rendering(device_, cmd, VkExtent2D{width, height}, targets, &depth);
+        runtime::Bindings bindings(*raster_);
+        bindings.buffer("gbuffer_clip", ctx.buffer(data.clip), 0, VK_WHOLE_SIZE);
+        raster_->bind(cmd, bindings);
+        vkCmdDrawIndirect(cmd, ctx.buffer(data.draw), 0, 1, kDrawCommandBytes);
+        runtime::end_rendering(device_, cmd);
+      });
+
+  const ResolveData& r = graph.add_pass<ResolveData>(
+      "gbuffer.resolve", PassKind::Graphics,
+      [&](PassBuilder& b, ResolveData& data) {
+        data.scene = SceneBuffers::read(b, scene, true);
+        data.triangles = c.triangles;
+        b.read(c.triangles, Access::StorageRead);
+        data.visibility = v.visibility;
+        b.read(v.visibility, Access::StorageRead);
+        for (std::size_t i = 0; i < kColorFormats.size(); ++i) {
+          data.colors[i] =
+              b.write(graph.create_image(kColorNames[i], {{width, height, 1}, kColorFormats[i]}),
+                      Access::ColorAttachment);
+        }
+      },
+      [this, width, height](PassContext& ctx, const ResolveData& data) {
+        const VkCommandBuffer cmd = ctx.cmd();
+        // Every pixel is written: nothing to clear or load.
+        std::array<runtime::ColorTarget, 6> targets{};
+        for (std::size_t i = 0; i < targets.size(); ++i) targets[i].view = ctx.view(data.colors[i]);
+        runtime::begin_rendering(device_, cmd, VkExtent2D{width, height}, targets, nullptr);
+        runtime::Bindings bindings(*resolve_);
+        data.scene.bind(bindings, ctx);
+        bindings.buffer("gbuffer_triangles", ctx.buffer(data.triangles), 0, VK_WHOLE_SIZE)
+            .image_view("gbuffer_visibility", ctx.view(data.visibility), VK_IMAGE_LAYOUT_GENERAL);
+        resolve_->bind(cmd, bindings);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        runtime::end_rendering(device_, cmd);
+      });
+  return handles(r.colors);
+}
+
+GBufferHandles GBufferPass::add_forward(RenderGraph& graph, const SceneHandles& scene,
+                                        std::uint32_t width, std::uint32_t height,
+                                        std::uint32_t instance_count) {
   BufferHandle draws;
   if (instance_count > 0) {
     const DrawsData& d = graph.add_pass<DrawsData>(
@@ -113,33 +355,29 @@ GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& sce
         [&](PassBuilder& b, DrawsData& data) {
           data.instances = scene.instances;
           b.read(scene.instances, Access::StorageRead);
-          data.draws = b.write(graph.create_buffer("gbuffer.draws", {std::uint64_t{instance_count} *
-                                                                     kDrawCommandBytes}),
-                               Access::StorageWrite);
+          data.draw = b.write(graph.create_buffer("gbuffer.draws", {std::uint64_t{instance_count} *
+                                                                    kDrawCommandBytes}),
+                              Access::StorageWrite);
         },
         [this, instance_count](PassContext& ctx, const DrawsData& data) {
-          runtime::Bindings bindings(draws_);
+          // The culled method's outputs are unused here: bind the draw buffer in their place.
+          const VkBuffer draw = ctx.buffer(data.draw);
+          runtime::Bindings bindings(*draws_);
           bindings.buffer("scene_instances", ctx.buffer(data.instances), 0, VK_WHOLE_SIZE)
-              .buffer("gbuffer_draws", ctx.buffer(data.draws), 0, VK_WHOLE_SIZE);
-          draws_.bind(ctx.cmd(), bindings);
-          draws_.push_constants(ctx.cmd(), gpu::GBufferDrawsPush{instance_count});
-          draws_.dispatch_threads(ctx.cmd(), instance_count);
+              .buffer("gbuffer_chunks", draw, 0, VK_WHOLE_SIZE)
+              .buffer("gbuffer_dispatch", draw, 0, VK_WHOLE_SIZE)
+              .buffer("gbuffer_draw", draw, 0, VK_WHOLE_SIZE);
+          draws_->bind(ctx.cmd(), bindings);
+          draws_->push_constants(ctx.cmd(), gpu::GBufferDrawsPush{instance_count, 0});
+          draws_->dispatch(ctx.cmd(), 1);
         });
-    draws = d.draws;
+    draws = d.draw;
   }
 
-  const RasterData& r = graph.add_pass<RasterData>(
+  const ForwardData& f = graph.add_pass<ForwardData>(
       "gbuffer", PassKind::Graphics,
-      [&](PassBuilder& b, RasterData& data) {
-        data.frame_constants = scene.frame_constants;
-        data.vertices = scene.vertices;
-        data.indices = scene.indices;
-        data.materials = scene.materials;
-        data.instances = scene.instances;
-        for (BufferHandle h : {scene.frame_constants, scene.vertices, scene.indices,
-                               scene.materials, scene.instances}) {
-          b.read(h, Access::StorageRead);
-        }
+      [&](PassBuilder& b, ForwardData& data) {
+        data.scene = SceneBuffers::read(b, scene, true);
         if (draws.valid()) {
           data.draws = draws;
           b.read(draws, Access::IndirectBuffer);
@@ -153,7 +391,7 @@ GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& sce
             b.write(graph.create_image("gbuffer.depth", {{width, height, 1}, kDepthFormat}),
                     Access::DepthAttachment);
       },
-      [this, width, height, instance_count](PassContext& ctx, const RasterData& data) {
+      [this, width, height, instance_count](PassContext& ctx, const ForwardData& data) {
         const VkCommandBuffer cmd = ctx.cmd();
         std::array<runtime::ColorTarget, 6> targets{};
         for (std::size_t i = 0; i < targets.size(); ++i) {
@@ -163,31 +401,19 @@ GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& sce
         const runtime::DepthTarget depth{.view = ctx.view(data.depth), .clear = 1.0f};
         runtime::begin_rendering(device_, cmd, VkExtent2D{width, height}, targets, &depth);
         if (instance_count > 0) {
-          runtime::Bindings bindings(raster_);
-          bindings.buffer("frame_constants", ctx.buffer(data.frame_constants), 0, VK_WHOLE_SIZE)
-              .buffer("scene_vertices", ctx.buffer(data.vertices), 0, VK_WHOLE_SIZE)
-              .buffer("scene_indices", ctx.buffer(data.indices), 0, VK_WHOLE_SIZE)
-              .buffer("scene_materials", ctx.buffer(data.materials), 0, VK_WHOLE_SIZE)
-              .buffer("scene_instances", ctx.buffer(data.instances), 0, VK_WHOLE_SIZE);
-          raster_.bind(cmd, bindings);
+          runtime::Bindings bindings(*raster_);
+          data.scene.bind(bindings, ctx);
+          raster_->bind(cmd, bindings);
           const VkBuffer draw_buffer = ctx.buffer(data.draws);
           for (std::uint32_t i = 0; i < instance_count; ++i) {
-            raster_.push_constants(cmd, gpu::GBufferPush{i});
+            raster_->push_constants(cmd, gpu::GBufferPush{i});
             vkCmdDrawIndirect(cmd, draw_buffer, VkDeviceSize{i} * kDrawCommandBytes, 1,
                               kDrawCommandBytes);
           }
         }
         runtime::end_rendering(device_, cmd);
       });
-
-  GBufferHandles out;
-  out.position = r.colors[0];
-  out.normal = r.colors[1];
-  out.albedo_roughness = r.colors[2];
-  out.emission_metallic = r.colors[3];
-  out.ids = r.colors[4];
-  out.motion = r.colors[5];
-  return out;
+  return handles(f.colors);
 }
 
 void GBufferPass::warm_up() {
@@ -243,7 +469,8 @@ void GBufferPass::warm_up() {
   scene.indices = import(2);
   scene.materials = import(3);
   scene.instances = import(4);
-  const GBufferHandles out = add_pass(graph, scene, 1, 1, 1);
+  const GBufferHandles out =
+      add_pass(graph, scene, 1, 1, std::span<const gpu::GpuInstance>(&instance, 1));
   // Keep the raster pass alive: a consumer of one of its images.
   struct Keep {};
   graph.add_pass<Keep>(

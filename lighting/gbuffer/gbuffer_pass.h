@@ -1,21 +1,30 @@
 // gbuffer: rasterises the scene into the G-buffer of shaders/shared/gbuffer.h (world position +
 // view depth, octahedral shading/geometric normals facing the camera, albedo/roughness,
-// front-face emission/metallic, instance/material/primitive ids, motion in pixels) with one
-// graphics pass and dynamic rendering; vertex pulling from the scene's storage buffers.
+// front-face emission/metallic, instance/material/primitive ids, motion in pixels).
+// Visibility method (default): `gbuffer.draws` (one workgroup) lays out the per-instance work and
+// indirect arguments from the instance records; `gbuffer.cull` (compute, one thread per triangle)
+// keeps only triangles that can cover a pixel centre and writes their clip positions;
+// `gbuffer` rasterises those (one indirect draw, flat list index only) into gbuffer.visibility +
+// gbuffer.depth; `gbuffer.resolve` (full-screen raster) rebuilds every G-buffer image per pixel
+// from the triangle (ray/triangle barycentrics at the pixel centre). lavapipe's raster front end
+// is single-threaded and pays per triangle and per varying; culling runs on every core.
+// Forward method (A/B only): `gbuffer.draws` + `gbuffer`, one draw per instance interpolating
+// every attribute.
 // Reads: scene frame_constants, vertices, indices, materials, instances (SceneHandles).
-// Writes: the six colour images (transient, returned) and gbuffer.depth (transient, internal).
+// Writes: the six colour images (transient, returned) and internal transients.
 // History: none (motion comes from FrameConstants.prev_view_proj and
-// GpuInstance.prev_object_to_world). Shape: `gbuffer.draws` (compute, one thread per instance)
-// writes one VkDrawIndirectCommand per instance from the instance records, then `gbuffer` issues
-// one non-indexed indirect draw per instance (no culling: two-sided geometry).
+// GpuInstance.prev_object_to_world).
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <span>
 
 #include "lighting/frame/frame_inputs.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/graphics_pipeline.h"
 #include "runtime/graph/render_graph.h"
+#include "shared/scene.h"
 
 namespace lantern::runtime {
 class Device;
@@ -26,30 +35,64 @@ namespace lantern::lighting {
 
 class GpuScene;
 
+// How the G-buffer is produced (the images and encodings are the same either way).
+enum class GBufferMethod : std::uint8_t {
+  // Cull, raster the kept triangles' ids into gbuffer.visibility, resolve every image per pixel.
+  // The default: 3-9x faster than Forward on night_market (tests/gbuffer/gbuffer_bench.cpp).
+  Visibility,
+  // One raster pass interpolating every attribute (the original; kept for A/B benchmarks).
+  Forward,
+};
+
+struct GBufferPassOptions {
+  GBufferMethod method = GBufferMethod::Visibility;
+};
+
 class GBufferPass {
  public:
-  GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shaders);
+  GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
+              const GBufferPassOptions& options = {});
 
-  // JIT-compiles both pipelines now (a 1x1 frame with one triangle through a private graph), so
-  // the first timed frame does not pay lavapipe's compile.
+  // JIT-compiles the method's pipelines now (a 1x1 frame with one triangle through a private
+  // graph), so the first timed frame does not pay lavapipe's compile.
   void warm_up();
 
-  // Adds `gbuffer.draws` and `gbuffer` to `graph`; returns the G-buffer images they write.
-  // `scene` must hold frame_constants (size width x height), vertices, indices, materials and
-  // instances (instance_count records). Throws lantern::InputError for a zero size.
+  // Adds the passes to `graph`; returns the G-buffer images they write. `scene` must hold
+  // frame_constants (size width x height), vertices, indices, materials and instances (at least
+  // instance_count records; the first instance_count are drawn). Throws lantern::InputError for a
+  // zero size.
   [[nodiscard]] GBufferHandles add_pass(runtime::graph::RenderGraph& graph,
                                         const SceneHandles& scene, const GpuScene& gpu_scene,
                                         std::uint32_t width, std::uint32_t height,
                                         std::uint32_t instance_count);
-  // The same without a GpuScene (the passes only need the handles): tests, benchmarks, warm-up.
+  // The same without a GpuScene: `instances` are host copies of the records the device buffer
+  // holds (only their triangle counts are used, to size the cull lists): tests, benchmarks.
   [[nodiscard]] GBufferHandles add_pass(runtime::graph::RenderGraph& graph,
                                         const SceneHandles& scene, std::uint32_t width,
-                                        std::uint32_t height, std::uint32_t instance_count);
+                                        std::uint32_t height,
+                                        std::span<const gpu::GpuInstance> instances);
+  // The same with the instance count and the sum of their triangles (geometry.z / 3) given.
+  [[nodiscard]] GBufferHandles add_pass(runtime::graph::RenderGraph& graph,
+                                        const SceneHandles& scene, std::uint32_t width,
+                                        std::uint32_t height, std::uint32_t instance_count,
+                                        std::uint64_t triangles);
+
+  static std::uint64_t triangle_count(std::span<const gpu::GpuInstance> instances);
 
  private:
+  GBufferHandles add_visibility(runtime::graph::RenderGraph& graph, const SceneHandles& scene,
+                                std::uint32_t width, std::uint32_t height,
+                                std::uint32_t instance_count, std::uint32_t triangles);
+  GBufferHandles add_forward(runtime::graph::RenderGraph& graph, const SceneHandles& scene,
+                             std::uint32_t width, std::uint32_t height,
+                             std::uint32_t instance_count);
+
   runtime::Device& device_;
-  runtime::ComputePipeline draws_;
-  runtime::GraphicsPipeline raster_;
+  GBufferPassOptions options_;
+  std::optional<runtime::ComputePipeline> draws_;
+  std::optional<runtime::ComputePipeline> cull_;      // visibility method
+  std::optional<runtime::GraphicsPipeline> raster_;   // gbuffer (visibility or forward shaders)
+  std::optional<runtime::GraphicsPipeline> resolve_;  // visibility method
 };
 
 }  // namespace lantern::lighting

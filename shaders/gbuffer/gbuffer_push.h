@@ -1,5 +1,5 @@
-// Push constants of the gbuffer passes (shaders/gbuffer/gbuffer.{vert,frag},
-// shaders/gbuffer/gbuffer_draws.comp), shared with lighting/gbuffer/gbuffer_pass.cpp.
+// Push constants and constants of the gbuffer passes (shaders/gbuffer/*), shared with
+// lighting/gbuffer/gbuffer_pass.cpp.
 #ifndef LANTERN_GBUFFER_GBUFFER_PUSH_H
 #define LANTERN_GBUFFER_GBUFFER_PUSH_H
 
@@ -7,17 +7,23 @@
 
 LANTERN_BEGIN_SHARED
 
-// gbuffer: the instance the current draw rasterises (one draw per instance).
+// gbuffer (forward method): the instance the current draw rasterises (one draw per instance).
 struct GBufferPush {
   uint instance;
 };
 LANTERN_STATIC_SIZE(GBufferPush, 4);
 
-// gbuffer.draws: how many instances get a draw command.
+// gbuffer.draws / gbuffer.cull: how many instances the frame draws, and how many triangle
+// records gbuffer.cull may write (the sum of the instances' triangles).
 struct GBufferDrawsPush {
   uint instance_count;
+  uint triangle_capacity;
 };
-LANTERN_STATIC_SIZE(GBufferDrawsPush, 4);
+LANTERN_STATIC_SIZE(GBufferDrawsPush, 8);
+
+// Triangles per gbuffer.cull workgroup (= its local size): an instance's triangles are cut into
+// chunks of this many, and one workgroup culls one chunk of one instance.
+LANTERN_CONST uint kGBufferCullChunk = 128u;
 
 // Motion written where the surface point lies behind the previous camera (no previous pixel):
 // it moves the previous position far off-screen, so temporal passes find no history there.

@@ -1,13 +1,19 @@
-// G-buffer benchmark (not a test): GPU milliseconds of the `gbuffer` raster pass (and of
-// `gbuffer.draws`) per level and size, median over N frames after warm-up, from the render
-// graph's GPU timestamps (min alongside: the machine is shared and noisy), and the wall time of
-// the whole submitted frame. The level's own camera; no read-back inside the timed frames.
-// Usage: gbuffer_bench [--frames N] [level ...]   (default: cornell_lights night_market, 15 frames)
+// G-buffer benchmark (not a test): GPU milliseconds of the G-buffer passes (`gbuffer.draws`,
+// `gbuffer`, `gbuffer.resolve` and their total) per level, size and method, median over N frames
+// after warm-up, from the render graph's GPU timestamps (min alongside: the machine is shared and
+// noisy), and the wall time of the whole submitted frame. Methods are interleaved frame by frame
+// (A/B in one run), and each method's total is also given as the median of its per-round ratio to
+// the first method's total (robust to load changes during the run). The level's own camera; no
+// read-back inside the timed frames.
+// Usage: gbuffer_bench [--frames N] [--methods visibility,forward] [level ...]
+//        (default: cornell_lights night_market, 15 frames, visibility and forward)
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,11 +26,37 @@
 
 namespace {
 
+using lantern::lighting::GBufferMethod;
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct MethodName {
+  const char* name;
+  GBufferMethod method;
+};
+constexpr MethodName kMethods[] = {
+    {"visibility", GBufferMethod::Visibility},
+    {"forward", GBufferMethod::Forward},
+};
+
+GBufferMethod parse_method(const std::string& name) {
+  for (const MethodName& m : kMethods) {
+    if (name == m.name) return m.method;
+  }
+  fmt::print(stderr, "gbuffer_bench: unknown method '{}' (visibility, forward)\n", name);
+  std::exit(2);
+}
+
+const char* method_name(GBufferMethod method) {
+  for (const MethodName& m : kMethods) {
+    if (m.method == method) return m.name;
+  }
+  return "?";
 }
 
 }  // namespace
@@ -33,45 +65,79 @@ int main(int argc, char** argv) {
   using namespace lantern;
   int frames = 15;
   std::vector<std::string> levels;
+  std::vector<GBufferMethod> methods = {GBufferMethod::Visibility, GBufferMethod::Forward};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--frames" && i + 1 < argc) {
       frames = std::max(1, std::atoi(argv[++i]));
+    } else if (arg == "--methods" && i + 1 < argc) {
+      methods.clear();
+      std::stringstream list(argv[++i]);
+      for (std::string name; std::getline(list, name, ',');) methods.push_back(parse_method(name));
     } else {
       levels.push_back(arg);
     }
   }
   if (levels.empty()) levels = {"cornell_lights", "night_market"};
+  if (methods.empty()) methods = {GBufferMethod::Visibility};
 
   runtime::Device device{runtime::DeviceOptions{}};
   runtime::ShaderLibrary shaders;
   fmt::print("device: {}\n", device.info().name);
-  fmt::print("{:<16} {:>9} {:>10} {:>10} {:>12} {:>10} {:>12} {:>12} {:>7}\n", "level", "size",
-             "triangles", "instances", "gbuffer ms", "(min)", "draws ms", "frame wall", "frames");
+  fmt::print(
+      "{:<15} {:>8} {:>9} {:>5} {:<11} {:>9} {:>8} {:>7} {:>7} {:>8} {:>8} {:>7} {:>8} {:>5}\n",
+      "level", "size", "triangles", "inst", "method", "total ms", "(min)", "draws", "cull",
+      "gbuffer", "resolve", "ratio", "wall ms", "frames");
   for (const std::string& name : levels) {
     const Level level = load_level_argument(name);
     const lighting::SceneData scene = lighting::build_scene_data(level);
     std::size_t triangles = 0;
     for (const gpu::GpuInstance& inst : scene.instances) triangles += inst.geometry.z / 3;
-    test::GBufferHarness harness(device, shaders, scene);
-    harness.warm_up();
+    std::vector<std::unique_ptr<test::GBufferHarness>> harnesses;
+    for (GBufferMethod method : methods) {
+      harnesses.push_back(std::make_unique<test::GBufferHarness>(
+          device, shaders, scene, lighting::GBufferPassOptions{.method = method}));
+      harnesses.back()->warm_up();
+    }
     for (const auto& [w, h] : {std::pair{320u, 180u}, std::pair{640u, 360u}}) {
       const gpu::FrameConstants fc = lighting::make_frame_constants(level.camera, w, h, 0, 1, {});
-      harness.render(fc, false);  // first frame: transient allocation
-      std::vector<double> raster, draws, wall;
+      struct Samples {
+        std::vector<double> total, draws, cull, raster, resolve, wall, ratio;
+      };
+      std::vector<Samples> samples(methods.size());
+      for (auto& harness : harnesses) harness->render(fc, false);  // transient allocation
       for (int f = 0; f < frames; ++f) {
-        const auto start = std::chrono::steady_clock::now();
-        harness.render(fc, false);
-        wall.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count());
-        raster.push_back(harness.last_ms("gbuffer"));
-        draws.push_back(harness.last_ms("gbuffer.draws"));
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+          test::GBufferHarness& harness = *harnesses[m];
+          const auto start = std::chrono::steady_clock::now();
+          harness.render(fc, false);
+          samples[m].wall.push_back(
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                  .count());
+          const double draws = std::max(0.0, harness.last_ms("gbuffer.draws"));
+          const double raster = std::max(0.0, harness.last_ms("gbuffer"));
+          const double resolve = std::max(0.0, harness.last_ms("gbuffer.resolve"));
+          const double cull = std::max(0.0, harness.last_ms("gbuffer.cull"));
+          samples[m].cull.push_back(cull);
+          samples[m].draws.push_back(draws);
+          samples[m].raster.push_back(raster);
+          samples[m].resolve.push_back(resolve);
+          samples[m].total.push_back(draws + cull + raster + resolve);
+        }
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+          samples[m].ratio.push_back(samples[m].total.back() / samples[0].total.back());
+        }
       }
-      fmt::print("{:<16} {:>9} {:>10} {:>10} {:>12.3f} {:>10.3f} {:>12.3f} {:>12.3f} {:>7}\n", name,
-                 fmt::format("{}x{}", w, h), triangles, scene.instances.size(), median(raster),
-                 *std::min_element(raster.begin(), raster.end()), median(draws), median(wall),
-                 frames);
+      for (std::size_t m = 0; m < methods.size(); ++m) {
+        const Samples& s = samples[m];
+        fmt::print(
+            "{:<15} {:>8} {:>9} {:>5} {:<11} {:>9.3f} {:>8.3f} {:>7.3f} {:>7.3f} {:>8.3f} "
+            "{:>8.3f} {:>7.3f} {:>8.3f} {:>5}\n",
+            name, fmt::format("{}x{}", w, h), triangles, scene.instances.size(),
+            method_name(methods[m]), median(s.total),
+            *std::min_element(s.total.begin(), s.total.end()), median(s.draws), median(s.cull),
+            median(s.raster), median(s.resolve), median(s.ratio), median(s.wall), frames);
+      }
     }
   }
   return 0;

@@ -38,10 +38,11 @@ constexpr std::array<std::uint32_t, 6> kPixelBytes = {16, 16, 8, 16, 16, 16};
 }  // namespace
 
 GBufferHarness::GBufferHarness(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                               const lighting::SceneData& scene)
+                               const lighting::SceneData& scene,
+                               const lighting::GBufferPassOptions& options)
     : device_(device),
-      pass_(device, shaders),
-      instance_count_(static_cast<std::uint32_t>(scene.instances.size())),
+      pass_(device, shaders, options),
+      instances_host_(scene.instances),
       frame_constants_(device, {.size = sizeof(gpu::FrameConstants),
                                 .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                 .memory = runtime::MemoryUsage::DeviceLocal,
@@ -55,7 +56,7 @@ GBufferHarness::GBufferHarness(runtime::Device& device, runtime::ShaderLibrary& 
 
 void GBufferHarness::set_instances(std::span<const gpu::GpuInstance> instances) {
   instances_ = make_storage(device_, instances, "test.instances");
-  instance_count_ = static_cast<std::uint32_t>(instances.size());
+  instances_host_.assign(instances.begin(), instances.end());
 }
 
 std::optional<GBufferImages> GBufferHarness::render(const gpu::FrameConstants& constants,
@@ -89,7 +90,8 @@ std::optional<GBufferImages> GBufferHarness::render(const gpu::FrameConstants& c
   scene.indices = import(indices_);
   scene.materials = import(materials_);
   scene.instances = import(instances_);
-  const lighting::GBufferHandles g = pass_.add_pass(graph_, scene, width, height, instance_count_);
+  const lighting::GBufferHandles g = pass_.add_pass(
+      graph_, scene, width, height, std::span<const gpu::GpuInstance>(instances_host_));
   const std::array<ImageHandle, 6> images = {g.position,          g.normal, g.albedo_roughness,
                                              g.emission_metallic, g.ids,    g.motion};
 

@@ -37,7 +37,8 @@ struct GBufferImages {
 class GBufferHarness {
  public:
   GBufferHarness(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                 const lighting::SceneData& scene);
+                 const lighting::SceneData& scene,
+                 const lighting::GBufferPassOptions& options = {});
 
   // Replaces the instance records (e.g. with different previous transforms).
   void set_instances(std::span<const gpu::GpuInstance> instances);
@@ -51,7 +52,7 @@ class GBufferHarness {
  private:
   runtime::Device& device_;
   lighting::GBufferPass pass_;
-  std::uint32_t instance_count_ = 0;
+  std::vector<gpu::GpuInstance> instances_host_;
   runtime::Buffer frame_constants_, vertices_, indices_, materials_, instances_;
   std::vector<runtime::Buffer> readback_;
   std::uint32_t readback_width_ = 0, readback_height_ = 0;

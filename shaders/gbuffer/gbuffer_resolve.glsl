@@ -1,0 +1,138 @@
+// gbuffer.resolve: one pixel of the G-buffer (shaders/shared/gbuffer.h) from the closest
+// triangle (instance, triangle), as the forward raster would have interpolated it. The
+// pixel-centre camera ray (baseline.comp's construction from inv_view_proj) meets the triangle's
+// plane at barycentrics (b1, b2) (Moller-Trumbore in world space; the same perspective-correct
+// weights the raster interpolates with); position, shading normal and the previous clip position
+// are barycentric blends of the corners. Shading normals go through the cofactor of
+// object_to_world (= det * inverse transpose: the direction of transpose(world_to_object) n up to
+// sign, which the flip towards the geometric normal removes), so world_to_object is not loaded:
+// on lavapipe every per-pixel load from a storage buffer is a per-lane gather, the cost of this
+// pass. Needs the blocks frame_constants, scene_vertices, scene_indices, scene_materials and
+// scene_instances declared by the includer.
+#ifndef LANTERN_GBUFFER_RESOLVE_GLSL
+#define LANTERN_GBUFFER_RESOLVE_GLSL
+
+#include "gbuffer/gbuffer_push.h"
+#include "shared/common_math.h"
+#include "shared/gbuffer.h"
+#include "shared/scene.h"
+
+struct GBufferTexel {
+  vec4 position;
+  vec4 normal;
+  vec4 albedo_roughness;
+  vec4 emission_metallic;
+  uvec4 ids;
+  vec4 motion;
+};
+
+float gbuffer_finite_or_zero(float x) { return is_finite(x) ? x : 0.0; }
+vec3 gbuffer_finite_or_zero(vec3 v) {
+  return vec3(gbuffer_finite_or_zero(v.x), gbuffer_finite_or_zero(v.y),
+              gbuffer_finite_or_zero(v.z));
+}
+
+GBufferTexel gbuffer_sky_texel() {
+  GBufferTexel g;
+  g.position = vec4(0.0);
+  g.normal = vec4(0.0);
+  g.albedo_roughness = vec4(0.0);
+  g.emission_metallic = vec4(0.0);
+  g.ids = uvec4(kNoInstance, kNoInstance, kNoInstance, 0u);
+  g.motion = vec4(0.0);
+  return g;
+}
+
+// `pixel` from the top-left; `hit` = (instance, triangle) the raster found there.
+GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
+  uint instance = hit.x;
+  uint primitive = hit.y;
+  uvec4 geometry = scene_instances.i[instance].geometry;
+  uint base = geometry.y + 3u * primitive;
+  uint i0 = geometry.w + scene_indices.i[base];
+  uint i1 = geometry.w + scene_indices.i[base + 1u];
+  uint i2 = geometry.w + scene_indices.i[base + 2u];
+  vec3 p0 = scene_vertices.v[i0].position_u.xyz;
+  vec3 p1 = scene_vertices.v[i1].position_u.xyz;
+  vec3 p2 = scene_vertices.v[i2].position_u.xyz;
+  mat4 object_to_world = scene_instances.i[instance].object_to_world;
+  mat3 linear = mat3(object_to_world);
+  vec3 w0 = (object_to_world * vec4(p0, 1.0)).xyz;
+  vec3 e1 = linear * (p1 - p0);
+  vec3 e2 = linear * (p2 - p0);
+
+  // Pixel-centre camera ray.
+  vec2 size = vec2(frame_constants.frame.frame.xy);
+  vec2 centre = vec2(pixel) + 0.5;
+  vec2 ndc = centre / size * 2.0 - 1.0;
+  mat4 inv_view_proj = frame_constants.frame.inv_view_proj;
+  vec4 a = inv_view_proj * vec4(ndc, 0.0, 1.0);
+  vec4 b = inv_view_proj * vec4(ndc, 0.5, 1.0);
+  vec3 dir = b.xyz / b.w - a.xyz / a.w;
+  vec3 origin = frame_constants.frame.camera_position.xyz;
+
+  vec3 q = cross(dir, e2);
+  float det = dot(e1, q);
+  vec3 s = origin - w0;
+  vec3 r = cross(s, e1);
+  float b1 = dot(s, q) / det;
+  float b2 = dot(dir, r) / det;
+  if (!(is_finite(b1) && is_finite(b2))) {  // edge-on or degenerate: the centroid
+    b1 = 1.0 / 3.0;
+    b2 = 1.0 / 3.0;
+  }
+  float b0 = 1.0 - b1 - b2;
+
+  vec3 position = gbuffer_finite_or_zero(w0 + b1 * e1 + b2 * e2);
+  vec3 to_camera = origin - position;
+  // Cofactor matrix of `linear`: columns c0, c1, c2 with cof * n = det * inverse-transpose * n.
+  mat3 cofactor = mat3(cross(linear[1], linear[2]), cross(linear[2], linear[0]),
+                       cross(linear[0], linear[1]));
+  float det_linear = dot(linear[0], cofactor[0]);
+  vec3 ng = cross(e1, e2);
+  if (det_linear < 0.0) ng = -ng;
+  float ng_len2 = dot(ng, ng);
+  ng = (ng_len2 > 0.0 && is_finite(ng_len2)) ? ng * inversesqrt(ng_len2) : vec3(0.0);
+  bool front = dot(ng, to_camera) > 0.0;
+  vec3 ng_facing = front ? ng : -ng;
+  if (!(dot(ng_facing, ng_facing) > 0.0)) {  // degenerate triangle
+    float d2 = dot(to_camera, to_camera);
+    ng_facing = d2 > 0.0 ? to_camera * inversesqrt(d2) : vec3(0.0, 0.0, 1.0);
+  }
+  vec3 n_object = b0 * scene_vertices.v[i0].normal_v.xyz + b1 * scene_vertices.v[i1].normal_v.xyz +
+                  b2 * scene_vertices.v[i2].normal_v.xyz;
+  vec3 ns = cofactor * n_object;
+  float ns_len2 = dot(ns, ns);
+  ns = (ns_len2 > 0.0 && is_finite(ns_len2)) ? ns * inversesqrt(ns_len2) : ng_facing;
+  if (dot(ns, ng_facing) < 0.0) ns = -ns;
+
+  uint material_index = geometry.x;
+  vec3 base_color = scene_materials.m[material_index].base_color.rgb;
+  vec3 emission = front ? gbuffer_finite_or_zero(scene_materials.m[material_index].emission.rgb)
+                        : vec3(0.0);
+  vec2 params = scene_materials.m[material_index].params.xy;
+
+  float view_depth =
+      max(gbuffer_finite_or_zero((frame_constants.frame.view_proj * vec4(position, 1.0)).w),
+          1e-30);
+
+  vec3 p_object = b0 * p0 + b1 * p1 + b2 * p2;
+  vec4 prev_clip = frame_constants.frame.prev_view_proj *
+                   (scene_instances.i[instance].prev_object_to_world * vec4(p_object, 1.0));
+  vec2 previous = vec2(kGBufferNoPreviousPixel);
+  if (prev_clip.w > 0.0) previous = (prev_clip.xy / prev_clip.w * 0.5 + 0.5) * size;
+  vec2 motion = previous - centre;
+  if (!(is_finite(motion.x) && is_finite(motion.y))) motion = vec2(kGBufferNoPreviousPixel);
+
+  GBufferTexel g;
+  g.position = vec4(position, view_depth);
+  g.normal = vec4(oct_encode(ns), oct_encode(ng_facing));
+  g.albedo_roughness =
+      vec4(gbuffer_finite_or_zero(base_color), gbuffer_finite_or_zero(params.x));
+  g.emission_metallic = vec4(emission, gbuffer_finite_or_zero(params.y));
+  g.ids = uvec4(instance, material_index, primitive, 0u);
+  g.motion = vec4(motion, 0.0, 0.0);
+  return g;
+}
+
+#endif
