@@ -13,6 +13,7 @@ packages=(
   libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev spirv-headers
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth ffmpeg fonts-dejavu-core
+  clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer
 )
 backports_packages=(mesa-vulkan-drivers)
 min_mesa="25"
