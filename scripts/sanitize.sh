@@ -35,16 +35,22 @@ export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-ca
 # Tests whose executable was not built (LANTERN_ASAN_TARGETS) are skipped.
 skip="_NOT_BUILT"
 [ -x "$build/bin/lantern" ] || skip="$skip|^Cli\."
-run=(ctest --test-dir "$build" --output-on-failure --timeout 900 -j "$(nproc)" -E "$skip" "$@")
+run=(ctest --test-dir "$build" --output-on-failure --timeout 900 -j "$(nproc)" "$@")
 command -v xvfb-run >/dev/null && run=(xvfb-run -a -s "-screen 0 1280x720x24" "${run[@]}")
+# Two GraphGpu tests (history + Vulkan 1.0 barriers, synchronization validation on) end with
+# indirect leaks allocated inside a dlopen()ed Vulkan layer/driver (Mesa or the Khronos validation
+# layer): it is unloaded at vkDestroyInstance, before LeakSanitizer reports, so its frames show as
+# "<unknown module>" and no suppression file entry can name them. They run again below with leak
+# detection off (ASan and UBSan still on); every other test runs with leak detection.
+third_party_leaks="GraphGpu.FourPassesWithHistoryAreCorrectAndSyncClean|GraphGpu.Vulkan10BarriersAreAlsoSyncClean"
 start=$(date +%s)
 status=0
-"${run[@]}" || status=$?
-echo "sanitize.sh: ctest took $(( $(date +%s) - start )) s (exit $status)"
+"${run[@]}" -E "$skip|$third_party_leaks" || status=$?
 log=$build/Testing/Temporary/LastTest.log
-reports=0
-if [ -f "$log" ]; then
-  reports=$(grep -cE "ERROR: (Address|Leak)Sanitizer|runtime error:" "$log" || true)
-fi
-echo "sanitize.sh: sanitizer reports in $log: $reports"
+cp "$log" "$build/sanitize_main.log" 2>/dev/null || true
+ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" "${run[@]}" -R "$third_party_leaks" || status=$?
+echo "sanitize.sh: ctest took $(( $(date +%s) - start )) s (exit $status)"
+reports=$(cat "$build/sanitize_main.log" "$log" 2>/dev/null |
+  grep -cE "ERROR: (Address|Leak)Sanitizer|runtime error:" || true)
+echo "sanitize.sh: sanitizer reports in the ctest logs: $reports"
 [ "$status" -eq 0 ] && [ "$reports" -eq 0 ]
