@@ -5,7 +5,7 @@
 // History: none. Shape (visibility method): gbuffer.draws (one workgroup) -> gbuffer.cull
 // (indirect, one workgroup per 128 triangles of an instance) -> gbuffer (one indirect draw of the
 // kept triangles) -> gbuffer.resolve (one full-screen triangle). Forward method: gbuffer.draws ->
-// gbuffer (one indirect draw per instance).
+// gbuffer (one indirect draw per instance). Auto picks per frame (GBufferPass::method_for).
 #include "lighting/gbuffer/gbuffer_pass.h"
 
 #include <fmt/format.h>
@@ -157,25 +157,38 @@ GBufferHandles handles(const std::array<ImageHandle, 6>& colors) {
 GBufferPass::GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
                          const GBufferPassOptions& options)
     : device_(device), options_(options) {
-  const bool forward = options_.method == GBufferMethod::Forward;
-  draws_.emplace(
-      device, shaders.load("gbuffer/gbuffer_draws.comp"),
-      runtime::ComputePipelineDesc{.name = "gbuffer.draws",
-                                   .constants = runtime::SpecConstants().set("kForward", forward)});
   const std::vector<VkFormat> colors(kColorFormats.begin(), kColorFormats.end());
-  if (forward) {
-    raster_.emplace(device, shaders.load("gbuffer/gbuffer.vert"),
-                    shaders.load("gbuffer/gbuffer.frag"), raster_desc("gbuffer", colors, true));
-    return;
+  if (options_.method != GBufferMethod::Visibility) {
+    forward_draws_.emplace(
+        device, shaders.load("gbuffer/gbuffer_draws.comp"),
+        runtime::ComputePipelineDesc{.name = "gbuffer.draws",
+                                     .constants = runtime::SpecConstants().set("kForward", true)});
+    forward_raster_.emplace(device, shaders.load("gbuffer/gbuffer.vert"),
+                            shaders.load("gbuffer/gbuffer.frag"),
+                            raster_desc("gbuffer", colors, true));
   }
-  cull_.emplace(device, shaders.load("gbuffer/gbuffer_cull.comp"),
-                runtime::ComputePipelineDesc{.name = "gbuffer.cull", .constants = {}});
-  raster_.emplace(device, shaders.load("gbuffer/gbuffer_visibility.vert"),
-                  shaders.load("gbuffer/gbuffer_visibility.frag"),
-                  raster_desc("gbuffer", {kVisibilityFormat}, true));
-  resolve_.emplace(device, shaders.load("gbuffer/gbuffer_resolve.vert"),
-                   shaders.load("gbuffer/gbuffer_resolve.frag"),
-                   raster_desc("gbuffer.resolve", colors, false));
+  if (options_.method != GBufferMethod::Forward) {
+    draws_.emplace(
+        device, shaders.load("gbuffer/gbuffer_draws.comp"),
+        runtime::ComputePipelineDesc{.name = "gbuffer.draws",
+                                     .constants = runtime::SpecConstants().set("kForward", false)});
+    cull_.emplace(device, shaders.load("gbuffer/gbuffer_cull.comp"),
+                  runtime::ComputePipelineDesc{.name = "gbuffer.cull", .constants = {}});
+    raster_.emplace(device, shaders.load("gbuffer/gbuffer_visibility.vert"),
+                    shaders.load("gbuffer/gbuffer_visibility.frag"),
+                    raster_desc("gbuffer", {kVisibilityFormat}, true));
+    resolve_.emplace(device, shaders.load("gbuffer/gbuffer_resolve.vert"),
+                     shaders.load("gbuffer/gbuffer_resolve.frag"),
+                     raster_desc("gbuffer.resolve", colors, false));
+  }
+}
+
+GBufferMethod GBufferPass::method_for(GBufferMethod method, std::uint64_t triangles,
+                                      std::uint32_t width, std::uint32_t height) {
+  if (method != GBufferMethod::Auto) return method;
+  const std::uint64_t pixels = std::uint64_t{width} * height;
+  return triangles * kForwardPixelsPerTriangle <= pixels ? GBufferMethod::Forward
+                                                         : GBufferMethod::Visibility;
 }
 
 GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& scene,
@@ -206,6 +219,14 @@ GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& sce
 GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& scene,
                                      std::uint32_t width, std::uint32_t height,
                                      std::uint32_t instance_count, std::uint64_t triangles) {
+  return add_method(graph, scene, width, height, instance_count, triangles,
+                    method_for(options_.method, triangles, width, height));
+}
+
+GBufferHandles GBufferPass::add_method(RenderGraph& graph, const SceneHandles& scene,
+                                       std::uint32_t width, std::uint32_t height,
+                                       std::uint32_t instance_count, std::uint64_t triangles,
+                                       GBufferMethod method) {
   if (width == 0 || height == 0) {
     throw InputError(fmt::format("gbuffer: render size {}x{} must be positive", width, height));
   }
@@ -221,7 +242,7 @@ GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& sce
     throw RuntimeError(fmt::format("gbuffer: {} triangles exceed one draw", triangles));
   }
   if (instance_count == 0) triangles = 0;
-  return options_.method == GBufferMethod::Forward
+  return method == GBufferMethod::Forward
              ? add_forward(graph, scene, width, height, instance_count)
              : add_visibility(graph, scene, width, height, instance_count,
                               static_cast<std::uint32_t>(triangles));
@@ -362,14 +383,14 @@ GBufferHandles GBufferPass::add_forward(RenderGraph& graph, const SceneHandles& 
         [this, instance_count](PassContext& ctx, const DrawsData& data) {
           // The culled method's outputs are unused here: bind the draw buffer in their place.
           const VkBuffer draw = ctx.buffer(data.draw);
-          runtime::Bindings bindings(*draws_);
+          runtime::Bindings bindings(*forward_draws_);
           bindings.buffer("scene_instances", ctx.buffer(data.instances), 0, VK_WHOLE_SIZE)
               .buffer("gbuffer_chunks", draw, 0, VK_WHOLE_SIZE)
               .buffer("gbuffer_dispatch", draw, 0, VK_WHOLE_SIZE)
               .buffer("gbuffer_draw", draw, 0, VK_WHOLE_SIZE);
-          draws_->bind(ctx.cmd(), bindings);
-          draws_->push_constants(ctx.cmd(), gpu::GBufferDrawsPush{instance_count, 0});
-          draws_->dispatch(ctx.cmd(), 1);
+          forward_draws_->bind(ctx.cmd(), bindings);
+          forward_draws_->push_constants(ctx.cmd(), gpu::GBufferDrawsPush{instance_count, 0});
+          forward_draws_->dispatch(ctx.cmd(), 1);
         });
     draws = d.draw;
   }
@@ -401,12 +422,12 @@ GBufferHandles GBufferPass::add_forward(RenderGraph& graph, const SceneHandles& 
         const runtime::DepthTarget depth{.view = ctx.view(data.depth), .clear = 1.0f};
         runtime::begin_rendering(device_, cmd, VkExtent2D{width, height}, targets, &depth);
         if (instance_count > 0) {
-          runtime::Bindings bindings(*raster_);
+          runtime::Bindings bindings(*forward_raster_);
           data.scene.bind(bindings, ctx);
-          raster_->bind(cmd, bindings);
+          forward_raster_->bind(cmd, bindings);
           const VkBuffer draw_buffer = ctx.buffer(data.draws);
           for (std::uint32_t i = 0; i < instance_count; ++i) {
-            raster_->push_constants(cmd, gpu::GBufferPush{i});
+            forward_raster_->push_constants(cmd, gpu::GBufferPush{i});
             vkCmdDrawIndirect(cmd, draw_buffer, VkDeviceSize{i} * kDrawCommandBytes, 1,
                               kDrawCommandBytes);
           }
@@ -456,33 +477,35 @@ void GBufferPass::warm_up() {
 
   RenderGraph graph;
   runtime::graph::GraphExecutor executor(device_);
-  graph.begin_frame();
-  runtime::graph::ImportInfo read_only;
-  read_only.read_only = true;
-  auto import = [&](std::size_t i) {
-    return graph.import_buffer(buffers[i].name(), buffers[i].handle(), {buffers[i].size()},
-                               read_only);
-  };
-  SceneHandles scene;
-  scene.frame_constants = import(0);
-  scene.vertices = import(1);
-  scene.indices = import(2);
-  scene.materials = import(3);
-  scene.instances = import(4);
-  const GBufferHandles out =
-      add_pass(graph, scene, 1, 1, std::span<const gpu::GpuInstance>(&instance, 1));
-  // Keep the raster pass alive: a consumer of one of its images.
-  struct Keep {};
-  graph.add_pass<Keep>(
-      "gbuffer.warm_up", PassKind::Compute,
-      [&](PassBuilder& b, Keep&) {
-        b.read(out.ids, Access::StorageRead);
-        b.side_effect();
-      },
-      [](PassContext&, const Keep&) {});
-  graph.bake(executor.compile_options());
-  device_.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
-  graph.end_frame();
+  for (const GBufferMethod method : {GBufferMethod::Visibility, GBufferMethod::Forward}) {
+    if (options_.method != GBufferMethod::Auto && options_.method != method) continue;
+    graph.begin_frame();
+    runtime::graph::ImportInfo read_only;
+    read_only.read_only = true;
+    auto import = [&](std::size_t i) {
+      return graph.import_buffer(buffers[i].name(), buffers[i].handle(), {buffers[i].size()},
+                                 read_only);
+    };
+    SceneHandles scene;
+    scene.frame_constants = import(0);
+    scene.vertices = import(1);
+    scene.indices = import(2);
+    scene.materials = import(3);
+    scene.instances = import(4);
+    const GBufferHandles out = add_method(graph, scene, 1, 1, 1, 1, method);
+    // Keep the passes alive: a consumer of one of their images.
+    struct Keep {};
+    graph.add_pass<Keep>(
+        "gbuffer.warm_up", PassKind::Compute,
+        [&](PassBuilder& b, Keep&) {
+          b.read(out.ids, Access::StorageRead);
+          b.side_effect();
+        },
+        [](PassContext&, const Keep&) {});
+    graph.bake(executor.compile_options());
+    device_.submit_and_wait([&](VkCommandBuffer cmd) { executor.record(graph, cmd); });
+    graph.end_frame();
+  }
 }
 
 }  // namespace lantern::lighting

@@ -8,8 +8,9 @@
 // gbuffer.depth; `gbuffer.resolve` (full-screen raster) rebuilds every G-buffer image per pixel
 // from the triangle (ray/triangle barycentrics at the pixel centre). lavapipe's raster front end
 // is single-threaded and pays per triangle and per varying; culling runs on every core.
-// Forward method (A/B only): `gbuffer.draws` + `gbuffer`, one draw per instance interpolating
-// every attribute.
+// Forward method: `gbuffer.draws` + `gbuffer`, one draw per instance interpolating every
+// attribute; cheaper per pixel, so Auto (the default) picks it for frames with few triangles per
+// pixel (kForwardPixelsPerTriangle).
 // Reads: scene frame_constants, vertices, indices, materials, instances (SceneHandles).
 // Writes: the six colour images (transient, returned) and internal transients.
 // History: none (motion comes from FrameConstants.prev_view_proj and
@@ -37,15 +38,24 @@ class GpuScene;
 
 // How the G-buffer is produced (the images and encodings are the same either way).
 enum class GBufferMethod : std::uint8_t {
-  // Cull, raster the kept triangles' ids into gbuffer.visibility, resolve every image per pixel.
-  // The default: 3-9x faster than Forward on night_market (tests/gbuffer/gbuffer_bench.cpp).
+  // Per frame: Forward when the frame has at most one triangle per kForwardPixelsPerTriangle
+  // pixels, else Visibility (the default).
+  Auto,
+  // Cull, raster the kept triangles' ids into gbuffer.visibility, resolve every image per pixel:
+  // cost ~ triangles / cores + pixels. 4-5x faster than Forward on night_market at 320x180.
   Visibility,
-  // One raster pass interpolating every attribute (the original; kept for A/B benchmarks).
+  // One raster pass interpolating every attribute: cost ~ triangles (single-threaded front end,
+  // every varying) + pixels (cheaper per pixel than the resolve: 1.8x faster on cornell_lights).
   Forward,
 };
 
+// Measured crossover (tests/gbuffer/gbuffer_bench.cpp on lavapipe): Forward costs ~0.35 us per
+// triangle and ~40 ns per pixel, Visibility ~0.035 us per triangle (+ ~0.3 us per kept one) and
+// ~60 ns per pixel, so Forward wins below roughly one triangle per 14 pixels.
+inline constexpr std::uint64_t kForwardPixelsPerTriangle = 16;
+
 struct GBufferPassOptions {
-  GBufferMethod method = GBufferMethod::Visibility;
+  GBufferMethod method = GBufferMethod::Auto;
 };
 
 class GBufferPass {
@@ -78,8 +88,14 @@ class GBufferPass {
                                         std::uint64_t triangles);
 
   static std::uint64_t triangle_count(std::span<const gpu::GpuInstance> instances);
+  // The method a frame of `triangles` at width x height uses (Auto resolved; others as given).
+  static GBufferMethod method_for(GBufferMethod method, std::uint64_t triangles,
+                                  std::uint32_t width, std::uint32_t height);
 
  private:
+  GBufferHandles add_method(runtime::graph::RenderGraph& graph, const SceneHandles& scene,
+                            std::uint32_t width, std::uint32_t height, std::uint32_t instance_count,
+                            std::uint64_t triangles, GBufferMethod method);
   GBufferHandles add_visibility(runtime::graph::RenderGraph& graph, const SceneHandles& scene,
                                 std::uint32_t width, std::uint32_t height,
                                 std::uint32_t instance_count, std::uint32_t triangles);
@@ -89,10 +105,14 @@ class GBufferPass {
 
   runtime::Device& device_;
   GBufferPassOptions options_;
+  // Visibility method.
   std::optional<runtime::ComputePipeline> draws_;
-  std::optional<runtime::ComputePipeline> cull_;      // visibility method
-  std::optional<runtime::GraphicsPipeline> raster_;   // gbuffer (visibility or forward shaders)
-  std::optional<runtime::GraphicsPipeline> resolve_;  // visibility method
+  std::optional<runtime::ComputePipeline> cull_;
+  std::optional<runtime::GraphicsPipeline> raster_;
+  std::optional<runtime::GraphicsPipeline> resolve_;
+  // Forward method.
+  std::optional<runtime::ComputePipeline> forward_draws_;
+  std::optional<runtime::GraphicsPipeline> forward_raster_;
 };
 
 }  // namespace lantern::lighting

@@ -5,8 +5,8 @@
 // (A/B in one run), and each method's total is also given as the median of its per-round ratio to
 // the first method's total (robust to load changes during the run). The level's own camera; no
 // read-back inside the timed frames.
-// Usage: gbuffer_bench [--frames N] [--methods visibility,forward] [level ...]
-//        (default: cornell_lights night_market, 15 frames, visibility and forward)
+// Usage: gbuffer_bench [--frames N] [--methods auto,visibility,forward] [level ...]
+//        (default: cornell_lights night_market, 15 frames, forward and visibility)
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -40,6 +40,7 @@ struct MethodName {
   GBufferMethod method;
 };
 constexpr MethodName kMethods[] = {
+    {"auto", GBufferMethod::Auto},
     {"visibility", GBufferMethod::Visibility},
     {"forward", GBufferMethod::Forward},
 };
@@ -48,7 +49,7 @@ GBufferMethod parse_method(const std::string& name) {
   for (const MethodName& m : kMethods) {
     if (name == m.name) return m.method;
   }
-  fmt::print(stderr, "gbuffer_bench: unknown method '{}' (visibility, forward)\n", name);
+  fmt::print(stderr, "gbuffer_bench: unknown method '{}' (auto, visibility, forward)\n", name);
   std::exit(2);
 }
 
@@ -65,7 +66,7 @@ int main(int argc, char** argv) {
   using namespace lantern;
   int frames = 15;
   std::vector<std::string> levels;
-  std::vector<GBufferMethod> methods = {GBufferMethod::Visibility, GBufferMethod::Forward};
+  std::vector<GBufferMethod> methods = {GBufferMethod::Forward, GBufferMethod::Visibility};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--frames" && i + 1 < argc) {

@@ -37,6 +37,13 @@ class GBufferTest : public runtime::test::GpuTest {
   runtime::ShaderLibrary shaders;
 };
 
+// The cornell_lights tests run for both methods (Auto would pick Forward for its 122 triangles).
+class GBufferMethodTest : public GBufferTest,
+                          public ::testing::WithParamInterface<lighting::GBufferMethod> {
+ protected:
+  lighting::GBufferPassOptions options() const { return {.method = GetParam()}; }
+};
+
 bool finite(const glm::vec4& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
 }
@@ -218,10 +225,10 @@ void expect_agreement(const Agreement& a, const char* what) {
       << what << ": first: " << a.first_problem;
 }
 
-TEST_F(GBufferTest, CornellLightsAgreesWithCpuTrace) {
+TEST_P(GBufferMethodTest, CornellLightsAgreesWithCpuTrace) {
   const Level level = load_level_argument("cornell_lights");
   const lighting::SceneData scene = lighting::build_scene_data(level);
-  test::GBufferHarness harness(device, shaders, scene);
+  test::GBufferHarness harness(device, shaders, scene, options());
   harness.warm_up();
   const gpu::FrameConstants fc = constants_for(level.camera);
   const test::GBufferImages g = *harness.render(fc, true);
@@ -237,7 +244,7 @@ TEST_F(GBufferTest, CornellLightsAgreesWithCpuTrace) {
 
 // Seen from outside and above with the ceiling removed: sky around the box, the ceiling panels
 // from behind (no emission), and one instance mirrored (negative determinant: winding flips).
-TEST_F(GBufferTest, SkyBackFacesAndMirroredInstanceAgreeWithCpuTrace) {
+TEST_P(GBufferMethodTest, SkyBackFacesAndMirroredInstanceAgreeWithCpuTrace) {
   Level level = load_level_argument("cornell_lights");
   const auto ceiling = std::find_if(level.instances.begin(), level.instances.end(),
                                     [](const Instance& i) { return i.name == "ceiling"; });
@@ -258,7 +265,7 @@ TEST_F(GBufferTest, SkyBackFacesAndMirroredInstanceAgreeWithCpuTrace) {
   const lighting::SceneData scene = lighting::build_scene_data(level);
   ASSERT_LT(glm::determinant(glm::mat3(scene.instances[mirrored].object_to_world)), 0.0f)
       << "the mirrored transform did not reach the scene records";
-  test::GBufferHarness harness(device, shaders, scene);
+  test::GBufferHarness harness(device, shaders, scene, options());
   const gpu::FrameConstants fc = constants_for(level.camera);
   const test::GBufferImages g = *harness.render(fc, true);
   EXPECT_EQ(count_non_finite(g), 0u);
@@ -279,10 +286,10 @@ TEST_F(GBufferTest, SkyBackFacesAndMirroredInstanceAgreeWithCpuTrace) {
   EXPECT_GT(mirrored_pixels, 20u) << "the mirrored instance is barely visible";
 }
 
-TEST_F(GBufferTest, CameraMotionIsTheReprojectionThroughPrevViewProj) {
+TEST_P(GBufferMethodTest, CameraMotionIsTheReprojectionThroughPrevViewProj) {
   const Level level = load_level_argument("cornell_lights");
   const lighting::SceneData scene = lighting::build_scene_data(level);
-  test::GBufferHarness harness(device, shaders, scene);
+  test::GBufferHarness harness(device, shaders, scene, options());
   Camera prev = level.camera;
   prev.position += glm::vec3(0.12f, -0.07f, 0.15f);
   prev.orientation = glm::angleAxis(glm::radians(2.5f), glm::vec3(0.0f, 1.0f, 0.0f)) *
@@ -320,10 +327,10 @@ TEST_F(GBufferTest, CameraMotionIsTheReprojectionThroughPrevViewProj) {
   RecordProperty("max_motion_error_px", std::to_string(max_error));
 }
 
-TEST_F(GBufferTest, MovingInstanceGetsItsObjectMotion) {
+TEST_P(GBufferMethodTest, MovingInstanceGetsItsObjectMotion) {
   const Level level = load_level_argument("cornell_lights");
   const lighting::SceneData scene = lighting::build_scene_data(level);
-  test::GBufferHarness harness(device, shaders, scene);
+  test::GBufferHarness harness(device, shaders, scene, options());
   const gpu::FrameConstants fc = constants_for(level.camera);
   const test::GBufferImages still = *harness.render(fc, true);
 
@@ -381,7 +388,8 @@ TEST_F(GBufferTest, MovingInstanceGetsItsObjectMotion) {
 TEST_F(GBufferTest, NightMarketAgreesWithCpuTrace) {
   const Level level = load_level_argument("night_market");
   const lighting::SceneData scene = lighting::build_scene_data(level);
-  test::GBufferHarness harness(device, shaders, scene);
+  test::GBufferHarness harness(device, shaders, scene,
+                               {.method = lighting::GBufferMethod::Visibility});
   harness.warm_up();
   const gpu::FrameConstants fc = constants_for(level.camera);
   const test::GBufferImages g = *harness.render(fc, true);
@@ -451,6 +459,46 @@ TEST_F(GBufferTest, VisibilityMethodMatchesForwardMethod) {
   EXPECT_LE(different, v.ids.size() / 200) << "more than 0.5% of the pixels see another surface";
   EXPECT_GT(compared, v.ids.size() / 2);
   EXPECT_LE(mismatches, compared / 200) << "first: " << first;
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, GBufferMethodTest,
+                         ::testing::Values(lighting::GBufferMethod::Visibility,
+                                           lighting::GBufferMethod::Forward),
+                         [](const ::testing::TestParamInfo<lighting::GBufferMethod>& param) {
+                           return param.param == lighting::GBufferMethod::Forward ? "Forward"
+                                                                                  : "Visibility";
+                         });
+
+// Auto: Forward for frames with at most one triangle per kForwardPixelsPerTriangle pixels.
+TEST(GBufferMethodChoice, AutoPicksForwardOnlyForFewTrianglesPerPixel) {
+  using lighting::GBufferMethod;
+  using lighting::GBufferPass;
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 122, 320, 180), GBufferMethod::Forward);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 147518, 320, 180),
+            GBufferMethod::Visibility);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 147518, 1920, 1080),
+            GBufferMethod::Visibility);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 320 * 180 / 16, 320, 180),
+            GBufferMethod::Forward);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 320 * 180 / 16 + 1, 320, 180),
+            GBufferMethod::Visibility);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Visibility, 1, 320, 180),
+            GBufferMethod::Visibility);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Forward, 1u << 30, 320, 180),
+            GBufferMethod::Forward);
+}
+
+// Auto on a small scene runs Forward, and warm_up compiles both methods' pipelines without error.
+TEST_F(GBufferTest, AutoMethodRendersCornellLights) {
+  const Level level = load_level_argument("cornell_lights");
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  test::GBufferHarness harness(device, shaders, scene);
+  harness.warm_up();
+  const gpu::FrameConstants fc = constants_for(level.camera);
+  const test::GBufferImages g = *harness.render(fc, true);
+  EXPECT_EQ(count_non_finite(g), 0u);
+  expect_agreement(compare_with_cpu(scene, fc, g), "auto");
+  EXPECT_LT(harness.last_ms("gbuffer.cull"), 0.0) << "Auto should have picked Forward";
 }
 
 }  // namespace
