@@ -124,6 +124,31 @@ LANTERN_FUNC void reservoir_finalize(LANTERN_INOUT(Reservoir) r) {
   }
 }
 
+// Removes the selected sample but keeps the confidence M: the domain "produced nothing" this time
+// (a valid outcome, contribution zero). Used for a history sample whose light was removed. M must
+// stay: the canonical sample's MIS weight may not depend on whether the other domain's draw
+// survived (dropping M there overweights the canonical exactly when the history is empty, a
+// positive bias of up to half the empty fraction; tests/shared_math/reservoir_chain_test.cpp).
+LANTERN_FUNC void reservoir_drop_sample(LANTERN_INOUT(Reservoir) r) {
+  r.selected = light_sample_make(kInvalidLight, vec2(0.0f), 0.0f);
+  r.weight_sum = 0.0f;
+  r.W = 0.0f;
+}
+
+// A history reservoir's light index moved to this frame's light list: `current_index` is the
+// remapped index (kInvalidLight: the light was removed). An empty reservoir stays empty and, like
+// a removed light's, keeps its M (see reservoir_drop_sample).
+LANTERN_FUNC void reservoir_remap_light(LANTERN_INOUT(Reservoir) r, uint current_index) {
+  if (r.selected.light_index == kInvalidLight) {
+    return;
+  }
+  if (current_index == kInvalidLight) {
+    reservoir_drop_sample(r);
+  } else {
+    r.selected.light_index = current_index;
+  }
+}
+
 // Clamps the confidence M (e.g. temporal history to 20x the current M) so old samples cannot
 // dominate forever. Only M changes: W stays the sample's contribution weight.
 // A non-finite max_m means no cap.

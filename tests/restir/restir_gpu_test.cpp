@@ -71,13 +71,17 @@ TEST_F(RestirGpuTest, UnbiasedAgainstBaselineOnStaticCornell) {
   for (double v : sum) reference_mean += v;
   reference_mean /= static_cast<double>(sum.size()) * kBaselineFrames;
 
-  // asserted: overall mean within 1% (the issue's criterion). lit: the lit-surface mean too.
-  // OPEN (report of issue 5): with temporal reuse the lit-surface mean of 64 frames reads high
-  // (+4.6% pairwise, +6.5% balance, +20% with 1 candidate) while RIS alone and spatial reuse
-  // alone are within 0.4%; over 512 frames it falls to +2.1% / +1.8% / +7.4% (RIS +0.7%, the
-  // reference's own noise): long-lived heavy-tailed history samples mix slowly, but a small
-  // systematic bias is not excluded. The overall mean hides it (emitters dominate).
-  // LANTERN_RESTIR_BIAS_STRICT=1 asserts the lit-surface bound for every configuration.
+  // asserted: overall mean within 1% (the issue's criterion). lit: the lit-surface mean within
+  // kLitTolerance. History: with temporal reuse the lit-surface mean read +4.6..+6.5% (+20% with
+  // 1 candidate): restir.temporal zeroed the M of an empty history reservoir, skipping the merge
+  // exactly when the history had produced nothing (fixed; reproduced on the CPU by
+  // ReservoirChain.DroppingEmptyHistoryConfidenceIsDetectedAsBias). Frames of one run are a
+  // Markov chain, so one 64-frame run's lit mean has sd ~0.6-1% (measured over independent seeds
+  // by LitSurfaceBiasOverIndependentRuns: balance +0.17 +- 0.41%, pairwise +0.49 +- 0.44% over 8
+  // seeds after the fix); this seed reads balance +2.1%, so 3% (~3 sd of one run, heavy tails),
+  // still well below the old +4.6..6.5%.
+  // LANTERN_RESTIR_BIAS_STRICT=1 asserts 1% on lit surfaces for every configuration.
+  constexpr double kLitTolerance = 0.03;
   struct Config {
     const char* name;
     std::vector<std::pair<std::string, std::string>> settings;
@@ -85,14 +89,14 @@ TEST_F(RestirGpuTest, UnbiasedAgainstBaselineOnStaticCornell) {
     bool lit;
   };
   const std::vector<Config> configs = {
-      {"balance", {{"bias_correction", "balance"}}, true, false},
-      {"pairwise", {{"bias_correction", "pairwise"}}, true, false},
+      {"balance", {{"bias_correction", "balance"}}, true, true},
+      {"pairwise", {{"bias_correction", "pairwise"}}, true, true},
       {"none", {{"bias_correction", "none"}}, false, false},
       {"ris", {{"temporal", "off"}, {"spatial_passes", "0"}}, true, true},
       {"spatial", {{"temporal", "off"}, {"bias_correction", "pairwise"}}, true, true},
       {"spatial-b", {{"temporal", "off"}, {"bias_correction", "balance"}}, true, true},
-      {"temporal", {{"spatial_passes", "0"}}, false, false},
-      {"t-cap1", {{"spatial_passes", "0"}, {"m_cap", "1"}}, false, false},
+      {"temporal", {{"spatial_passes", "0"}}, false, true},
+      {"t-cap1", {{"spatial_passes", "0"}, {"m_cap", "1"}}, false, true},
       {"t-M1", {{"spatial_passes", "0"}, {"light_candidates", "1"}}, false, false},
   };
   const bool strict = std::getenv("LANTERN_RESTIR_BIAS_STRICT") != nullptr;
@@ -153,8 +157,139 @@ TEST_F(RestirGpuTest, UnbiasedAgainstBaselineOnStaticCornell) {
       EXPECT_LT(std::abs(rel), 0.01) << mode << ": overall mean within 1% of the reference";
     }
     if (config.lit || strict) {
-      EXPECT_LT(std::abs(rel_lit), 0.01) << mode << ": lit-surface mean within 1%";
+      const double tolerance = strict ? 0.01 : kLitTolerance;
+      EXPECT_LT(std::abs(rel_lit), tolerance)
+          << mode << ": lit-surface mean within " << 100.0 * tolerance << "%";
     }
+  }
+}
+
+// Investigation (LANTERN_RESTIR_BIAS_RUNS=S set): S independent runs (seeds 100..) of
+// LANTERN_RESTIR_BIAS_FRAMES frames per configuration; the lit-surface error of each run's mean,
+// and its standard error from the spread over runs (batch means: runs are independent, frames of
+// one run are not). Also the error of each frame index averaged over runs (a transient would
+// show there). Optional LANTERN_RESTIR_BIAS_CONFIGS=name,name,... selects configurations.
+TEST_F(RestirGpuTest, LitSurfaceBiasOverIndependentRuns) {
+  const char* runs_env = std::getenv("LANTERN_RESTIR_BIAS_RUNS");
+  if (runs_env == nullptr) GTEST_SKIP() << "investigation: set LANTERN_RESTIR_BIAS_RUNS";
+  const int runs = std::atoi(runs_env);
+  const int frames = std::getenv("LANTERN_RESTIR_BIAS_FRAMES")
+                         ? std::atoi(std::getenv("LANTERN_RESTIR_BIAS_FRAMES"))
+                         : 64;
+  const std::string only =
+      std::getenv("LANTERN_RESTIR_BIAS_CONFIGS") ? std::getenv("LANTERN_RESTIR_BIAS_CONFIGS") : "";
+  const int ref_frames = std::getenv("LANTERN_RESTIR_BIAS_REF_FRAMES")
+                             ? std::atoi(std::getenv("LANTERN_RESTIR_BIAS_REF_FRAMES"))
+                             : 512;
+  // LANTERN_RESTIR_BIAS_REF=ris: the reference is plain RIS (restir without reuse: independent
+  // frames, the same target and shading code) instead of integrators.baseline.
+  const bool ris_reference = std::getenv("LANTERN_RESTIR_BIAS_REF") != nullptr &&
+                             std::string(std::getenv("LANTERN_RESTIR_BIAS_REF")) == "ris";
+  auto make_reference = [&]() {
+    return ris_reference ? test::make_restir(device, shaders,
+                                             {{"temporal", "off"}, {"spatial_passes", "0"}})
+                         : test::make_baseline(device, shaders);
+  };
+  const FrameSnapshot first = test::first_snapshot(cornell(), kW, kH);
+  const std::size_t channels = std::size_t{kW} * kH * 3;
+  // Mask from an independent baseline run (seed 2): the reference's own noise does not choose it.
+  std::vector<std::uint8_t> lit(channels, 0);
+  {
+    RenderHarness h(device, shaders, cornell(), make_reference(), kW, kH, 2);
+    std::vector<double> m(channels, 0.0);
+    FrameSnapshot s = first;
+    for (int f = 0; f < 32; ++f) {
+      const ImageRGBA32F img = h.render(s);
+      s = test::frozen(s);
+      for (std::size_t i = 0; i < channels; ++i) m[i] += img.pixels[4 * (i / 3) + i % 3] / 32.0;
+    }
+    for (std::size_t i = 0; i < channels; ++i) lit[i] = m[i] < 5.0 ? 1 : 0;
+  }
+  auto lit_sum = [&](const ImageRGBA32F& img) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < channels; ++i)
+      if (lit[i]) sum += img.pixels[4 * (i / 3) + i % 3];
+    return sum;
+  };
+  // Reference: baseline frames are independent, so their spread gives its standard error.
+  double ref = 0.0, ref2 = 0.0;
+  {
+    RenderHarness h(device, shaders, cornell(), make_reference(), kW, kH, 1);
+    FrameSnapshot s = first;
+    for (int f = 0; f < ref_frames; ++f) {
+      const double v = lit_sum(h.render(s));
+      s = test::frozen(s);
+      ref += v;
+      ref2 += v * v;
+    }
+  }
+  ref /= ref_frames;
+  const double ref_se =
+      std::sqrt(std::max(ref2 / ref_frames - ref * ref, 0.0) / ref_frames) / ref;
+  std::printf("[restir bias runs] reference: %d baseline frames, lit channels %zu, relative "
+              "standard error %.3f%%\n",
+              ref_frames, test::count(lit), 100.0 * ref_se);
+  struct Config {
+    const char* name;
+    std::vector<std::pair<std::string, std::string>> settings;
+  };
+  const std::vector<Config> configs = {
+      {"ris", {{"temporal", "off"}, {"spatial_passes", "0"}}},
+      {"spatial", {{"temporal", "off"}, {"bias_correction", "pairwise"}}},
+      {"balance", {{"bias_correction", "balance"}}},
+      {"pairwise", {{"bias_correction", "pairwise"}}},
+      {"none", {{"bias_correction", "none"}}},
+      {"temporal", {{"spatial_passes", "0"}}},
+      {"t-M1", {{"spatial_passes", "0"}, {"light_candidates", "1"}}},
+      {"t-cap1", {{"spatial_passes", "0"}, {"m_cap", "1"}}},
+  };
+  for (const Config& config : configs) {
+    if (!only.empty() && ("," + only + ",").find(std::string(",") + config.name + ",") ==
+                             std::string::npos)
+      continue;
+    std::vector<double> run_error;
+    std::vector<double> frame_error(frames, 0.0);
+    for (int run = 0; run < runs; ++run) {
+      RenderHarness h(device, shaders, cornell(),
+                      test::make_restir(device, shaders, config.settings), kW, kH,
+                      100u + std::uint32_t(run));
+      FrameSnapshot s = first;
+      double sum = 0.0;
+      ImageRGBA32F last;
+      for (int f = 0; f < frames; ++f) {
+        const ImageRGBA32F img = h.render(s);
+        const double v = lit_sum(img);
+        if (std::getenv("LANTERN_RESTIR_BIAS_DIFF") && f > 0) {
+          std::size_t changed = 0, up = 0;
+          for (std::size_t i = 0; i < channels; ++i) {
+            const float a = last.pixels[4 * (i / 3) + i % 3], b = img.pixels[4 * (i / 3) + i % 3];
+            changed += a != b ? 1 : 0;
+            up += b > a ? 1 : 0;
+          }
+          std::printf("[restir bias diff] run %d frame %d: %zu channels changed, %zu up\n", run, f,
+                      changed, up);
+        }
+        last = img;
+        s = test::frozen(s);
+        sum += v;
+        frame_error[f] += (v / ref - 1.0) / runs;
+      }
+      run_error.push_back(sum / frames / ref - 1.0);
+    }
+    double mean = 0.0, var = 0.0;
+    for (double e : run_error) mean += e / runs;
+    for (double e : run_error) var += (e - mean) * (e - mean) / std::max(runs - 1, 1);
+    const double se = std::sqrt(var / runs + ref_se * ref_se);
+    std::printf("[restir bias runs] %-8s %d runs x %d frames: lit error %+.3f%% +- %.3f%% "
+                "(%+.2f sigma; one run's sd %.3f%%) runs:",
+                config.name, runs, frames, 100.0 * mean, 100.0 * se, mean / se,
+                100.0 * std::sqrt(var));
+    for (double e : run_error) std::printf(" %+.2f", 100.0 * e);
+    std::printf("\n[restir bias runs] %-8s by frame index:", config.name);
+    for (int f = 0; f < frames; f = f < 4 ? f + 1 : f * 2)
+      std::printf(" f%d %+.2f%%", f, 100.0 * frame_error[f]);
+    std::printf("\n");
+    std::fflush(stdout);
   }
 }
 

@@ -30,8 +30,8 @@ class RenderHarness {
   RenderHarness(runtime::Device& device, runtime::ShaderLibrary& shaders,
                 std::shared_ptr<const Level> level,
                 std::unique_ptr<lighting::Integrator> integrator, std::uint32_t width,
-                std::uint32_t height)
-      : renderer_(device, shaders, std::move(level), std::move(integrator), width, height, 1),
+                std::uint32_t height, std::uint32_t seed = 1)
+      : renderer_(device, shaders, std::move(level), std::move(integrator), width, height, seed),
         target_(device, {.width = width, .height = height}),
         executor_(device),
         timer_(device, 64) {
