@@ -3,6 +3,7 @@
 // so the compile cost moves out of the first timed frame without running the shader on junk data.
 #include <fmt/format.h>
 
+#include <deque>
 #include <vector>
 
 #include "engine/core/error.h"
@@ -11,6 +12,7 @@
 #include "runtime/core/vk_check.h"
 #include "runtime/gpu/bindings.h"
 #include "runtime/gpu/buffer.h"
+#include "runtime/gpu/buffer_view.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/image.h"
 #include "runtime/gpu/transfer.h"
@@ -20,6 +22,7 @@ namespace lantern::runtime {
 void warm_up(Device& device, std::span<const ComputePipeline* const> pipelines) {
   std::vector<Buffer> buffers;
   std::vector<Image> images;
+  std::deque<BufferView> views;  // stable addresses; destroyed before `buffers`
   std::vector<Bindings> bindings;
   buffers.reserve(64);
   images.reserve(64);
@@ -61,6 +64,25 @@ void warm_up(Device& device, std::span<const ComputePipeline* const> pipelines) 
               VK_CHECK(vkCreateSampler(device.handle(), &sampler_info, nullptr, &sampler));
             b.sampled_image(binding.name, image, sampler, VK_IMAGE_LAYOUT_GENERAL);
           }
+          break;
+        }
+        case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+        case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER: {
+          // rgba32ui unless the shader declares a format: the project's texel buffers are
+          // utextureBuffer views of uvec4 arrays (lib/bvh_traverse.glsl).
+          const bool storage = binding.type == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+          const VkFormat format = binding.image_format != VK_FORMAT_UNDEFINED
+                                      ? binding.image_format
+                                      : VK_FORMAT_R32G32B32A32_UINT;
+          const Buffer& buffer = buffers.emplace_back(
+              device, BufferDesc{.size = 4096,
+                                 .usage = static_cast<VkBufferUsageFlags>(
+                                     storage ? VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT
+                                             : VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT),
+                                 .name = "warm_up." + binding.name});
+          b.texel_buffer(binding.name,
+                         views.emplace_back(device, buffer, format, "warm_up." + binding.name)
+                             .handle());
           break;
         }
         default:

@@ -37,6 +37,7 @@ bool allowed_on_buffer(Access a) {
 bool allowed_on_image(Access a) {
   switch (a) {
     case Access::UniformRead:
+    case Access::UniformTexelRead:
     case Access::VertexBuffer:
     case Access::IndexBuffer:
     case Access::IndirectBuffer:
@@ -56,6 +57,8 @@ const char* access_name(Access a) {
       return "storage-read-write";
     case Access::UniformRead:
       return "uniform-read";
+    case Access::UniformTexelRead:
+      return "uniform-texel-read";
     case Access::Sampled:
       return "sampled";
     case Access::ColorAttachment:
@@ -120,6 +123,10 @@ AccessState access_state(Access a, PassKind kind, bool is_image) {
               storage_layout};
     case Access::UniformRead:
       return {shaders, VK_ACCESS_2_UNIFORM_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+    case Access::UniformTexelRead:
+      // Synchronization2: SHADER_SAMPLED_READ covers uniform texel buffers (UNIFORM_READ is for
+      // uniform buffers only).
+      return {shaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
     case Access::Sampled:
       return {shaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
@@ -166,6 +173,8 @@ VkBufferUsageFlags buffer_usage(Access a) {
       return VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     case Access::UniformRead:
       return VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+    case Access::UniformTexelRead:
+      return VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
     case Access::TransferSrc:
       return VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     case Access::TransferDst:

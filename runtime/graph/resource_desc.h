@@ -32,6 +32,8 @@ enum class Access : uint8_t {
   StorageWrite,      // buffer or image, written in shaders (previous contents discarded)
   StorageReadWrite,  // buffer or image, read-modify-write in shaders (needs written contents)
   UniformRead,       // buffer
+  UniformTexelRead,  // buffer, through a uniform texel buffer view (texelFetch on a
+                     // [u]samplerBuffer / [u]textureBuffer): SHADER_SAMPLED_READ
   Sampled,           // image through a sampler
   ColorAttachment,   // image, written by rasterisation
   DepthAttachment,   // image, depth test and write
