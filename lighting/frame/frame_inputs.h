@@ -32,8 +32,18 @@ struct SceneHandles {
   runtime::graph::BufferHandle bvh_instances;
   // uint per previous-frame light: its current index, or kInvalidLight when it was removed.
   runtime::graph::BufferHandle light_previous_to_current;
+  // The environment map (shaders/lib/environment.glsl; a black 1-texel stand-in without one):
+  // gpu::GpuEnvironment (params.x = light-selection probability, written by scene.upload when
+  // the lights change), radiance texels, marginal and conditional alias tables.
+  runtime::graph::BufferHandle env_header;
+  runtime::graph::BufferHandle env_texels;
+  runtime::graph::BufferHandle env_marginal;
+  runtime::graph::BufferHandle env_conditional;
 
-  // Declares a StorageRead of every scene buffer (what a pass that calls GpuScene::bind needs).
+  // Declares what a pass that calls GpuScene::bind needs: a StorageRead of every scene buffer,
+  // plus a UniformTexelRead of the BVH nodes, triangles and instances (lib/visibility.glsl reads
+  // them through rgba32ui texel views by default; passes still on storage-buffer BVH reads are
+  // covered by the StorageRead).
   void declare_reads(runtime::graph::PassBuilder& builder) const;
 };
 

@@ -1,5 +1,5 @@
-// integrators.reference: reads the G-buffer, the scene and the environment map, writes the HDR
-// buffer; one workgroup per shuffled 8x8 tile, all spp samples in one dispatch
+// integrators.reference: reads the G-buffer and the scene (with its environment map), writes the
+// HDR buffer; one workgroup per shuffled 8x8 tile, all spp samples in one dispatch
 // (shaders/integrators/reference.comp).
 #include "lighting/integrators/reference_integrator.h"
 
@@ -9,7 +9,6 @@
 #include <numeric>
 
 #include "engine/core/error.h"
-#include "engine/core/log.h"
 #include "integrators/reference.h"
 #include "lighting/scene/gpu_scene.h"
 #include "runtime/gpu/bindings.h"
@@ -64,8 +63,7 @@ ReferenceSettings parse_reference_settings(
 
 ReferenceIntegrator::ReferenceIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
                                          const ReferenceSettings& settings)
-    : device_(device),
-      pipeline_(device, shaders.load("integrators/reference.comp"),
+    : pipeline_(device, shaders.load("integrators/reference.comp"),
                 runtime::ComputePipelineDesc{.name = "integrators.reference", .constants = {}}),
       settings_(settings) {
   if (settings_.spp == 0 || settings_.spp > kMaxSpp) {
@@ -76,31 +74,8 @@ ReferenceIntegrator::ReferenceIntegrator(runtime::Device& device, runtime::Shade
 
 ReferenceIntegrator::~ReferenceIntegrator() = default;
 
-void ReferenceIntegrator::prepare_environment(const FrameInputs& inputs) {
-  const Level* level = &inputs.scene->level();
-  if (environment_ && environment_level_ == level) return;
-  environment_level_ = level;
-  if (!level->environment) {
-    environment_ = std::make_unique<GpuEnvironmentMap>(GpuEnvironmentMap::dummy(device_));
-    return;
-  }
-  EnvironmentDistribution distribution = EnvironmentDistribution::load(*level->environment);
-  const double env_power = distribution.power_estimate(inputs.scene->scene_radius());
-  const double lights_power =
-      inputs.light_count > 0 ? inputs.scene->data().lights.alias_table().total_weight() : 0.0;
-  distribution.set_selection_probability(
-      environment_selection_probability(env_power, lights_power));
-  log::debug(
-      "reference: environment {}x{} ({}), mean luminance {:.4g}, selected by {:.3f} of "
-      "light samples",
-      distribution.width(), distribution.height(), level->environment->path.string(),
-      distribution.mean_luminance(), distribution.header().params.x);
-  environment_ = std::make_unique<GpuEnvironmentMap>(device_, distribution);
-}
-
 BufferHandle ReferenceIntegrator::add_passes(runtime::graph::RenderGraph& graph,
                                              const FrameInputs& inputs, BufferHandle hdr) {
-  prepare_environment(inputs);
   struct Data {
     BufferHandle hdr;
     ImageHandle position, normal, emission, ids;
@@ -116,7 +91,6 @@ BufferHandle ReferenceIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   push.tile_stride = tile_stride(tiles);
   push.spp = settings_.spp;
   const GpuScene* scene = inputs.scene;
-  const GpuEnvironmentMap* environment = environment_.get();
   const Data& data = graph.add_pass<Data>(
       "integrators.reference", runtime::graph::PassKind::Compute,
       [&](runtime::graph::PassBuilder& b, Data& d) {
@@ -130,10 +104,9 @@ BufferHandle ReferenceIntegrator::add_passes(runtime::graph::RenderGraph& graph,
         }
         d.hdr = b.write(hdr, Access::StorageWrite);
       },
-      [this, scene, environment, push, tiles](runtime::graph::PassContext& ctx, const Data& d) {
+      [this, scene, push, tiles](runtime::graph::PassContext& ctx, const Data& d) {
         runtime::Bindings bindings(pipeline_);
         scene->bind(bindings);
-        environment->bind(bindings);
         bindings.buffer("radiance", ctx.buffer(d.hdr), 0, VK_WHOLE_SIZE)
             .image_view("gbuffer_position", ctx.view(d.position), VK_IMAGE_LAYOUT_GENERAL)
             .image_view("gbuffer_normal", ctx.view(d.normal), VK_IMAGE_LAYOUT_GENERAL)

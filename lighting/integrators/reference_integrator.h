@@ -5,10 +5,10 @@
 // sampling only. Frames average to the converged image (offline_render's `average`); converged
 // references are cached by lighting/integrators/reference_cache.h.
 //
-// The level's environment map (if any) is loaded and its sampling tables uploaded on the first
-// frame of a level (lighting/lights/environment_map.h); without one a black 1-texel stand-in is
-// bound. Light selection: the environment with probability env_power / (env_power +
-// emitters' total power), else the alias table (environment_map.h explains the power proxy).
+// The environment map is the scene's (GpuScene loads and uploads it once per level and binds it
+// with the other scene buffers; a black 1-texel stand-in without one). Light selection: the
+// environment with probability env_power / (env_power + emitters' total power), kept current in
+// the env header by GpuScene, else the alias table (environment_map.h explains the power proxy).
 //
 // Settings (--set): reference.spp=N (samples per pixel per frame; IntegratorConfig.spp wins when
 // non-zero). Any other key is an InputError.
@@ -21,7 +21,6 @@
 #include <vector>
 
 #include "lighting/frame/frame_inputs.h"
-#include "lighting/lights/environment_map.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/shader_library.h"
 
@@ -50,18 +49,10 @@ class ReferenceIntegrator final : public Integrator {
                                                         runtime::graph::BufferHandle hdr) override;
 
   const ReferenceSettings& settings() const { return settings_; }
-  // The environment bound last frame (the black stand-in when the level has none; nullptr before
-  // the first frame).
-  const GpuEnvironmentMap* environment() const { return environment_.get(); }
 
  private:
-  void prepare_environment(const FrameInputs& inputs);
-
-  runtime::Device& device_;
   runtime::ComputePipeline pipeline_;
   ReferenceSettings settings_;
-  const Level* environment_level_ = nullptr;  // the level environment_ was built for
-  std::unique_ptr<GpuEnvironmentMap> environment_;
 };
 
 }  // namespace lantern::lighting

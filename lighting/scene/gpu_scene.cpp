@@ -9,6 +9,7 @@
 #include <string>
 
 #include "engine/core/error.h"
+#include "engine/core/log.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/pipeline.h"
 #include "runtime/gpu/transfer.h"
@@ -26,13 +27,30 @@ constexpr const char* kSlotNames[GpuScene::kSlotCount] = {
     "scene.frame_constants", "scene.vertices",      "scene.indices",
     "scene.materials",       "scene.instances",     "scene.lights",
     "scene.light_alias",     "scene.bvh_header",    "scene.bvh_nodes",
-    "scene.bvh_triangles",   "scene.bvh_instances", "scene.light_previous_to_current"};
+    "scene.bvh_triangles",   "scene.bvh_instances", "scene.light_previous_to_current",
+    "scene.env_header",      "scene.env_texels",    "scene.env_marginal",
+    "scene.env_conditional"};
 
 // Shader names of each slot (bind()).
 constexpr const char* kBindNames[GpuScene::kSlotCount] = {
     "frame_constants", "scene_vertices",    "scene_indices",     "scene_materials",
     "scene_instances", "scene_lights",      "light_alias",       "BvhHeaderBuffer",
-    "BvhNodeBuffer",   "BvhTriangleBuffer", "BvhInstanceBuffer", "light_previous_to_current"};
+    "BvhNodeBuffer",   "BvhTriangleBuffer", "BvhInstanceBuffer", "light_previous_to_current",
+    "env_header",      "env_texels",        "env_marginal",      "env_conditional"};
+
+// Texel-view names of the BVH arrays (lib/bvh_traverse.glsl with BVH_TEXEL_BUFFERS).
+constexpr const char* texel_bind_name(GpuScene::Slot slot) {
+  switch (slot) {
+    case GpuScene::kBvhNodes:
+      return "bvh_node_texels";
+    case GpuScene::kBvhTriangles:
+      return "bvh_triangle_texels";
+    case GpuScene::kBvhInstances:
+      return "bvh_instance_texels";
+    default:
+      return nullptr;
+  }
+}
 
 template <class T>
 std::span<const std::byte> bytes_of(const std::vector<T>& v) {
@@ -86,8 +104,32 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level)
   for (std::uint32_t i = 0; i < remap_.size(); ++i) remap_[i] = i;
   constants_.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
 
+  // Environment: the level's map once, or the black stand-in (one texel, one alias entry).
+  if (level_->environment) {
+    env_.emplace(EnvironmentDistribution::load(*level_->environment));
+    env_header_ = env_->header();
+    env_power_ = env_->power_estimate(scene_radius_);
+  } else {
+    env_header_.world_to_map = glm::mat4(1.0f);
+    env_header_.map_to_world = glm::mat4(1.0f);
+    env_header_.size = glm::uvec4(1u, 1u, 0u, 0u);
+    env_header_.params = glm::vec4(0.0f);
+    env_dummy_texels_.assign(1, gpu::vec4(0.0f));
+    env_dummy_alias_.assign(1, gpu::AliasEntry{1.0f, 0u, 1.0f, 0u});
+  }
+  update_environment_probability();
+  if (env_) {
+    log::debug(
+        "scene: environment {}x{} ({}), mean luminance {:.4g}, selected by {:.3f} of light "
+        "samples",
+        env_->width(), env_->height(), level_->environment->path.string(), env_->mean_luminance(),
+        env_header_.params.x);
+  }
+
   for (std::uint32_t s = 0; s < kSlotCount; ++s) {
-    arrays_[s].read_only = s == kVertices || s == kIndices || s == kMaterials || s == kBvhTriangles;
+    arrays_[s].read_only = s == kVertices || s == kIndices || s == kMaterials ||
+                           s == kBvhTriangles || s == kEnvTexels || s == kEnvMarginal ||
+                           s == kEnvConditional;
     ensure_capacity(static_cast<Slot>(s));
     // Everything starts uploaded (blocking, setup time); per-frame changes go through the graph.
     std::vector<std::byte> bytes(arrays_[s].buffer.size());  // zero-filled past the array
@@ -126,6 +168,14 @@ std::span<const std::byte> GpuScene::cpu_bytes(Slot slot) const {
       return bytes_of(data_.bvh.instances());
     case kRemap:
       return bytes_of(remap_);
+    case kEnvHeader:
+      return std::as_bytes(std::span<const gpu::GpuEnvironment>(&env_header_, 1));
+    case kEnvTexels:
+      return env_ ? bytes_of(env_->texels()) : bytes_of(env_dummy_texels_);
+    case kEnvMarginal:
+      return env_ ? bytes_of(env_->marginal()) : bytes_of(env_dummy_alias_);
+    case kEnvConditional:
+      return env_ ? bytes_of(env_->conditional()) : bytes_of(env_dummy_alias_);
     case kSlotCount:
       break;
   }
@@ -148,12 +198,21 @@ void GpuScene::ensure_capacity(Slot slot) {
   VkDeviceSize size = needed;
   if (a.buffer) {
     size = std::max<VkDeviceSize>(needed, a.buffer.size() + a.buffer.size() / 2);
-    retired_.emplace_back(uploads_, std::move(a.buffer));
+    retired_.push_back({uploads_, std::move(a.buffer), std::move(a.texels)});
   }
-  a.buffer = runtime::Buffer(device_, {.size = size,
-                                       .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                       .memory = runtime::MemoryUsage::DeviceLocal,
-                                       .name = kSlotNames[slot]});
+  const char* texel_name = texel_bind_name(slot);
+  a.buffer = runtime::Buffer(
+      device_,
+      {.size = size,
+       .usage = texel_name != nullptr ? VkBufferUsageFlags{VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                           VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT}
+                                      : VkBufferUsageFlags{VK_BUFFER_USAGE_STORAGE_BUFFER_BIT},
+       .memory = runtime::MemoryUsage::DeviceLocal,
+       .name = kSlotNames[slot]});
+  if (texel_name != nullptr) {
+    a.texels = runtime::BufferView(device_, a.buffer, VK_FORMAT_R32G32B32A32_UINT,
+                                   fmt::format("{}.texels", kSlotNames[slot]));
+  }
   // A fresh buffer holds nothing: the next scene.upload copies the whole array.
   mark_all_dirty(slot);
 }
@@ -290,6 +349,17 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
     ensure_capacity(kRemap);
     mark_all_dirty(kRemap);
   }
+  if (changed) update_environment_probability();
+}
+
+void GpuScene::update_environment_probability() {
+  if (!env_) return;  // the stand-in is never selected (params.x stays 0)
+  const double lights_power =
+      data_.lights.has_power() ? data_.lights.alias_table().total_weight() : 0.0;
+  const float p = environment_selection_probability(env_power_, lights_power);
+  if (p == env_header_.params.x) return;
+  env_header_.params.x = p;
+  mark_all_dirty(kEnvHeader);
 }
 
 void GpuScene::set_frame_constants(const gpu::FrameConstants& constants) {
@@ -316,13 +386,17 @@ SceneHandles GpuScene::import(runtime::graph::RenderGraph& graph) const {
   h.bvh_triangles = imp(kBvhTriangles);
   h.bvh_instances = imp(kBvhInstances);
   h.light_previous_to_current = imp(kRemap);
+  h.env_header = imp(kEnvHeader);
+  h.env_texels = imp(kEnvTexels);
+  h.env_marginal = imp(kEnvMarginal);
+  h.env_conditional = imp(kEnvConditional);
   return h;
 }
 
 SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
                                        const SceneHandles& imported) {
   // Release buffers retired long enough ago that no frame in flight can still read them.
-  while (!retired_.empty() && uploads_ >= retired_.front().first + kRetireFrames) {
+  while (!retired_.empty() && uploads_ >= retired_.front().upload + kRetireFrames) {
     retired_.pop_front();
   }
 
@@ -402,6 +476,14 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
         return h.bvh_triangles;
       case kBvhInstances:
         return h.bvh_instances;
+      case kEnvHeader:
+        return h.env_header;
+      case kEnvTexels:
+        return h.env_texels;
+      case kEnvMarginal:
+        return h.env_marginal;
+      case kEnvConditional:
+        return h.env_conditional;
       case kRemap:
       case kSlotCount:
         break;
@@ -441,8 +523,10 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
 
 void GpuScene::bind(runtime::Bindings& bindings) const {
   for (std::uint32_t s = 0; s < kSlotCount; ++s) {
-    if (bindings.pipeline().find_binding(kBindNames[s]) != nullptr) {
-      bindings.buffer(kBindNames[s], arrays_[s].buffer);
+    if (bindings.has(kBindNames[s])) bindings.buffer(kBindNames[s], arrays_[s].buffer);
+    const char* texel_name = texel_bind_name(static_cast<Slot>(s));
+    if (texel_name != nullptr && bindings.has(texel_name)) {
+      bindings.texel_buffer(texel_name, arrays_[s].texels.handle());
     }
   }
 }

@@ -13,21 +13,35 @@
 //   frame_constants (FrameConstants), scene_vertices, scene_indices, scene_materials,
 //   scene_instances (GpuInstance), scene_lights (GpuLight), light_alias (AliasEntry),
 //   light_previous_to_current (uint per previous-frame light: current index or kInvalidLight),
-//   BvhHeaderBuffer, BvhNodeBuffer, BvhTriangleBuffer, BvhInstanceBuffer.
+//   BvhHeaderBuffer, BvhNodeBuffer, BvhTriangleBuffer, BvhInstanceBuffer (storage BVH) or
+//   bvh_node_texels, bvh_triangle_texels, bvh_instance_texels (rgba32ui uniform texel views of the
+//   same three buffers: lib/visibility.glsl's default), env_header (GpuEnvironment), env_texels,
+//   env_marginal, env_conditional (shaders/lib/environment.glsl).
 // Never-empty buffers: an empty array is uploaded as one zeroed element.
+//
+// Environment: the level's map (if any) is loaded once (EnvironmentDistribution) and its tables
+// uploaded with the static data; without one a black 1-texel stand-in (size.z = 0, params.z = 0)
+// is bound. The probability that a light sample picks the environment (env header params.x,
+// environment_selection_probability of the map's power proxy against the alias table's total
+// power) is recomputed whenever the lights change and uploaded by the same scene.upload as the
+// alias table, so each frame's selection pdfs match the table they sample (flickering lights
+// stay unbiased).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "engine/world/frame_snapshot.h"
 #include "lighting/frame/frame_inputs.h"
+#include "lighting/lights/environment_map.h"
 #include "lighting/scene/scene_data.h"
 #include "runtime/gpu/bindings.h"
 #include "runtime/gpu/buffer.h"
+#include "runtime/gpu/buffer_view.h"
 #include "runtime/graph/render_graph.h"
 
 namespace lantern::runtime {
@@ -88,6 +102,11 @@ class GpuScene {
   }
   std::uint32_t emissive_triangles() const { return data_.emissive_triangles; }
   float scene_radius() const { return scene_radius_; }
+  // The environment header as uploaded by the next scene.upload (the stand-in's when the level
+  // has no map); params.x is the environment's light-selection probability.
+  const gpu::GpuEnvironment& environment() const { return env_header_; }
+  // The level's environment map, or nullptr when it has none.
+  const EnvironmentDistribution* environment_map() const { return env_ ? &*env_ : nullptr; }
   std::uint64_t bytes() const;
 
   const Level& level() const { return *level_; }
@@ -111,6 +130,10 @@ class GpuScene {
     kBvhTriangles,
     kBvhInstances,
     kRemap,
+    kEnvHeader,
+    kEnvTexels,
+    kEnvMarginal,
+    kEnvConditional,
     kSlotCount
   };
 
@@ -120,6 +143,7 @@ class GpuScene {
  private:
   struct DeviceArray {
     runtime::Buffer buffer;
+    runtime::BufferView texels;  // rgba32ui view (BVH nodes, triangles, instances only)
     bool read_only = false;
     // Pending upload: byte ranges [begin, end) of the CPU array (merged at upload).
     std::vector<std::pair<std::uint64_t, std::uint64_t>> dirty;
@@ -140,6 +164,9 @@ class GpuScene {
   void ensure_capacity(Slot slot);
   void update_instances(const FrameSnapshot& snapshot);
   void update_lights(const FrameSnapshot& snapshot);
+  // Recomputes the environment's selection probability against the alias table's power; marks
+  // the header dirty when it changed.
+  void update_environment_probability();
 
   runtime::Device& device_;
   std::shared_ptr<const Level> level_;
@@ -153,7 +180,18 @@ class GpuScene {
   std::vector<BvhInstanceDesc> bvh_descs_;
   std::array<DeviceArray, kSlotCount> arrays_;
   std::array<runtime::Buffer, kStagingSlots> staging_;
-  std::deque<std::pair<std::uint64_t, runtime::Buffer>> retired_;
+  struct Retired {
+    std::uint64_t upload = 0;  // uploads_ when it was retired
+    runtime::Buffer buffer;
+    runtime::BufferView texels;  // destroyed before the buffer
+  };
+  std::deque<Retired> retired_;
+  // Environment: the level's map (nullopt: none, the stand-in arrays below are uploaded).
+  std::optional<EnvironmentDistribution> env_;
+  gpu::GpuEnvironment env_header_{};
+  double env_power_ = 0.0;
+  std::vector<gpu::vec4> env_dummy_texels_;
+  std::vector<gpu::AliasEntry> env_dummy_alias_;
   std::uint64_t uploads_ = 0;  // scene.upload passes added so far
   SceneUpdateStats stats_;
 };

@@ -1,8 +1,12 @@
 // integrators.baseline: direct lighting with one light sample per pixel. The primary hit comes
 // from the G-buffer (position, facing normals, material id, emission seen from the camera); one
-// light drawn from the power alias table (solid-angle pdf for triangles), one shadow ray, BRDF.
-// Reads: G-buffer images (shared/gbuffer.h), scene materials, lights, alias table, BVH, frame
-// constants. Writes: radiance (rgba32f per pixel, row-major from the top-left; the host averages
+// light sample: the environment map with probability env.params.x (its luminance x solid-angle
+// distribution, shared/environment.h), else one emitter from the power alias table (solid-angle
+// pdf for triangles); one shadow ray, BRDF. Sky pixels show the environment along the camera ray
+// (lib/environment.glsl env_sky_radiance; the uniform sky colour without a map).
+// Reads: G-buffer images (shared/gbuffer.h), scene materials, lights, alias table, environment
+// (env_*), BVH through lib/visibility.glsl (texel views by default), frame constants.
+// Writes: radiance (rgba32f per pixel, row-major from the top-left; the host averages
 // frames). History: none.
 // Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride): lavapipe hands each CPU
 // thread a contiguous range of workgroups, so without the shuffle the thread that gets the sky
@@ -10,7 +14,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-#include "lib/bvh_traverse.glsl"
+#include "lib/visibility.glsl"
+#include "lib/environment.glsl"
 #include "integrators/baseline.h"
 #include "shared/alias_table.h"
 #include "shared/brdf.h"
@@ -78,15 +83,28 @@ vec3 sample_light(uint index, float select_pdf, vec3 x, vec3 n, vec3 ng, vec3 v,
   if (dot(ng, l) <= 0.0) return vec3(0.0);
   vec3 f = brdf_eval(n, v, l, mat.base_color.rgb, mat.params.x, mat.params.y, mat.params.z);
   if (f == vec3(0.0) || incident == vec3(0.0)) return vec3(0.0);
-  if (!bvh_visible(x, target)) return vec3(0.0);
+  if (!vis_visible(x, target)) return vec3(0.0);
   return f * incident / pdf;
+}
+
+// One environment sample (drawn with probability p_env): f * L * cos / pdf, visibility included.
+vec3 sample_environment(float p_env, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMaterial mat, vec4 u) {
+  vec3 l;
+  vec3 le;
+  float pdf = p_env * env_sample(env_header.env, u, l, le);
+  if (!(pdf > 0.0) || dot(ng, l) <= 0.0) return vec3(0.0);
+  vec3 f = brdf_eval(n, v, l, mat.base_color.rgb, mat.params.x, mat.params.y, mat.params.z);
+  if (f == vec3(0.0) || le == vec3(0.0)) return vec3(0.0);
+  // Anything that blocks the direction lies inside the scene's bounding sphere (x is in it).
+  if (!vis_visible(x, x + l * (4.0 * push.scene_radius))) return vec3(0.0);
+  return f * le / pdf;
 }
 
 vec3 shade_pixel(uvec2 pixel) {
   FrameConstants fc = frame_constants.frame;
   ivec2 p = ivec2(pixel);
   vec4 position = imageLoad(gbuffer_position, p);
-  if (gbuffer_is_sky(position.w)) return fc.environment.rgb;
+  if (gbuffer_is_sky(position.w)) return env_sky_radiance(fc, pixel);
   vec4 normals = imageLoad(gbuffer_normal, p);
   uvec4 ids = imageLoad(gbuffer_ids, p);
   GpuMaterial mat = scene_materials.m[ids.y];
@@ -96,15 +114,22 @@ vec3 shade_pixel(uvec2 pixel) {
   vec3 ng = oct_decode(normals.zw);  // geometric normal, facing the camera
   if (dot(n, ng) < 0.0) n = -n;
   vec3 result = imageLoad(gbuffer_emission_metallic, p).rgb;
-  if (push.light_count > 0u) {
+  float p_env = env_header.env.params.x;  // 0 without a map; 1 when no emitter has power
+  if (push.light_count > 0u || p_env > 0.0) {
     uint rng = rng_init(pixel, push.frame_index, fc.frame.w, kBaselineRngPass);
-    float u0 = rng_next_float(rng);
+    float u_select = rng_next_float(rng);
     float u1 = rng_next_float(rng);
     vec2 u_light = rng_next_vec2(rng);
-    uint slot = alias_slot(push.light_count, u0);
-    uint index = alias_select(u1, light_alias.e[slot], slot);
-    float select_pdf = light_alias.e[index].pdf;
-    result += sample_light(index, select_pdf, x, n, ng, v, mat, u_light);
+    if (u_select < p_env) {
+      result += sample_environment(p_env, x, n, ng, v, mat, vec4(u_light, u1, rng_next_float(rng)));
+    } else if (push.light_count > 0u) {
+      // Reuse u_select, rescaled to [0,1), for the alias slot.
+      float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
+      uint slot = alias_slot(push.light_count, u0);
+      uint index = alias_select(u1, light_alias.e[slot], slot);
+      float select_pdf = (1.0 - p_env) * light_alias.e[index].pdf;
+      result += sample_light(index, select_pdf, x, n, ng, v, mat, u_light);
+    }
   }
   return result;
 }

@@ -11,15 +11,16 @@
 // Both strategies' pdfs are evaluated for every direction that either can produce, so emissive
 // triangles and the environment are counted once. Direct lighting only (no bounces).
 // Reads: G-buffer images (shared/gbuffer.h), scene buffers (lighting/scene/gpu_scene.h), frame
-// constants, env_* (the environment map,
-// lighting/lights/environment_map.h; a black 1-texel dummy when the level has none).
+// constants, env_* (the scene's environment map through lib/environment.glsl; a black 1-texel
+// stand-in when the level has none), the BVH through lib/visibility.glsl (texel views).
 // Writes: radiance (rgba32f per pixel, the mean of this dispatch's samples). History: none (the
 // host averages frames). Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride),
 // as integrators.baseline.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-#include "lib/bvh_traverse.glsl"
+#include "lib/visibility.glsl"
+#include "lib/environment.glsl"
 #include "integrators/reference.h"
 #include "shared/alias_table.h"
 #include "shared/brdf.h"
@@ -46,17 +47,6 @@ layout(binding = 16, rgba32f) uniform readonly image2D gbuffer_position;
 layout(binding = 17, rgba32f) uniform readonly image2D gbuffer_normal;
 layout(binding = 18, rgba32f) uniform readonly image2D gbuffer_emission_metallic;
 layout(binding = 19, rgba32ui) uniform readonly uimage2D gbuffer_ids;
-layout(std430, binding = 13) readonly buffer EnvTexelBuffer { vec4 t[]; } env_texels;
-layout(std430, binding = 14) readonly buffer EnvMarginalBuffer { AliasEntry e[]; } env_marginal;
-layout(std430, binding = 15) readonly buffer EnvConditionalBuffer { AliasEntry e[]; }
-    env_conditional;
-
-layout(std430, binding = 12) readonly buffer EnvHeaderBuffer { GpuEnvironment env; } env_header;
-
-vec4 env_fetch_texel(uint i) { return env_texels.t[i]; }
-AliasEntry env_fetch_marginal(uint i) { return env_marginal.e[i]; }
-AliasEntry env_fetch_conditional(uint i) { return env_conditional.e[i]; }
-
 layout(push_constant) uniform Push { ReferencePush push; };
 
 struct SurfaceHit {
@@ -67,7 +57,7 @@ struct SurfaceHit {
   uint light;             // this triangle's light index, or kInvalidLight
 };
 
-SurfaceHit surface_at(BvhHit hit) {
+SurfaceHit surface_at(VisHit hit) {
   GpuInstance inst = scene_instances.i[hit.instance];
   uint base = inst.geometry.y + 3u * hit.primitive;
   uint first_vertex = inst.geometry.w;
@@ -157,7 +147,8 @@ vec3 sample_light(Shading sh, inout uint rng) {
     if (!(pdf > 0.0)) return vec3(0.0);
     vec3 f = brdf(sh, l);
     if (f == vec3(0.0) || le == vec3(0.0)) return vec3(0.0);
-    if (bvh_trace_any(bvh_make_ray(sh.x, l, sh.offset, kBvhMiss))) return vec3(0.0);
+    // Anything that blocks the direction lies inside the scene's bounding sphere (x is in it).
+    if (!vis_visible(sh.x, sh.x + l * (4.0 * push.scene_radius))) return vec3(0.0);
     return f * le * (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
   }
   if (push.light_count == 0u) return vec3(0.0);
@@ -184,7 +175,7 @@ vec3 sample_light(Shading sh, inout uint rng) {
     if (!(pdf > 0.0)) return vec3(0.0);
     vec3 f = brdf(sh, l);
     if (f == vec3(0.0) || light.radiance.rgb == vec3(0.0)) return vec3(0.0);
-    if (!bvh_visible(sh.x, target)) return vec3(0.0);
+    if (!vis_visible(sh.x, target)) return vec3(0.0);
     return f * light.radiance.rgb * (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
   }
   // Punctual lights: a delta in direction, no BSDF sample can hit them (MIS weight 1).
@@ -208,7 +199,7 @@ vec3 sample_light(Shading sh, inout uint rng) {
   vec3 l = normalize(target - sh.x);
   vec3 f = brdf(sh, l);
   if (f == vec3(0.0)) return vec3(0.0);
-  if (!bvh_visible(sh.x, target)) return vec3(0.0);
+  if (!vis_visible(sh.x, target)) return vec3(0.0);
   return f * incident / select;
 }
 
@@ -222,12 +213,14 @@ vec3 sample_bsdf(Shading sh, inout uint rng) {
   if (!(pdf > 0.0)) return vec3(0.0);
   vec3 f = brdf(sh, l);
   if (f == vec3(0.0)) return vec3(0.0);
-  BvhHit hit;
-  if (bvh_trace_closest(bvh_make_ray(sh.x, l, sh.offset, kBvhMiss), hit)) {
+  VisHit hit;
+  // Start sh.offset along l (off the surface); t counts from there.
+  if (vis_trace_closest(sh.x + l * sh.offset, l, kVisInfinity, hit)) {
     SurfaceHit s = surface_at(hit);
     vec3 le = emitted(s, scene_materials.m[s.material], l);
     if (le == vec3(0.0)) return vec3(0.0);
-    float light_pdf = s.light != kInvalidLight ? triangle_light_pdf(s.light, hit.t, l) : 0.0;
+    float light_pdf =
+        s.light != kInvalidLight ? triangle_light_pdf(s.light, hit.t + sh.offset, l) : 0.0;
     return f * le * (power_heuristic(pdf, light_pdf) / pdf);
   }
   if (env_header.env.size.z == 0u) return vec3(0.0);
@@ -240,13 +233,7 @@ vec3 shade_pixel(uvec2 pixel) {
   FrameConstants fc = frame_constants.frame;
   ivec2 p = ivec2(pixel);
   vec4 position = imageLoad(gbuffer_position, p);
-  if (gbuffer_is_sky(position.w)) {
-    if (env_header.env.params.z == 0.0) return fc.environment.rgb;
-    vec2 ndc = (vec2(pixel) + 0.5) / vec2(fc.frame.xy) * 2.0 - 1.0;
-    vec4 near = fc.inv_view_proj * vec4(ndc, 0.0, 1.0);
-    vec4 far = fc.inv_view_proj * vec4(ndc, 0.5, 1.0);
-    return env_radiance(env_header.env, normalize(far.xyz / far.w - near.xyz / near.w));
-  }
+  if (gbuffer_is_sky(position.w)) return env_sky_radiance(fc, pixel);
   vec4 normals = imageLoad(gbuffer_normal, p);
   uvec4 ids = imageLoad(gbuffer_ids, p);
   GpuMaterial mat = scene_materials.m[ids.y];
