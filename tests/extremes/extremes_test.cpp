@@ -6,8 +6,8 @@
 // reference is meaningful, the image mean within a stated tolerance of it (the reference
 // integrator's image, a closed form, or the same scene at unit scale).
 //
-// Images are 64x36 (1/1.8 of a 4.3 MP frame's pixel count per 10^4); means over ~2300 pixels and a
-// few frames. Tolerances below say what noise and what precision they absorb.
+// Images are 64x36 (2304 pixels): means over all pixels of a few frames. Tolerances below say
+// what noise and what precision they absorb; measured values are in the comments.
 #include <gtest/gtest.h>
 
 #include <cstdio>
