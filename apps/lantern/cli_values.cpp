@@ -54,6 +54,7 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
     }
     config.settings.emplace_back(*key, s.substr(eq + 1));
   }
+  lighting::validate_integrator_config(config);
   return config;
 }
 
@@ -61,7 +62,14 @@ std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {
   const std::size_t x = size.find('x');
   if (x == std::string_view::npos)
     throw InputError(fmt::format("--size {}: expected WxH, e.g. 640x360", size));
-  return {parse_dimension(size.substr(0, x), size), parse_dimension(size.substr(x + 1), size)};
+  const std::uint32_t w = parse_dimension(size.substr(0, x), size);
+  const std::uint32_t h = parse_dimension(size.substr(x + 1), size);
+  // Per-pixel buffers (G-buffer, reservoirs, HDR) take ~200 bytes a pixel: cap at 4096^2 pixels
+  // (3.3 GB) so an absurd size is a clear error, not an out-of-memory failure mid-run.
+  if (std::uint64_t{w} * h > 4096ull * 4096ull)
+    throw InputError(fmt::format("--size {}: {} pixels is more than the 4096x4096 limit", size,
+                                 std::uint64_t{w} * h));
+  return {w, h};
 }
 
 }  // namespace lantern::app

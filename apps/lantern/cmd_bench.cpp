@@ -146,13 +146,15 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
   for (const auto& [name, values] : pass_ms) m.passes[name] = perf::summarize(values);
   const perf::Summary wall = perf::summarize(wall_ms);
 
-  // Rays per second: pixels over the G-buffer time (rasterised primary visibility), and the
+  // Rays per second: pixels over the G-buffer stages' time (rasterised primary visibility), and the
   // integrator's declared shadow rays over the time of the passes that trace them.
   const double pixels = static_cast<double>(width) * height;
   double primary_rps = 0.0, shadow_rps = 0.0;
-  if (auto it = m.passes.find("gbuffer"); it != m.passes.end() && it->second.median > 0.0) {
-    primary_rps = pixels / (it->second.median * 1e-3);
+  double gbuffer_ms = 0.0;  // every G-buffer stage: gbuffer, gbuffer.draws, .cull, .resolve
+  for (const auto& [name, s] : m.passes) {
+    if (name == "gbuffer" || name.rfind("gbuffer.", 0) == 0) gbuffer_ms += s.median;
   }
+  if (gbuffer_ms > 0.0) primary_rps = pixels / (gbuffer_ms * 1e-3);
   double shadow_rays = 0.0, shadow_ms = 0.0;
   for (const auto& [pass, per_pixel] : session.renderer().integrator().shadow_rays_per_pixel()) {
     if (auto it = m.passes.find(pass); it != m.passes.end()) {

@@ -213,7 +213,7 @@ void add_capture_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("--video", opts->video, "Also encode an .mp4 with ffmpeg");
   cmd->add_option("--exposure", opts->exposure,
                   "PNG/video exposure (default: automatic from the first frame, then fixed)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-6f, 1e6f));
   cmd->callback([opts, &options] { run_capture(*opts, options); });
 }
 

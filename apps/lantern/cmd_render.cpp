@@ -4,6 +4,7 @@
 // one .exr/.png file when one image results, else a directory of frame_NNNN.exr. --preset and
 // --set KEY=VALUE go to the integrator (an unknown key is an error).
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <charconv>
@@ -37,20 +38,6 @@ struct RenderOptions {
   bool still = false;  // --static: every frame renders the first rendered frame's snapshot
 };
 
-// "KEY=VALUE" settings, in order; InputError naming a malformed one.
-std::vector<std::pair<std::string, std::string>> parse_settings(
-    const std::vector<std::string>& settings) {
-  std::vector<std::pair<std::string, std::string>> out;
-  for (const std::string& s : settings) {
-    const std::size_t eq = s.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw InputError(fmt::format("--set {}: expected KEY=VALUE", s));
-    }
-    out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
-  }
-  return out;
-}
-
 // Whether --out names one image file (.exr/.png) or a directory; InputError for anything else
 // and for one file when several images result.
 bool out_is_file(const std::filesystem::path& out, std::size_t image_count) {
@@ -65,6 +52,24 @@ bool out_is_file(const std::filesystem::path& out, std::size_t image_count) {
                                  out.string(), image_count));
   }
   return true;
+}
+
+// The directory the output goes into must exist or be creatable, checked before rendering: the
+// nearest existing ancestor must be a writable directory.
+void require_writable_parent(const std::filesystem::path& out, bool file) {
+  std::filesystem::path dir = file ? out.parent_path() : out;
+  if (dir.empty()) dir = ".";
+  std::filesystem::path probe = std::filesystem::absolute(dir);
+  while (!std::filesystem::exists(probe) && probe.has_parent_path() &&
+         probe != probe.parent_path()) {
+    probe = probe.parent_path();
+  }
+  if (!std::filesystem::is_directory(probe)) {
+    throw InputError(fmt::format("--out {}: {} is not a directory", out.string(), probe.string()));
+  }
+  if (access(probe.c_str(), W_OK) != 0) {
+    throw InputError(fmt::format("--out {}: {} is not writable", out.string(), probe.string()));
+  }
 }
 
 void write_images(const std::filesystem::path& out,
@@ -85,9 +90,6 @@ void write_images(const std::filesystem::path& out,
 void run_render(const RenderOptions& o, const CommonOptions& common) {
   lighting::OfflineRenderRequest request;
   request.integrator.kind = lighting::parse_integrator(o.integrator);
-  request.integrator.preset = common.preset;
-  request.integrator.settings = parse_settings(common.settings);
-  request.integrator.spp = o.spp;
   request.first_frame = o.first_frame;
   request.animate = !o.still;
   const auto [width, height] = parse_size(common.size);
@@ -97,8 +99,13 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
   request.average = o.average;
   request.seed = common.seed;
   lighting::require_implemented(request.integrator.kind);
-  out_is_file(o.out, request.average ? 1u : request.frames);  // refuse a bad --out before work
+  // Refuse a bad --out before any work.
+  require_writable_parent(o.out, out_is_file(o.out, request.average ? 1u : request.frames));
   const auto level = std::make_shared<const Level>(load_level_argument(o.level));
+  // The level's settings for this integrator, then --set (apps/lantern/commands.h).
+  request.integrator = integrator_config(o.integrator, common, *level);
+  request.integrator.spp = o.spp;
+  lighting::validate_integrator_config(request.integrator);  // before any device work
 
   runtime::Device device({.selector = common.device});
   runtime::ShaderLibrary shaders;
@@ -155,7 +162,7 @@ void add_render_command(CLI::App& root, CommonOptions& options) {
                 "Render every frame from the first rendered frame's snapshot (no animation)");
   cmd->add_option("--out", opts->out, "Output directory, or one .exr/.png file")->required();
   cmd->add_option("--exposure", opts->exposure, "PNG exposure multiplier (default: automatic)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-6f, 1e6f));
   cmd->callback([opts, &options] { run_render(*opts, options); });
 }
 

@@ -17,7 +17,7 @@ void add_common_flags(CLI::App& cmd, CommonOptions& o) {
       ->capture_default_str();
   cmd.add_option("--set", o.settings, "Override a setting KEY=VALUE (repeatable)");
   cmd.add_option("--device", o.device, "Vulkan device: auto|cpu|gpu|INDEX")->capture_default_str();
-  cmd.add_option("--frames", o.frames, "Number of frames")->check(CLI::PositiveNumber);
+  cmd.add_option("--frames", o.frames, "Number of frames")->check(CLI::Range(1, 1000000));
   cmd.add_flag("--quiet", o.quiet, "Only print warnings and errors");
   cmd.parse_complete_callback([&o] {
     if (o.quiet) log::set_level(log::Level::Warning);

@@ -32,9 +32,7 @@ const char* integrator_name(IntegratorKind kind) {
 
 void require_implemented(IntegratorKind) {}
 
-std::unique_ptr<Integrator> make_integrator(runtime::Device& device,
-                                            runtime::ShaderLibrary& shaders,
-                                            const IntegratorConfig& config) {
+void validate_integrator_config(const IntegratorConfig& config) {
   switch (config.kind) {
     case IntegratorKind::Baseline:
       if (!config.settings.empty()) {
@@ -48,10 +46,10 @@ std::unique_ptr<Integrator> make_integrator(runtime::Device& device,
             "frames with --frames N --average instead)",
             config.spp));
       }
-      return std::make_unique<BaselineIntegrator>(device, shaders);
+      return;
     case IntegratorKind::Reference:
-      return std::make_unique<ReferenceIntegrator>(
-          device, shaders, parse_reference_settings(config.settings, config.spp));
+      (void)parse_reference_settings(config.settings, config.spp);
+      return;
     case IntegratorKind::Restir:
       if (config.spp > 1) {
         throw InputError(fmt::format(
@@ -59,6 +57,23 @@ std::unique_ptr<Integrator> make_integrator(runtime::Device& device,
             "light_candidates, spatial_passes and neighbours with --set instead)",
             config.spp));
       }
+      (void)make_restir_settings(config.preset, config.settings);
+      return;
+  }
+  throw InputError(fmt::format("unknown integrator kind {}", static_cast<int>(config.kind)));
+}
+
+std::unique_ptr<Integrator> make_integrator(runtime::Device& device,
+                                            runtime::ShaderLibrary& shaders,
+                                            const IntegratorConfig& config) {
+  validate_integrator_config(config);
+  switch (config.kind) {
+    case IntegratorKind::Baseline:
+      return std::make_unique<BaselineIntegrator>(device, shaders);
+    case IntegratorKind::Reference:
+      return std::make_unique<ReferenceIntegrator>(
+          device, shaders, parse_reference_settings(config.settings, config.spp));
+    case IntegratorKind::Restir:
       return std::make_unique<RestirIntegrator>(
           device, shaders, make_restir_settings(config.preset, config.settings));
   }

@@ -36,6 +36,10 @@ struct IntegratorConfig {
   std::uint32_t spp = 0;  // reference: samples per pixel per frame, 0 = its default
 };
 
+// Checks `config` without a device (settings keys and values, spp): InputError naming the
+// problem, so a command refuses bad settings before creating a device or writing anything.
+void validate_integrator_config(const IntegratorConfig& config);
+
 // The integrator `config` names, configured; InputError on unknown settings keys, bad values and
 // integrators not implemented yet.
 std::unique_ptr<Integrator> make_integrator(runtime::Device& device,

@@ -146,7 +146,7 @@ SceneData build_scene_data(const Level& level) {
     g.geometry =
         glm::uvec4(inst.material, first_index[inst.mesh],
                    static_cast<std::uint32_t>(mesh.indices.size()), first_vertex[inst.mesh]);
-    g.bvh = glm::uvec4(0u, gpu::kInvalidLight, 0u, 0u);
+    g.bvh = glm::uvec4(0u, gpu::kInvalidLight, glm::floatBitsToUint(1.0f), 0u);  // z: emission scale 1
     scene.instances.push_back(g);
     for (const glm::vec3& p : mesh.positions) {
       const glm::vec3 w = glm::vec3(inst.world * glm::vec4(p, 1.0f));

@@ -14,6 +14,7 @@
 #include "shared/scene.h"
 
 layout(std430, binding = 0) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
+layout(std430, binding = 3) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
 layout(std430, binding = 4) readonly buffer MaterialBuffer { GpuMaterial m[]; } scene_materials;
 
 layout(location = 0) in vec3 in_world;
@@ -50,7 +51,9 @@ void main() {
   if (dot(ns, ng_facing) < 0.0) ns = -ns;
 
   GpuMaterial material = scene_materials.m[in_ids.y];
-  vec3 emission = front ? finite_or_zero(material.emission.rgb) : vec3(0.0);
+  // The instance's emission scale (flicker, GpuInstance.bvh.z) as in the light records.
+  float emission_scale = uintBitsToFloat(scene_instances.i[in_ids.x].bvh.z);
+  vec3 emission = front ? finite_or_zero(material.emission.rgb * emission_scale) : vec3(0.0);
 
   // gl_FragCoord.w = 1 / clip w, and clip w is the linear view depth (w = -z_view).
   float view_depth = max(finite_or_zero(1.0 / gl_FragCoord.w), 1e-30);

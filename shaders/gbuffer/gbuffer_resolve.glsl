@@ -108,7 +108,11 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
 
   uint material_index = geometry.x;
   vec3 base_color = scene_materials.m[material_index].base_color.rgb;
-  vec3 emission = front ? gbuffer_finite_or_zero(scene_materials.m[material_index].emission.rgb)
+  // The instance's emission scale (the snapshot's flicker, GpuInstance.bvh.z) multiplies the
+  // material's emission, as it does for the light records sampled by the integrators.
+  float emission_scale = uintBitsToFloat(scene_instances.i[instance].bvh.z);
+  vec3 emission = front ? gbuffer_finite_or_zero(scene_materials.m[material_index].emission.rgb *
+                                                 emission_scale)
                         : vec3(0.0);
   vec2 params = scene_materials.m[material_index].params.xy;
 
