@@ -82,7 +82,18 @@ GraphicsPipeline::GraphicsPipeline(Device& device, std::shared_ptr<const ShaderC
   depth.depthWriteEnable = has_depth && desc.depth_write;
   depth.depthCompareOp = desc.depth_compare;
   std::vector<VkPipelineColorBlendAttachmentState> blend_attachments(desc.color_formats.size());
-  for (auto& a : blend_attachments) a.colorWriteMask = 0xf;  // no blending: G-buffer style writes
+  for (auto& a : blend_attachments) {
+    a.colorWriteMask = 0xf;  // no blending unless asked: G-buffer style writes
+    if (desc.alpha_blend) {
+      a.blendEnable = VK_TRUE;
+      a.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+      a.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      a.colorBlendOp = VK_BLEND_OP_ADD;
+      a.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      a.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      a.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
+  }
   VkPipelineColorBlendStateCreateInfo blend{
       VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = static_cast<std::uint32_t>(blend_attachments.size());

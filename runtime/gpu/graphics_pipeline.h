@@ -27,6 +27,10 @@ struct GraphicsPipelineDesc {
   bool depth_test = true;
   bool depth_write = true;
   VkCompareOp depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
+  // Alpha blending on every colour attachment ("over": colour SRC_ALPHA / ONE_MINUS_SRC_ALPHA,
+  // alpha ONE / ONE_MINUS_SRC_ALPHA, so a layer cleared to 0 ends up premultiplied), e.g. UI.
+  // false: plain writes (G-buffer style).
+  bool alpha_blend = false;
   SpecConstants constants;
 };
 

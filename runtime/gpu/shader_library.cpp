@@ -72,4 +72,13 @@ std::shared_ptr<const ShaderCode> ShaderLibrary::load(std::string_view relpath,
   return code;
 }
 
+void ShaderLibrary::replace(std::string_view relpath, std::string_view variant,
+                            std::shared_ptr<const ShaderCode> code) {
+  if (!code) throw RuntimeError(fmt::format("shader '{}': replaced by no code", relpath));
+  const std::string name =
+      variant.empty() ? std::string(relpath) : fmt::format("{}.{}", relpath, variant);
+  std::lock_guard lock(mutex_);
+  cache_.insert_or_assign(name, std::move(code));
+}
+
 }  // namespace lantern::runtime

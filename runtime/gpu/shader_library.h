@@ -29,6 +29,10 @@ class ShaderLibrary {
 
   // Throws lantern::RuntimeError naming the file when it is missing or not valid SPIR-V.
   std::shared_ptr<const ShaderCode> load(std::string_view relpath, std::string_view variant = "");
+  // Hot reload: from now on load(relpath, variant) returns `code` (e.g. compile_glsl output
+  // wrapped by make_shader_code); pipelines built earlier keep the code they were built with.
+  void replace(std::string_view relpath, std::string_view variant,
+               std::shared_ptr<const ShaderCode> code);
   const std::filesystem::path& dir() const { return dir_; }
   std::filesystem::path spirv_path(std::string_view relpath, std::string_view variant = "") const;
 

@@ -1,0 +1,166 @@
+// The F1 panel (play_panel.h).
+#include "apps/lantern/play/play_panel.h"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace lantern::app {
+namespace {
+
+using lighting::IntegratorKind;
+using lighting::RestirBiasCorrection;
+using lighting::RestirDebugView;
+
+std::string fmt_value(float value, const char* unit) {
+  return fmt::format("{:.2f} {}", value, unit);
+}
+
+void plot(const char* label, const std::deque<float>& series, const char* unit) {
+  if (series.empty()) return;
+  const std::vector<float> values(series.begin(), series.end());
+  const float top = *std::max_element(values.begin(), values.end());
+  const std::string overlay = fmt_value(values.back(), unit);
+  ImGui::PlotLines(label, values.data(), static_cast<int>(values.size()), 0, overlay.c_str(), 0.0f,
+                   top * 1.1f + 1e-3f, ImVec2(0.0f, 36.0f));
+}
+
+}  // namespace
+
+void push_sample(std::deque<float>& series, float value) {
+  series.push_back(value);
+  while (series.size() > kGraphFrames) series.pop_front();
+}
+
+const char* play_keys_help() {
+  return "Right mouse + move: look   WASD: fly   Q/E: down/up   Shift: faster   wheel: speed\n"
+         "P: back on the camera path   F: flashlight   L: level lights   K: emissive surfaces\n"
+         "Space: spawn a light where you look   C: clear spawned lights\n"
+         "1/2/3: restir/baseline/reference   V: next debug view   F1: panel   Esc: quit";
+}
+
+void draw_panel(PanelState& s) {
+  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360.0f, 0.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (!ImGui::Begin("lantern play (F1)")) {
+    ImGui::End();
+    return;
+  }
+  ImGui::Text("%s  %ux%u", s.level.c_str(), s.width, s.height);
+  if (!s.frame_ms.empty()) {
+    ImGui::Text("frame %.2f ms GPU, %.1f ms wall (%.1f fps)", s.frame_ms.back(),
+                s.wall_ms.empty() ? 0.0f : s.wall_ms.back(),
+                s.wall_ms.empty() || s.wall_ms.back() <= 0.0f ? 0.0f : 1000.0f / s.wall_ms.back());
+    plot("GPU ms", s.frame_ms, "ms");
+    plot("wall ms", s.wall_ms, "ms");
+  }
+
+  if (ImGui::CollapsingHeader("Integrator", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int kind = s.integrator == IntegratorKind::Restir     ? 0
+               : s.integrator == IntegratorKind::Baseline ? 1
+                                                          : 2;
+    if (ImGui::Combo("integrator", &kind, "restir\0baseline\0reference (progressive)\0")) {
+      s.integrator = kind == 0   ? IntegratorKind::Restir
+                     : kind == 1 ? IntegratorKind::Baseline
+                                 : IntegratorKind::Reference;
+      s.rebuild = true;
+    }
+    if (s.integrator != IntegratorKind::Restir) {
+      ImGui::Checkbox("accumulate while still", &s.progressive);
+      ImGui::SameLine();
+      ImGui::Text("%u frames", s.accumulated);
+    }
+  }
+
+  if (s.integrator == IntegratorKind::Restir &&
+      ImGui::CollapsingHeader("ReSTIR", ImGuiTreeNodeFlags_DefaultOpen)) {
+    const std::vector<std::string> presets = lighting::restir_preset_names();
+    int preset = 0;
+    for (std::size_t i = 0; i < presets.size(); ++i)
+      if (presets[i] == s.preset) preset = static_cast<int>(i);
+    if (ImGui::BeginCombo("preset", s.preset.c_str())) {
+      for (std::size_t i = 0; i < presets.size(); ++i) {
+        if (ImGui::Selectable(presets[i].c_str(), static_cast<int>(i) == preset)) {
+          s.preset = presets[i];
+          s.restir = lighting::restir_preset(s.preset);
+          s.settings_changed = true;
+        }
+      }
+      ImGui::EndCombo();
+    }
+    lighting::RestirSettings& r = s.restir;
+    bool c = false;
+    auto slider_u = [&](const char* label, std::uint32_t& v, int lo, int hi) {
+      int x = static_cast<int>(v);
+      if (ImGui::SliderInt(label, &x, lo, hi)) {
+        v = static_cast<std::uint32_t>(std::clamp(x, lo, hi));
+        c = true;
+      }
+    };
+    auto slider_f = [&](const char* label, float& v, float lo, float hi, const char* fmt) {
+      if (ImGui::SliderFloat(label, &v, lo, hi, fmt)) {
+        v = std::clamp(v, lo, hi);
+        c = true;
+      }
+    };
+    slider_u("light candidates", r.light_candidates, 1, 64);
+    slider_u("BSDF candidates", r.bsdf_candidates, 0, 8);
+    c |= ImGui::Checkbox("temporal reuse", &r.temporal);
+    slider_f("M cap factor", r.m_cap_factor, 1.0f, 100.0f, "%.1f");
+    slider_u("spatial passes", r.spatial_passes, 0, 4);
+    slider_u("neighbours", r.neighbours, 0, 16);
+    slider_u("disocclusion boost", r.disocclusion_boost, 0, 16);
+    slider_f("radius (px)", r.radius, 1.0f, 64.0f, "%.1f");
+    int bias = static_cast<int>(r.bias_correction);
+    if (ImGui::Combo("bias correction", &bias, "none\0balance\0pairwise\0")) {
+      r.bias_correction = static_cast<RestirBiasCorrection>(bias);
+      c = true;
+    }
+    c |= ImGui::Checkbox("initial visibility", &r.initial_visibility);
+    slider_f("boiling filter", r.boiling_filter, 0.0f, 1.0f, "%.2f");
+    slider_f("depth threshold", r.depth_threshold, 0.001f, 1.0f, "%.3f");
+    slider_f("normal threshold", r.normal_threshold, -1.0f, 1.0f, "%.2f");
+    int view = static_cast<int>(r.debug_view);
+    if (ImGui::Combo("debug view", &view, "radiance\0W\0M\0age\0light\0disocclusion\0motion\0")) {
+      r.debug_view = static_cast<RestirDebugView>(view);
+      c = true;
+    }
+    if (c) s.settings_changed = true;
+  }
+
+  if (ImGui::CollapsingHeader("GPU passes", ImGuiTreeNodeFlags_DefaultOpen)) {
+    for (const auto& [name, series] : s.pass_ms) plot(name.c_str(), series, "ms");
+  }
+
+  if (ImGui::CollapsingHeader("Lights and camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (ImGui::Checkbox("flashlight (F)", &s.flashlight)) s.toggle_flashlight = true;
+    ImGui::SameLine();
+    if (ImGui::Checkbox("level lights (L)", &s.level_lights)) s.toggle_level_lights = true;
+    if (ImGui::Checkbox("emissive surfaces (K)", &s.emissive)) s.toggle_emissive = true;
+    if (ImGui::Button("spawn light (Space)")) s.spawn_light = true;
+    ImGui::SameLine();
+    if (ImGui::Button("clear (C)")) s.clear_lights = true;
+    ImGui::SameLine();
+    ImGui::Text("%u spawned", s.spawned);
+    ImGui::Text("camera: %s, %.2f m/s", s.manual_camera ? "manual" : "path", s.camera_speed);
+    ImGui::Text("at (%.2f, %.2f, %.2f)", s.camera_position[0], s.camera_position[1],
+                s.camera_position[2]);
+    if (s.manual_camera && ImGui::Button("back on path (P)")) s.resume_path = true;
+  }
+
+  if (ImGui::CollapsingHeader("Shaders", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::TextWrapped("hot reload: %s", s.reload_status.c_str());
+    if (!s.reload_error.empty()) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.4f, 1.0f));
+      ImGui::TextWrapped("%s", s.reload_error.c_str());
+      ImGui::PopStyleColor();
+    }
+  }
+  if (ImGui::CollapsingHeader("Keys")) ImGui::TextUnformatted(play_keys_help());
+  ImGui::End();
+}
+
+}  // namespace lantern::app

@@ -1,0 +1,473 @@
+// The play loop. Per frame:
+//   poll window events + script events -> PlayInput; shader sources polled for hot reload;
+//   begin_frame (skipped while minimised); follow the render size; keys and the F1 panel; fly
+//   camera input into the World; world.step(); graph: scene.upload -> gbuffer -> integrator
+//   [-> play.accumulate while still, baseline/reference] -> frame.output (filmic) [-> play.ui ->
+//   play.ui_composite] -> target.present. GPU timestamps per pass (one GpuTimer per frame slot,
+//   read back when the slot comes round again) feed the panel's graphs.
+#include "apps/lantern/play/play_session.h"
+
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "apps/lantern/play/play_lights.h"
+#include "apps/lantern/play/play_panel.h"
+#include "apps/lantern/play/play_ui.h"
+#include "apps/lantern/play/shader_reload.h"
+#include "engine/core/error.h"
+#include "engine/core/log.h"
+#include "engine/level/level_loader.h"
+#include "engine/world/components.h"
+#include "engine/world/fly_camera.h"
+#include "engine/world/world.h"
+#include "lighting/frame/frame_renderer.h"
+#include "lighting/integrators/auto_exposure.h"
+#include "lighting/integrators/offline_render.h"
+#include "lighting/restir/restir_integrator.h"
+#include "play/play_ui.h"
+#include "runtime/core/device.h"
+#include "runtime/gpu/bindings.h"
+#include "runtime/gpu/compute_pipeline.h"
+#include "runtime/gpu/gpu_timer.h"
+#include "runtime/gpu/shader_library.h"
+#include "runtime/graph/graph_executor.h"
+#include "runtime/graph/render_graph.h"
+#include "runtime/target/window_target.h"
+#include "runtime/window/presentation.h"
+#include "runtime/window/window.h"
+
+namespace lantern::app {
+namespace {
+
+namespace graph = runtime::graph;
+using Clock = std::chrono::steady_clock;
+
+constexpr graph::AccessState kAnyPriorUse{
+    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+    VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+constexpr float kLookRadiansPerUnit = 0.004f;
+
+// The renderer and everything built from one ShaderLibrary: replaced as a whole on an integrator
+// switch or a shader reload (the library outlives what was built from it).
+struct RenderBundle {
+  std::unique_ptr<runtime::ShaderLibrary> shaders;
+  std::unique_ptr<lighting::FrameRenderer> renderer;
+  std::unique_ptr<runtime::ComputePipeline> accumulate;
+};
+
+lighting::IntegratorConfig config_for(const PanelState& panel,
+                                      const lighting::IntegratorConfig& base) {
+  lighting::IntegratorConfig c;
+  c.kind = panel.integrator;
+  c.preset = panel.preset;
+  if (c.kind == lighting::IntegratorKind::Restir) {
+    c.settings = lighting::describe(panel.restir);
+  } else if (c.kind == base.kind) {
+    c.settings = base.settings;
+    c.spp = base.spp;
+  }
+  return c;
+}
+
+RenderBundle build_bundle(runtime::Device& device, const ShaderReloader& reloader,
+                          const std::shared_ptr<const Level>& level,
+                          const lighting::IntegratorConfig& config, std::uint32_t width,
+                          std::uint32_t height, std::uint32_t seed) {
+  RenderBundle b;
+  b.shaders = reloader.make_library();
+  b.renderer = std::make_unique<lighting::FrameRenderer>(
+      device, *b.shaders, level, lighting::make_integrator(device, *b.shaders, config), width,
+      height, seed);
+  b.renderer->warm_up();
+  b.accumulate = std::make_unique<runtime::ComputePipeline>(
+      device, b.shaders->load("play/play_accumulate.comp"),
+      runtime::ComputePipelineDesc{.name = "play.accumulate"});
+  b.accumulate->warm_up();
+  return b;
+}
+
+runtime::Buffer make_accum(runtime::Device& device, std::uint32_t w, std::uint32_t h) {
+  return runtime::Buffer(device, {.size = std::uint64_t{w} * h * 16,
+                                  .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                  .name = "play.accum"});
+}
+
+graph::BufferHandle add_accumulate_pass(graph::RenderGraph& g, const runtime::ComputePipeline& p,
+                                        const runtime::Buffer& accum, graph::BufferHandle hdr,
+                                        std::uint32_t pixels, std::uint32_t count) {
+  struct Data {
+    graph::BufferHandle hdr, accum;
+  };
+  const graph::BufferHandle imported =
+      g.import_buffer("play.accum", accum.handle(), {accum.size()}, {.initial = kAnyPriorUse});
+  const gpu::PlayAccumulatePush push{pixels, count, 0u, 0u};
+  const Data& data = g.add_pass<Data>(
+      "play.accumulate", graph::PassKind::Compute,
+      [&](graph::PassBuilder& b, Data& d) {
+        d.hdr = b.write(hdr, graph::Access::StorageReadWrite);
+        d.accum = b.write(imported, graph::Access::StorageReadWrite);
+        b.side_effect();
+      },
+      [&p, push](graph::PassContext& ctx, const Data& d) {
+        p.bind(ctx.cmd(), runtime::Bindings(p)
+                              .buffer("hdr", ctx.buffer(d.hdr), 0, VK_WHOLE_SIZE)
+                              .buffer("accum", ctx.buffer(d.accum), 0, VK_WHOLE_SIZE));
+        p.push_constants(ctx.cmd(), push);
+        p.dispatch_threads(ctx.cmd(), push.pixels);
+      });
+  return data.hdr;
+}
+
+Camera world_camera(World& world) {
+  Camera camera;
+  world.registry().view<const CameraComponent>().each(
+      [&](const CameraComponent& c) { camera = c.camera; });
+  return camera;
+}
+
+bool same_pose(const SnapshotCamera& a, const SnapshotCamera& b) {
+  return a.view == b.view && a.projection == b.projection;
+}
+
+}  // namespace
+
+PlayReport run_play(const PlayConfig& config) {
+  PlayReport report;
+  Level loaded = load_level_argument(config.level);
+  const auto original = std::make_shared<const Level>(loaded);
+
+  runtime::DeviceOptions device_options{.selector = config.device};
+  const auto glfw = runtime::enable_presentation(device_options);
+  runtime::Device device(device_options);
+  runtime::Window window({.title = fmt::format("lantern - {} - F1 panel, right mouse + WASD fly, "
+                                               "F flashlight, Space spawn light, Esc quit",
+                                               config.level),
+                          .width = config.width,
+                          .height = config.height});
+  runtime::WindowTarget target(device, window);
+  const auto fb = window.framebuffer_size();
+  std::uint32_t width = fb.width > 0 ? fb.width : config.width;
+  std::uint32_t height = fb.height > 0 ? fb.height : config.height;
+
+  // Exposure: the log-average luminance of one headless frame of the level as authored.
+  float exposure = 1.0f;
+  {
+    runtime::ShaderLibrary probe_shaders;
+    lighting::OfflineRenderRequest probe;
+    probe.width = std::min<std::uint32_t>(width, 320);
+    probe.height = std::max<std::uint32_t>(1, probe.width * height / std::max(width, 1u));
+    probe.seed = config.seed;
+    exposure = lighting::auto_exposure(
+        lighting::render_offline(device, probe_shaders, original, probe).images.front());
+  }
+  const PlayLightSlots slots = add_play_lights(loaded, exposure);
+  const auto level = std::make_shared<const Level>(std::move(loaded));
+
+  ShaderReloader reloader(config.shader_source_dir.empty() ? ShaderReloader::default_source_dir()
+                                                           : config.shader_source_dir,
+                          runtime::ShaderLibrary::default_dir());
+  reloader.poll(0.0);  // records the current mtimes
+
+  PanelState panel;
+  panel.level = config.level;
+  panel.integrator = config.integrator.kind;
+  panel.preset = config.integrator.preset;
+  if (panel.integrator == lighting::IntegratorKind::Restir)
+    panel.restir =
+        lighting::make_restir_settings(config.integrator.preset, config.integrator.settings);
+  else
+    panel.restir = lighting::restir_preset(config.integrator.preset);
+  bool show_panel = config.show_panel;
+
+  RenderBundle bundle =
+      build_bundle(device, reloader, level, config.integrator, width, height, config.seed);
+  runtime::ShaderLibrary ui_shaders;
+  PlayUi ui(device, ui_shaders, target.frames_in_flight());
+  ui.warm_up();
+  runtime::Buffer accum = make_accum(device, width, height);
+
+  World world(level, {.threads = 1,
+                      .seed = config.seed,
+                      .fixed_dt = 1.0 / 60.0,
+                      .aspect = static_cast<float>(width) / static_cast<float>(height)});
+  enable_fly_camera(world);
+  PlayLights lights(world, slots);
+
+  graph::RenderGraph render_graph;
+  graph::GraphExecutor executor(device);
+  std::vector<std::unique_ptr<runtime::GpuTimer>> timers;
+  std::vector<bool> timer_used(target.frames_in_flight(), false);
+  for (std::uint32_t i = 0; i < target.frames_in_flight(); ++i)
+    timers.push_back(std::make_unique<runtime::GpuTimer>(device, 256));
+
+  InputScript script = config.script;
+  PlayInput before;
+  std::uint32_t accumulated = 0;
+  bool drop_history = false;
+  std::uint64_t polls = 0;
+  auto last_wall = Clock::now();
+  log::info("play: {} at {}x{}, {} integrator, exposure {:.3g}; keys:\n{}", config.level, width,
+            height, lighting::integrator_name(panel.integrator), exposure, play_keys_help());
+
+  auto rebuild = [&](const lighting::IntegratorConfig& c, const char* why) {
+    device.wait_idle();
+    bundle = build_bundle(device, reloader, level, c, width, height, config.seed);
+    drop_history = true;
+    accumulated = 0;
+    ++report.rebuilds;
+    log::info("play: {} ({} integrator)", why, lighting::integrator_name(c.kind));
+  };
+
+  while (true) {
+    window.poll_events();
+    PlayInput input = input_from_window(window.input());
+    script.apply(report.frames, input);
+    ++polls;
+    if (input.quit || window.should_close() || input.key(GLFW_KEY_ESCAPE)) break;
+    if (config.max_frames > 0 && report.frames >= config.max_frames) break;
+
+    // Hot reload: recompile what changed; a new bundle from the new code, or keep the old one.
+    if (const auto changed = reloader.poll(config.watch_interval_s); !changed.empty()) {
+      const ReloadResult r = reloader.recompile(changed);
+      if (!r.ok()) {
+        ++report.reload_failures;
+        report.last_reload_error = r.errors;
+        panel.reload_error = r.errors;
+        panel.reload_status = fmt::format("{} failed to compile; keeping the old pipelines",
+                                          fmt::join(r.changed, ", "));
+        log::warn("play: shader reload failed, keeping the old pipelines:\n{}", r.errors);
+      } else if (!r.compiled.empty()) {
+        try {
+          rebuild(config_for(panel, config.integrator), "shaders reloaded");
+          ++report.reloads_ok;
+          panel.reload_error.clear();
+          panel.reload_status = fmt::format("reloaded {}", fmt::join(r.compiled, ", "));
+        } catch (const std::exception& error) {
+          ++report.reload_failures;
+          report.last_reload_error = error.what();
+          panel.reload_error = error.what();
+          panel.reload_status = "pipelines failed to build; keeping the old ones";
+          log::warn("play: shader reload failed, keeping the old pipelines: {}", error.what());
+          device.wait_idle();
+          bundle = build_bundle(device, reloader, level, config_for(panel, config.integrator),
+                                width, height, config.seed);
+        }
+      }
+    }
+
+    if (window.minimized()) {
+      ++report.skipped;
+      window.wait_events(0.05);
+      before = input;
+      continue;
+    }
+    const auto frame = target.begin_frame();
+    if (!frame) {
+      ++report.skipped;
+      before = input;
+      continue;
+    }
+    if (config.on_frame) config.on_frame(report.frames);
+
+    // GPU times of the frame that last used this slot (its fence has been waited for).
+    if (timer_used[frame->slot]) {
+      double gpu_ms = 0.0;
+      for (const runtime::GpuTimer::Result& r : timers[frame->slot]->resolve()) {
+        if (r.depth != 0) continue;
+        push_sample(panel.pass_ms[r.name], static_cast<float>(r.ms));
+        if (r.name.rfind("target.", 0) != 0) gpu_ms += r.ms;
+      }
+      push_sample(panel.frame_ms, static_cast<float>(gpu_ms));
+      report.frame_ms.push_back(gpu_ms);
+    }
+
+    // The render size follows the window.
+    const VkExtent2D extent = frame->render_extent;
+    if (extent.width != width || extent.height != height) {
+      device.wait_idle();
+      width = extent.width;
+      height = extent.height;
+      bundle.renderer->resize(width, height);
+      accum = make_accum(device, width, height);
+      accumulated = 0;
+      world.registry().ctx().get<WorldSettings>().aspect =
+          static_cast<float>(width) / static_cast<float>(height);
+      world.request_camera_cut();
+    }
+
+    const auto now = Clock::now();
+    const float wall_dt = std::chrono::duration<float>(now - last_wall).count();
+    last_wall = now;
+
+    // ImGui first, so its mouse/keyboard capture is known for the camera.
+    if (pressed(input, before, GLFW_KEY_F1)) show_panel = !show_panel;
+    if (show_panel) {
+      ui.new_frame(input, width, height, wall_dt);
+      draw_panel(panel);
+    }
+    const bool keys_free = !(show_panel && ui.wants_keyboard());
+    const bool mouse_free =
+        !(show_panel && ui.wants_mouse()) || input.button(GLFW_MOUSE_BUTTON_RIGHT);
+    auto key_pressed = [&](int key) { return keys_free && pressed(input, before, key); };
+
+    // Integrator and ReSTIR settings.
+    if (key_pressed(GLFW_KEY_1) && panel.integrator != lighting::IntegratorKind::Restir) {
+      panel.integrator = lighting::IntegratorKind::Restir;
+      panel.rebuild = true;
+    }
+    if (key_pressed(GLFW_KEY_2) && panel.integrator != lighting::IntegratorKind::Baseline) {
+      panel.integrator = lighting::IntegratorKind::Baseline;
+      panel.rebuild = true;
+    }
+    if (key_pressed(GLFW_KEY_3) && panel.integrator != lighting::IntegratorKind::Reference) {
+      panel.integrator = lighting::IntegratorKind::Reference;
+      panel.rebuild = true;
+    }
+    if (key_pressed(GLFW_KEY_V)) {
+      panel.restir.debug_view = static_cast<lighting::RestirDebugView>(
+          (static_cast<std::uint32_t>(panel.restir.debug_view) + 1) % 7);
+      panel.settings_changed = true;
+    }
+    if (panel.rebuild) {
+      panel.rebuild = false;
+      panel.settings_changed = false;
+      try {
+        rebuild(config_for(panel, config.integrator), "integrator switched");
+      } catch (const std::exception& error) {
+        log::warn("play: integrator switch failed: {}", error.what());
+        panel.reload_error = error.what();
+      }
+    }
+    if (panel.settings_changed) {
+      panel.settings_changed = false;
+      if (auto* restir =
+              dynamic_cast<lighting::RestirIntegrator*>(&bundle.renderer->integrator())) {
+        restir->set_settings(panel.restir);
+      }
+    }
+
+    // Lights.
+    if (key_pressed(GLFW_KEY_F) || std::exchange(panel.toggle_flashlight, false))
+      lights.toggle_flashlight();
+    if (key_pressed(GLFW_KEY_L) || std::exchange(panel.toggle_level_lights, false))
+      lights.toggle_level_lights();
+    if (key_pressed(GLFW_KEY_K) || std::exchange(panel.toggle_emissive, false))
+      lights.toggle_emissive_surfaces();
+    if (key_pressed(GLFW_KEY_SPACE) || std::exchange(panel.spawn_light, false)) {
+      if (lights.spawn_light(bundle.renderer->scene()))
+        log::info("play: light spawned at ({:.2f}, {:.2f}, {:.2f})", lights.last_spawn()->x,
+                  lights.last_spawn()->y, lights.last_spawn()->z);
+    }
+    if (key_pressed(GLFW_KEY_C) || std::exchange(panel.clear_lights, false)) lights.clear_spawned();
+
+    // Fly camera: right button (look) or any movement key takes manual control; P resumes.
+    FlyCamera& fly = fly_camera(world);
+    FlyCameraInput move;
+    if (keys_free) {
+      move.move.x = float(input.key(GLFW_KEY_D)) - float(input.key(GLFW_KEY_A));
+      move.move.y = float(input.key(GLFW_KEY_E)) - float(input.key(GLFW_KEY_Q));
+      move.move.z = float(input.key(GLFW_KEY_W)) - float(input.key(GLFW_KEY_S));
+      move.boost = input.key(GLFW_KEY_LEFT_SHIFT) || input.key(GLFW_KEY_RIGHT_SHIFT) ? 4.0f : 1.0f;
+    }
+    const bool looking = mouse_free && input.button(GLFW_MOUSE_BUTTON_RIGHT);
+    if (looking) {
+      move.yaw = static_cast<float>(-input.cursor_dx) * kLookRadiansPerUnit;
+      move.pitch = static_cast<float>(-input.cursor_dy) * kLookRadiansPerUnit;
+    }
+    if (mouse_free && input.scroll_y != 0.0)
+      fly.speed = std::clamp(fly.speed * std::pow(1.25f, static_cast<float>(input.scroll_y)), 0.01f,
+                             1000.0f);
+    if (!fly.active && (looking || glm::length(move.move) > 0.0f)) {
+      take_manual_control(world);
+      fly.speed = std::max(0.05f, 0.25f * level_radius(*level));
+      log::info("play: manual camera (P resumes the path)");
+    }
+    if ((key_pressed(GLFW_KEY_P) || std::exchange(panel.resume_path, false)) && fly.active)
+      resume_camera_path(world);
+    if (looking != window.cursor_captured()) window.capture_cursor(looking);
+    move.dt = config.script.empty() ? std::clamp(wall_dt, 0.0f, 0.1f) : 0.0f;
+    fly.input = move;
+
+    const Camera camera_before = world_camera(world);
+    const FrameSnapshot& snapshot = world.step();
+    report.camera_travel += glm::length(world_camera(world).position - camera_before.position);
+    if (fly.active) ++report.manual_frames;
+    if (snapshot.camera_cut) ++report.camera_cuts;
+
+    // The frame's graph.
+    render_graph.begin_frame();
+    if (std::exchange(drop_history, false)) render_graph.invalidate_history();
+    timers[frame->slot]->reset(frame->cmd);
+    timer_used[frame->slot] = true;
+    graph::BufferHandle hdr = bundle.renderer->add_frame(render_graph, snapshot);
+    if (panel.integrator != lighting::IntegratorKind::Restir && panel.progressive) {
+      const auto& update = bundle.renderer->scene().last_update();
+      const bool still = !snapshot.camera_cut && same_pose(snapshot.camera, snapshot.prev_camera) &&
+                         update.moved_instances == 0 && !update.lights_changed;
+      accumulated = still ? accumulated + 1 : 1;
+      hdr = add_accumulate_pass(render_graph, *bundle.accumulate, accum, hdr, width * height,
+                                accumulated);
+    } else {
+      accumulated = 0;
+    }
+    graph::ImageHandle output = bundle.renderer->add_output_pass(
+        render_graph, hdr, target.import_output(render_graph, *frame), exposure);
+    if (show_panel) {
+      output = ui.add_passes(render_graph, output, width, height, frame->slot);
+      ++report.panel_frames;
+      report.max_ui_triangles = std::max(report.max_ui_triangles, ui.last_triangles());
+    }
+    target.add_delivery(render_graph, *frame, output);
+    render_graph.bake(executor.compile_options());
+    executor.record(render_graph, frame->cmd, timers[frame->slot].get());
+    render_graph.end_frame();
+    target.end_frame(*frame);
+    ++report.frames;
+
+    // Panel state for the next frame.
+    const float wall_ms = std::chrono::duration<float, std::milli>(Clock::now() - now).count();
+    push_sample(panel.wall_ms, wall_ms);
+    report.wall_ms.push_back(wall_ms);
+    panel.width = width;
+    panel.height = height;
+    panel.accumulated = accumulated;
+    panel.flashlight = lights.flashlight_on();
+    panel.level_lights = lights.level_lights_on();
+    panel.emissive = lights.emissive_on();
+    panel.spawned = lights.spawned();
+    panel.manual_camera = fly.active;
+    panel.camera_speed = fly.speed;
+    const glm::vec3 p = world_camera(world).position;
+    panel.camera_position[0] = p.x;
+    panel.camera_position[1] = p.y;
+    panel.camera_position[2] = p.z;
+    before = input;
+  }
+  if (show_panel) ui.end_frame_without_drawing();
+  device.wait_idle();
+  report.spawned_lights = lights.spawned();
+  report.flashlight = lights.flashlight_on();
+  report.integrator = lighting::integrator_name(panel.integrator);
+  report.validation_errors = device.validation_errors();
+  const auto median = [](std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  log::info(
+      "play: {} frames shown ({} skipped), median {:.2f} ms GPU / {:.2f} ms wall per frame, camera "
+      "moved {:.2f} m, {} validation errors",
+      report.frames, report.skipped, median(report.frame_ms), median(report.wall_ms),
+      report.camera_travel, report.validation_errors);
+  (void)polls;
+  if (device.validation_enabled() && device.validation_errors() > 0)
+    throw RuntimeError(fmt::format("play: {} validation errors", device.validation_errors()));
+  return report;
+}
+
+}  // namespace lantern::app
