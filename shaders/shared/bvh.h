@@ -110,16 +110,26 @@ LANTERN_FUNC BvhRay bvh_make_ray(vec3 origin, vec3 direction, float tmin, float 
   return ray;
 }
 
+// Relative part of the shadow epsilon: 4e-6 of the largest coordinate magnitude is ~32 float
+// ulps there, enough for the rounding of reconstructed hit points, and no longer grows to metres
+// far from the origin (at 1e5 m the old 1e-4 * |p| was 10 m and erased every shadow).
+LANTERN_CONST float kBvhShadowRelativeEpsilon = 4e-6f;
+
+// World-space epsilon for points whose largest coordinate magnitude is `magnitude`.
+LANTERN_FUNC float bvh_position_epsilon(float magnitude) {
+  return max(kBvhShadowEpsilon, kBvhShadowRelativeEpsilon * magnitude);
+}
+
 // The shadow-ray segment between two points: origin + t * (target - origin) for t in
-// [t_eps, 1 - t_eps], where t_eps * |target - origin| = kBvhShadowEpsilon * max(1, largest
-// coordinate magnitude of either end), so neither the surface the ray leaves nor the one it reaches
-// counts as a blocker. Returns t_eps, or -1 when the points are closer than two epsilons (then
-// they see each other) or the distance is NaN.
+// [t_eps, 1 - t_eps], where t_eps * |target - origin| = bvh_position_epsilon(largest coordinate
+// magnitude of either end), so neither the surface the ray leaves nor the one it reaches counts
+// as a blocker. Returns t_eps, or -1 when the points are closer than two epsilons (then they see
+// each other) or the distance is NaN.
 LANTERN_FUNC float bvh_shadow_t_epsilon(vec3 origin, vec3 target) {
   vec3 direction = target - origin;
   float distance = length(direction);
   vec3 magnitude = max(abs(origin), abs(target));
-  float epsilon = kBvhShadowEpsilon * max(1.0f, max(magnitude.x, max(magnitude.y, magnitude.z)));
+  float epsilon = bvh_position_epsilon(max(magnitude.x, max(magnitude.y, magnitude.z)));
   if (!(distance > 2.0f * epsilon)) return -1.0f;
   return epsilon / distance;
 }
