@@ -31,7 +31,7 @@ PlayConfig small_config(const std::string& script) {
 }
 
 TEST(PlayWindow, ScriptedFlightPanelAndLights) {
-  if (!have_display()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  if (!have_display()) FAIL() << "needs a display: run under xvfb-run (scripts/test.sh does)";
   const PlayReport r =
       run_play(small_config("frame 1 key F1 press\n"
                             "frame 2 mouse right down\nframe 2 key W down\nframe 3 move 20 -8\n"
@@ -52,7 +52,7 @@ TEST(PlayWindow, ScriptedFlightPanelAndLights) {
 }
 
 TEST(PlayWindow, IntegratorSwitchAndProgressiveReference) {
-  if (!have_display()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  if (!have_display()) FAIL() << "needs a display: run under xvfb-run (scripts/test.sh does)";
   PlayConfig c = small_config(
       "frame 1 key 2 press\nframe 3 key 3 press\nframe 3 key F1 press\n"
       "frame 4 key V press\nframe 7 quit\n");
@@ -67,7 +67,7 @@ TEST(PlayWindow, IntegratorSwitchAndProgressiveReference) {
 }
 
 TEST(PlayWindow, BrokenShaderKeepsRenderingAndFixedShaderReloads) {
-  if (!have_display()) GTEST_SKIP() << "no display (run under xvfb-run)";
+  if (!have_display()) FAIL() << "needs a display: run under xvfb-run (scripts/test.sh does)";
   const fs::path dir = fs::temp_directory_path() / "lantern_play_reload_test";
   fs::remove_all(dir);
   fs::copy(LANTERN_TEST_SHADER_SOURCE_DIR, dir, fs::copy_options::recursive);

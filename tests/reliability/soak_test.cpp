@@ -29,11 +29,6 @@ class SoakTest : public runtime::test::GpuTest,
                  public ::testing::WithParamInterface<IntegratorKind> {};
 
 TEST_P(SoakTest, FramesStayFiniteAndMemoryFlat) {
-  try {
-    lighting::require_implemented(GetParam());
-  } catch (const InputError& e) {
-    GTEST_SKIP() << e.what();
-  }
   runtime::ShaderLibrary shaders;
   reliability::LoopOptions o;
   o.integrator.kind = GetParam();

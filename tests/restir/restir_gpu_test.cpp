@@ -169,10 +169,12 @@ TEST_F(RestirGpuTest, UnbiasedAgainstBaselineOnStaticCornell) {
 // and its standard error from the spread over runs (batch means: runs are independent, frames of
 // one run are not). Also the error of each frame index averaged over runs (a transient would
 // show there). Optional LANTERN_RESTIR_BIAS_CONFIGS=name,name,... selects configurations.
-TEST_F(RestirGpuTest, LitSurfaceBiasOverIndependentRuns) {
+// Not part of the suite (minutes long): run it with
+//   LANTERN_RESTIR_BIAS_RUNS=16 build/bin/restir_gpu_test --gtest_also_run_disabled_tests
+//   --gtest_filter='*IndependentRuns'
+TEST_F(RestirGpuTest, DISABLED_LitSurfaceBiasOverIndependentRuns) {
   const char* runs_env = std::getenv("LANTERN_RESTIR_BIAS_RUNS");
-  if (runs_env == nullptr) GTEST_SKIP() << "investigation: set LANTERN_RESTIR_BIAS_RUNS";
-  const int runs = std::atoi(runs_env);
+  const int runs = runs_env != nullptr ? std::atoi(runs_env) : 4;
   const int frames = std::getenv("LANTERN_RESTIR_BIAS_FRAMES")
                          ? std::atoi(std::getenv("LANTERN_RESTIR_BIAS_FRAMES"))
                          : 64;
