@@ -34,14 +34,14 @@ RestirInitialPass::Output RestirInitialPass::add(runtime::graph::RenderGraph& gr
         d.out.surfaces = b.write(surfaces, Access::StorageWrite);
         d.out.reservoirs = b.write(reservoirs, Access::StorageWrite);
       },
-      [this, push](runtime::graph::PassContext& ctx, const Data& d) {
+      [this, push, scene = inputs.scene](runtime::graph::PassContext& ctx, const Data& d) {
         runtime::Bindings b(pipeline_);
+        bind_visibility(b, ctx, d.scene, scene);  // first: the graph's buffers below win
         bind_buffer(b, ctx, "frame_constants", d.scene.frame_constants);
         bind_buffer(b, ctx, "scene_lights", d.scene.lights);
         bind_buffer(b, ctx, "scene_materials", d.scene.materials);
         bind_buffer(b, ctx, "scene_instances", d.scene.instances);
         bind_buffer(b, ctx, "light_alias", d.scene.alias);
-        bind_visibility(b, ctx, d.scene);
         bind_image(b, ctx, "gbuffer_position", d.gbuffer.position);
         bind_image(b, ctx, "gbuffer_normal", d.gbuffer.normal);
         bind_image(b, ctx, "gbuffer_albedo_roughness", d.gbuffer.albedo_roughness);

@@ -32,6 +32,12 @@ void RestirIntegrator::warm_up() {
   runtime::warm_up(device_, pipelines);
 }
 
+std::vector<std::pair<std::string, double>> RestirIntegrator::shadow_rays_per_pixel() const {
+  std::vector<std::pair<std::string, double>> rays{{"restir.shade", 1.0}};
+  if (settings_.initial_visibility) rays.emplace_back("restir.initial", 1.0);
+  return rays;
+}
+
 gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const FrameInputs& inputs) {
   if (inputs.light_count >= gpu::kPackedMaxLights) {
     throw InputError(fmt::format("restir: {} lights exceed the {} a packed reservoir can index",

@@ -7,6 +7,9 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "lighting/frame/frame_inputs.h"
 #include "lighting/restir/reservoir_buffers.h"
@@ -25,6 +28,8 @@ class RestirIntegrator final : public Integrator {
 
   const char* name() const override { return "restir"; }
   void warm_up() override;
+  // restir.shade traces one shadow ray per pixel; restir.initial one more with initial_visibility.
+  std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const override;
   [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,
                                                         runtime::graph::BufferHandle hdr) override;

@@ -3,6 +3,8 @@
 
 #include <numeric>
 
+#include "engine/core/error.h"
+#include "lighting/scene/gpu_scene.h"
 #include "shared/restir.h"
 
 namespace lantern::lighting::restir_detail {
@@ -30,11 +32,20 @@ void bind_image(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
 }
 
 void bind_visibility(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
-                     const SceneHandles& scene) {
-  bind_buffer(b, ctx, "BvhHeaderBuffer", scene.bvh_header);
-  bind_buffer(b, ctx, "BvhNodeBuffer", scene.bvh_nodes);
-  bind_buffer(b, ctx, "BvhTriangleBuffer", scene.bvh_triangles);
-  bind_buffer(b, ctx, "BvhInstanceBuffer", scene.bvh_instances);
+                     const SceneHandles& handles, const GpuScene* scene) {
+  if (b.has("bvh_node_texels")) {
+    if (scene == nullptr) {
+      throw RuntimeError("restir: the BVH texel views need the frame's GpuScene (FrameInputs::scene)");
+    }
+    // Every scene name the pipeline declares, texel views included; the graph handles bound
+    // after this (the same buffers) take precedence for the storage buffers.
+    scene->bind(b);
+  } else {
+    bind_buffer(b, ctx, "BvhNodeBuffer", handles.bvh_nodes);
+    bind_buffer(b, ctx, "BvhTriangleBuffer", handles.bvh_triangles);
+    bind_buffer(b, ctx, "BvhInstanceBuffer", handles.bvh_instances);
+  }
+  bind_buffer(b, ctx, "BvhHeaderBuffer", handles.bvh_header);
 }
 
 }  // namespace lantern::lighting::restir_detail

@@ -24,8 +24,11 @@ void bind_buffer(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
 // Binds graph image `h` as the storage image named `name` (layout GENERAL).
 void bind_image(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
                 std::string_view name, runtime::graph::ImageHandle h);
-// Binds the four BVH buffers lib/visibility.glsl's compute backend reads.
+// Binds what lib/visibility.glsl's compute backend declares: the BVH header (storage) and the
+// nodes, triangles and instances as rgba32ui texel views (the default; GpuScene owns the views)
+// or as storage buffers (VIS_BVH_STORAGE_BUFFERS). The pass declares reads of the BVH buffers as
+// SceneHandles::declare_reads does (StorageRead and UniformTexelRead).
 void bind_visibility(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
-                     const SceneHandles& scene);
+                     const SceneHandles& handles, const GpuScene* scene);
 
 }  // namespace lantern::lighting::restir_detail

@@ -36,11 +36,7 @@ BufferHandle RestirShadePass::add(runtime::graph::RenderGraph& graph, const Fram
         d.surfaces = surfaces;
         d.reservoirs = reservoirs;
         d.status = status;
-        b.read(d.scene.frame_constants, Access::StorageRead);
-        b.read(d.scene.lights, Access::StorageRead);
-        for (BufferHandle h : {d.scene.bvh_header, d.scene.bvh_nodes, d.scene.bvh_triangles,
-                               d.scene.bvh_instances})
-          b.read(h, Access::StorageRead);
+        inputs.scene_handles.declare_reads(b);  // lights, frame constants, BVH (texel views)
         b.read(d.emission, Access::StorageRead);
         b.read(d.motion, Access::StorageRead);
         b.read(surfaces, Access::StorageRead);
@@ -48,11 +44,11 @@ BufferHandle RestirShadePass::add(runtime::graph::RenderGraph& graph, const Fram
         b.read(status, Access::StorageRead);
         d.hdr = b.write(hdr, Access::StorageWrite);
       },
-      [this, push](runtime::graph::PassContext& ctx, const Data& d) {
+      [this, push, scene = inputs.scene](runtime::graph::PassContext& ctx, const Data& d) {
         runtime::Bindings b(pipeline_);
+        bind_visibility(b, ctx, d.scene, scene);  // first: the graph's buffers below win
         bind_buffer(b, ctx, "frame_constants", d.scene.frame_constants);
         bind_buffer(b, ctx, "scene_lights", d.scene.lights);
-        bind_visibility(b, ctx, d.scene);
         bind_image(b, ctx, "gbuffer_emission_metallic", d.emission);
         bind_image(b, ctx, "gbuffer_motion", d.motion);
         bind_buffer(b, ctx, "restir_surfaces", d.surfaces);
