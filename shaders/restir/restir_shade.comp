@@ -1,7 +1,7 @@
 // restir.shade: per pixel, the final reservoir's sample shaded with one visibility ray:
 // radiance = G-buffer emission + c(x, y) V(x, y) W (c = BRDF x cos x Le x G, shared/light_eval.h);
-// sky pixels get the frame's uniform environment radiance. With a debug view (push.sampling.w)
-// writes that view instead. Never writes NaN/Inf.
+// sky pixels show the environment map along their camera ray (lib/environment.glsl). With a
+// debug view (push.sampling.w) writes that view instead. Never writes NaN/Inf.
 // Reads: restir_surfaces, reservoirs_in (the final reservoirs), gbuffer emission_metallic and
 // motion, temporal_status, frame constants, lights, BVH. Writes: hdr (vec4 per pixel).
 // History: none. Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
@@ -12,6 +12,7 @@
 // 1.24x faster restir.shade than storage buffers on night_market.
 #include "lib/visibility.glsl"
 #include "restir/restir_common.glsl"
+#include "lib/environment.glsl"
 
 layout(binding = 10, rgba32f) readonly uniform image2D gbuffer_emission_metallic;
 layout(binding = 11, rgba32f) readonly uniform image2D gbuffer_motion;
@@ -56,7 +57,7 @@ void main() {
   if (push.sampling.w != kRestirDebugNone) {
     value = debug_view(push.sampling.w, pixel, index, r, valid);
   } else if (!valid) {
-    value = frame_constants.frame.environment.rgb;
+    value = env_sky_radiance(frame_constants.frame, pixel);
   } else {
     value = imageLoad(gbuffer_emission_metallic, ivec2(pixel)).rgb;
     if (reservoir_has_sample(r)) {
