@@ -6,6 +6,7 @@
 #include "engine/level/generators/light_field.h"
 #include "engine/level/generators/night_market.h"
 #include "engine/level/json_level_reader.h"
+#include "engine/scene/level.h"
 
 namespace lantern {
 
@@ -64,6 +65,17 @@ void run_generator(JsonObject& params, JsonLevelReader& reader) {
   }
   params.fail("type",
               fmt::format("unknown generator type '{}' (night_market, light_field)", type));
+}
+
+void use_generated_camera_path(Level& level, const std::string& path_name) {
+  if (level.camera_path.empty()) level.camera_path = path_name;
+  if (!level.has_camera) {
+    const PathPose pose = level.find_path(path_name)->evaluate(0.0f);
+    level.camera.position = pose.position;
+    level.camera.orientation = pose.orientation;
+    level.camera.yfov = glm::radians(60.0f);
+    level.has_camera = true;
+  }
 }
 
 }  // namespace lantern

@@ -8,6 +8,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/level/generators/generator.h"
 #include "engine/level/generators/split_mix.h"
 #include "engine/level/primitives.h"
 
@@ -129,14 +130,7 @@ void generate_light_field(const LightFieldParams& p, LevelBuilder& builder,
     path.keys.back().orientation = path.keys.front().orientation;
     level.paths.push_back(std::move(path));
   }
-  if (level.camera_path.empty()) level.camera_path = p.path_name;
-  if (!level.has_camera) {
-    const PathPose pose = level.find_path(p.path_name)->evaluate(0.0f);
-    level.camera.position = pose.position;
-    level.camera.orientation = pose.orientation;
-    level.camera.yfov = glm::radians(60.0f);
-    level.has_camera = true;
-  }
+  use_generated_camera_path(level, p.path_name);
 }
 
 }  // namespace lantern
