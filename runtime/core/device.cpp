@@ -101,7 +101,8 @@ Device::Device(const DeviceOptions& options)
   if (options.presentation_support) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
   info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
   info.ppEnabledExtensionNames = extensions.data();
-  VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device_));
+  if (options.count_driver_allocations) allocations_ = std::make_unique<AllocationCounter>();
+  VK_CHECK(vkCreateDevice(physical_, &info, allocator(), &device_));
   try {
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 
@@ -172,10 +173,18 @@ void Device::release() {
   memory_.reset();
   if (submit_fence_ != VK_NULL_HANDLE) vkDestroyFence(device_, submit_fence_, nullptr);
   if (command_pool_ != VK_NULL_HANDLE) vkDestroyCommandPool(device_, command_pool_, nullptr);
-  if (device_ != VK_NULL_HANDLE) vkDestroyDevice(device_, nullptr);
+  if (device_ != VK_NULL_HANDLE) vkDestroyDevice(device_, allocator());
   device_ = VK_NULL_HANDLE;
 }
 
+const VkAllocationCallbacks* Device::allocator() const {
+  return allocations_ ? allocations_->callbacks() : nullptr;
+}
+AllocationCounts Device::live_driver_allocations() const {
+  if (!allocations_)
+    throw RuntimeError("live_driver_allocations() needs DeviceOptions::count_driver_allocations");
+  return allocations_->live();
+}
 VkInstance Device::instance() const {
   return instance_->handle();
 }

@@ -39,6 +39,7 @@
 #include <string_view>
 #include <vector>
 
+#include "runtime/core/allocation_counter.h"
 #include "runtime/core/debug_names.h"
 #include "runtime/core/device_features.h"
 #include "runtime/core/device_info.h"
@@ -61,6 +62,10 @@ struct DeviceOptions {
   // integrated GPUs): uploads and readbacks then take the staging path a discrete GPU needs.
   // For tests of that path; costs a copy.
   bool force_staging = false;
+  // Give the driver an AllocationCounter as the device's allocator, so live_driver_allocations()
+  // can tell whether Vulkan objects leak (the soak test). Off by default: the driver's own
+  // allocator is faster.
+  bool count_driver_allocations = false;
   // Extra instance extensions, e.g. the window system's surface extensions.
   std::vector<const char*> instance_extensions;
   // Set for a device that presents (runtime/window/presentation.h fills both fields): enables
@@ -112,6 +117,10 @@ class Device {
   std::uint32_t validation_warnings() const;
   std::uint32_t performance_warnings() const;
 
+  // The driver's live host allocations made through this device (object scope: >= 1 per live
+  // Vulkan object); throws unless DeviceOptions::count_driver_allocations was set.
+  AllocationCounts live_driver_allocations() const;
+
   // Debug names (no-ops without VK_EXT_debug_utils).
   template <class Handle>
   void set_name(Handle handle, std::string_view name) const {
@@ -130,9 +139,11 @@ class Device {
   void save_pipeline_cache();
 
  private:
+  const VkAllocationCallbacks* allocator() const;  // the counter's callbacks, or nullptr
   void release();  // destroys everything created so far (also for a failed constructor)
 
   std::unique_ptr<Instance> instance_;
+  std::unique_ptr<AllocationCounter> allocations_;  // null unless count_driver_allocations
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;

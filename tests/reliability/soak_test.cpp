@@ -1,8 +1,11 @@
-// Soak: many frames headless at a small size — no NaN/Inf pixel in any frame and resident memory
-// growth <= 1% from the end of warm-up to the last frame (a leak of a few KB per frame fails).
-// ctest runs the short version (300 frames); the long one is
+// Soak: many frames headless at a small size — no NaN/Inf pixel in any frame, resident memory
+// growth <= 1% from the end of warm-up to the last frame (a leak of a few KB per frame fails), and
+// no growth in live Vulkan objects: the device is created with a counting allocator
+// (runtime/core/allocation_counter.h), and the driver's live object-scope allocations (>= 1 per
+// live Vulkan object) at the end of every frame after warm-up never exceed their count at the end
+// of warm-up. ctest runs the short version (300 frames); the long one is
 //   LANTERN_SOAK_FRAMES=10000 build/bin/soak_test
-// which also prints the resident-memory curve every 1000 frames.
+// which also prints the resident-memory and live-allocation curve every 1000 frames.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,8 +28,17 @@ std::uint32_t soak_frames() {
   return env && *env ? static_cast<std::uint32_t>(std::strtoul(env, nullptr, 10)) : 300u;
 }
 
+runtime::DeviceOptions counting_device_options() {
+  runtime::DeviceOptions options = runtime::test::test_device_options();
+  options.count_driver_allocations = true;
+  return options;
+}
+
 class SoakTest : public runtime::test::GpuTest,
-                 public ::testing::WithParamInterface<IntegratorKind> {};
+                 public ::testing::WithParamInterface<IntegratorKind> {
+ protected:
+  SoakTest() : GpuTest(counting_device_options()) {}
+};
 
 TEST_P(SoakTest, FramesStayFiniteAndMemoryFlat) {
   runtime::ShaderLibrary shaders;
@@ -40,16 +52,28 @@ TEST_P(SoakTest, FramesStayFiniteAndMemoryFlat) {
   // and then stays flat to the byte through frame 10000, for both integrators.
   const std::uint32_t warm_up = std::min(frames / 2, std::clamp(frames / 10, 100u, 1000u));
   std::uint64_t after_warm_up = 0, peak = 0;
+  runtime::AllocationCounts objects_after_warm_up, objects_peak;
   std::size_t bad_frames = 0;
   for (std::uint32_t f = 0; f < frames; ++f) {
     const runtime::ImageRGBA32F image = loop.frame();
     if (image.count_non_finite() != 0 && bad_frames++ == 0)
       ADD_FAILURE() << "frame " << f << " has " << image.count_non_finite() << " NaN/Inf pixels";
-    if (f + 1 == warm_up) after_warm_up = reliability::resident_bytes();
-    if (f + 1 > warm_up) peak = std::max(peak, reliability::resident_bytes());
+    const runtime::AllocationCounts live = device.live_driver_allocations();
+    if (f + 1 == warm_up) {
+      after_warm_up = reliability::resident_bytes();
+      objects_after_warm_up = live;
+    }
+    if (f + 1 > warm_up) {
+      peak = std::max(peak, reliability::resident_bytes());
+      objects_peak.object = std::max(objects_peak.object, live.object);
+      objects_peak.total = std::max(objects_peak.total, live.total);
+    }
     if ((f + 1) % 1000 == 0)
-      std::printf("soak: frame %u resident %.2f MB\n", f + 1,
-                  static_cast<double>(reliability::resident_bytes()) / 1e6);
+      std::printf("soak: frame %u resident %.2f MB, live driver allocations %lld object-scope, "
+                  "%lld in all, %.2f MB\n",
+                  f + 1, static_cast<double>(reliability::resident_bytes()) / 1e6,
+                  static_cast<long long>(live.object), static_cast<long long>(live.total),
+                  static_cast<double>(live.bytes) / 1e6);
   }
   EXPECT_EQ(bad_frames, 0u);
   ASSERT_GT(after_warm_up, 0u);
@@ -58,6 +82,16 @@ TEST_P(SoakTest, FramesStayFiniteAndMemoryFlat) {
               frames, static_cast<double>(after_warm_up) / 1e6, warm_up,
               static_cast<double>(peak) / 1e6, 100.0 * growth);
   EXPECT_LE(growth, 0.01) << "resident memory grew by " << 100.0 * growth << "% after warm-up";
+  std::printf("soak: live driver allocations after warm-up %lld object-scope (%lld in all), peak "
+              "after %lld (%lld)\n",
+              static_cast<long long>(objects_after_warm_up.object),
+              static_cast<long long>(objects_after_warm_up.total),
+              static_cast<long long>(objects_peak.object),
+              static_cast<long long>(objects_peak.total));
+  // The level's buffers, images, pipelines, ...: a frame loop that counts nothing would pass.
+  EXPECT_GT(objects_after_warm_up.object, 20);
+  EXPECT_LE(objects_peak.object, objects_after_warm_up.object)
+      << "live Vulkan objects grew after warm-up";
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, SoakTest,

@@ -88,5 +88,30 @@ TEST_F(DeviceCapsTest, DebugNamesAndLabelsAreAccepted) {
   });
 }
 
+// The soak test's "no growth in live Vulkan objects" rests on this counter seeing objects.
+TEST(Device, CountingAllocatorSeesObjectsComeAndGo) {
+  DeviceOptions options = test::test_device_options();
+  EXPECT_THROW(Device(options).live_driver_allocations(), RuntimeError);
+  options.count_driver_allocations = true;
+  Device device(options);
+  EXPECT_GT(device.live_driver_allocations().total, 0) << "the device is allocated through it";
+  auto make_buffer = [&](const char* name) {
+    return Buffer(device, {.size = 256, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, .name = name});
+  };
+  make_buffer("test.first");  // the memory allocator keeps the VkDeviceMemory block it opens
+  const AllocationCounts before = device.live_driver_allocations();
+  {
+    const Buffer a = make_buffer("test.a");
+    const Buffer b = make_buffer("test.b");
+    const AllocationCounts during = device.live_driver_allocations();
+    EXPECT_GE(during.object, before.object + 2) << "one or more per VkBuffer";
+    EXPECT_GT(during.bytes, before.bytes);
+  }
+  const AllocationCounts after = device.live_driver_allocations();
+  EXPECT_EQ(after.object, before.object) << "destroyed buffers are no longer live";
+  EXPECT_EQ(after.bytes, before.bytes);
+  EXPECT_EQ(device.validation_errors(), 0u);
+}
+
 }  // namespace
 }  // namespace lantern::runtime

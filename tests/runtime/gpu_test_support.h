@@ -19,12 +19,14 @@ inline DeviceOptions test_device_options() {
 
 class GpuTest : public ::testing::Test {
  protected:
+  GpuTest() : GpuTest(test_device_options()) {}
+  explicit GpuTest(const DeviceOptions& options) : device(options) {}
   void TearDown() override {
     EXPECT_TRUE(device.validation_enabled())
         << "validation layer unavailable: the test cannot vouch for API use";
     EXPECT_EQ(device.validation_errors(), 0u);
   }
-  Device device{test_device_options()};
+  Device device;
 };
 
 }  // namespace lantern::runtime::test
