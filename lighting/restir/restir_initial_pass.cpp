@@ -37,6 +37,7 @@ RestirInitialPass::Output RestirInitialPass::add(runtime::graph::RenderGraph& gr
       [this, push, scene = inputs.scene](runtime::graph::PassContext& ctx, const Data& d) {
         runtime::Bindings b(pipeline_);
         bind_visibility(b, ctx, d.scene, scene);  // first: the graph's buffers below win
+        bind_environment(b, ctx, d.scene);
         bind_buffer(b, ctx, "frame_constants", d.scene.frame_constants);
         bind_buffer(b, ctx, "scene_lights", d.scene.lights);
         bind_buffer(b, ctx, "scene_materials", d.scene.materials);

@@ -39,9 +39,9 @@ std::vector<std::pair<std::string, double>> RestirIntegrator::shadow_rays_per_pi
 }
 
 gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const FrameInputs& inputs) {
-  if (inputs.light_count >= gpu::kPackedMaxLights) {
+  if (inputs.light_count >= gpu::kEnvironmentLight) {
     throw InputError(fmt::format("restir: {} lights exceed the {} a packed reservoir can index",
-                                 inputs.light_count, gpu::kPackedMaxLights));
+                                 inputs.light_count, gpu::kEnvironmentLight));
   }
   gpu::RestirPush p{};
   p.frame = {inputs.width, inputs.height, inputs.frame_index, inputs.seed};

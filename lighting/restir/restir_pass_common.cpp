@@ -48,4 +48,19 @@ void bind_visibility(runtime::Bindings& b, const runtime::graph::PassContext& ct
   bind_buffer(b, ctx, "BvhHeaderBuffer", handles.bvh_header);
 }
 
+void declare_environment_reads(runtime::graph::PassBuilder& b, const SceneHandles& handles) {
+  for (runtime::graph::BufferHandle h :
+       {handles.env_header, handles.env_texels, handles.env_marginal, handles.env_conditional}) {
+    b.read(h, runtime::graph::Access::StorageRead);
+  }
+}
+
+void bind_environment(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
+                      const SceneHandles& handles) {
+  bind_buffer(b, ctx, "env_header", handles.env_header);
+  bind_buffer(b, ctx, "env_texels", handles.env_texels);
+  bind_buffer(b, ctx, "env_marginal", handles.env_marginal);
+  bind_buffer(b, ctx, "env_conditional", handles.env_conditional);
+}
+
 }  // namespace lantern::lighting::restir_detail

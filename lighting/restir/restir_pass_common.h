@@ -31,4 +31,10 @@ void bind_image(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
 void bind_visibility(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
                      const SceneHandles& handles, const GpuScene* scene);
 
+// Every restir.* shader sees the environment map (restir_common.glsl includes
+// lib/environment.glsl): declares reads of env_header/texels/marginal/conditional, and binds them.
+void declare_environment_reads(runtime::graph::PassBuilder& b, const SceneHandles& handles);
+void bind_environment(runtime::Bindings& b, const runtime::graph::PassContext& ctx,
+                      const SceneHandles& handles);
+
 }  // namespace lantern::lighting::restir_detail

@@ -19,6 +19,7 @@ BufferHandle RestirSpatialPass::add(runtime::graph::RenderGraph& graph, const Fr
                                     const gpu::RestirPush& push, BufferHandle surfaces,
                                     BufferHandle reservoirs_in, BufferHandle reservoirs_out) const {
   struct Data {
+    SceneHandles scene;
     BufferHandle frame_constants;
     BufferHandle lights;
     BufferHandle surfaces;
@@ -28,6 +29,7 @@ BufferHandle RestirSpatialPass::add(runtime::graph::RenderGraph& graph, const Fr
   const Data& data = graph.add_pass<Data>(
       "restir.spatial", runtime::graph::PassKind::Compute,
       [&](runtime::graph::PassBuilder& b, Data& d) {
+        d.scene = inputs.scene_handles;
         d.frame_constants = inputs.scene_handles.frame_constants;
         d.lights = inputs.scene_handles.lights;
         d.surfaces = surfaces;
@@ -36,6 +38,7 @@ BufferHandle RestirSpatialPass::add(runtime::graph::RenderGraph& graph, const Fr
         b.read(d.lights, Access::StorageRead);
         b.read(surfaces, Access::StorageRead);
         b.read(reservoirs_in, Access::StorageRead);
+        declare_environment_reads(b, d.scene);
         d.out = b.write(reservoirs_out, Access::StorageWrite);
       },
       [this, push](runtime::graph::PassContext& ctx, const Data& d) {
@@ -45,6 +48,7 @@ BufferHandle RestirSpatialPass::add(runtime::graph::RenderGraph& graph, const Fr
         bind_buffer(b, ctx, "restir_surfaces", d.surfaces);
         bind_buffer(b, ctx, "reservoirs_in", d.in);
         bind_buffer(b, ctx, "reservoirs_out", d.out);
+        bind_environment(b, ctx, d.scene);
         pipeline_.bind(ctx.cmd(), b);
         pipeline_.push_constants(ctx.cmd(), push);
         pipeline_.dispatch(ctx.cmd(), tile_count(push.frame.x, push.frame.y));

@@ -33,6 +33,7 @@ RestirTemporalPass::Output RestirTemporalPass::add(runtime::graph::RenderGraph& 
         b.read(d.scene.frame_constants, Access::StorageRead);
         b.read(d.scene.lights, Access::StorageRead);
         b.read(d.scene.light_previous_to_current, Access::StorageRead);
+        declare_environment_reads(b, d.scene);
         b.read(d.motion, Access::StorageRead);
         b.read(input.surfaces, Access::StorageRead);
         b.read(input.reservoirs_in, Access::StorageRead);
@@ -49,6 +50,7 @@ RestirTemporalPass::Output RestirTemporalPass::add(runtime::graph::RenderGraph& 
         bind_buffer(b, ctx, "frame_constants", d.scene.frame_constants);
         bind_buffer(b, ctx, "scene_lights", d.scene.lights);
         bind_buffer(b, ctx, "light_remap", d.scene.light_previous_to_current);
+        bind_environment(b, ctx, d.scene);
         bind_image(b, ctx, "gbuffer_motion", d.motion);
         bind_buffer(b, ctx, "restir_surfaces", d.in.surfaces);
         bind_buffer(b, ctx, "reservoirs_in", d.in.reservoirs_in);

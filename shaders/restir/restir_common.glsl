@@ -3,7 +3,9 @@
 // from that decoded point. Every pass evaluates p̂ through restir_contribution() on a packed
 // surface, so all domains use exactly the same target function (needed for unbiased MIS).
 // Before including: the pass declares nothing; bindings 8 (frame constants) and 9 (lights) are
-// taken here, 0..3 by lib/visibility.glsl where included.
+// taken here, 24..27 by the environment (lib/environment.glsl), 0..3 by lib/visibility.glsl where
+// included. A sample's light index is a light of the list or kEnvironmentLight (a direction of the
+// environment map, solid-angle measure; shared/reservoir.h).
 #ifndef LANTERN_RESTIR_COMMON_GLSL
 #define LANTERN_RESTIR_COMMON_GLSL
 
@@ -17,6 +19,9 @@
 #include "shared/restir.h"
 #include "shared/rng.h"
 #include "shared/scene.h"
+
+#define ENV_BINDING_BASE 24
+#include "lib/environment.glsl"
 
 layout(local_size_x = kRestirTileSize, local_size_y = kRestirTileSize) in;
 
@@ -62,11 +67,37 @@ ShadingPoint restir_shading_point(RestirSurface s, vec3 camera) {
   return p;
 }
 
+// Probability that a light-strategy candidate is the environment map (0 without one).
+float restir_env_probability() { return env_header.env.params.x; }
+
+// Unshadowed contribution of the environment direction stored as map coordinate uv:
+// f(v, l) cos(n, l) Le(l) (solid-angle measure).
+vec3 restir_env_contribution(ShadingPoint p, vec2 uv) {
+  if (env_header.env.params.z == 0.0) return vec3(0.0);
+  vec3 l = env_uv_to_world_direction(env_header.env, uv);
+  if (dot(p.ng, l) <= 0.0) return vec3(0.0);
+  vec3 c = brdf_eval(p.n, p.v, l, p.albedo, p.roughness, p.metallic, p.specular) *
+           env_radiance(env_header.env, l);
+  return (is_finite(c.x) && is_finite(c.y) && is_finite(c.z)) ? max(c, vec3(0.0)) : vec3(0.0);
+}
+
 // Unshadowed contribution of light sample (light, uv) at p (zero for a light index out of range).
 vec3 restir_contribution(ShadingPoint p, uint light, vec2 uv) {
-  if (!p.valid || light >= push.lights.x) return vec3(0.0);
+  if (!p.valid) return vec3(0.0);
+  if (light == kEnvironmentLight) return restir_env_contribution(p, uv);
+  if (light >= push.lights.x) return vec3(0.0);
   return light_eval_contribution(scene_lights.l[light], uv, p.x, p.n, p.ng, p.v, p.albedo,
                                  p.roughness, p.metallic, p.specular, push.reuse.w);
+}
+
+// The point a shadow ray from p aims at for sample (light, uv): on the light, or far along the
+// environment direction (as for a directional light).
+vec3 restir_light_position(ShadingPoint p, uint light, vec2 uv) {
+  if (light == kEnvironmentLight) {
+    return p.x + env_uv_to_world_direction(env_header.env, uv) *
+                     (kDirectionalShadowRadii * push.reuse.w);
+  }
+  return light_eval_position(scene_lights.l[light], uv, p.x, push.reuse.w);
 }
 
 // p̂ of sample s at p.

@@ -1,10 +1,11 @@
 // restir.initial: per pixel, packs the G-buffer into a RestirSurface and resamples
-// push.sampling.x light candidates (power alias table x uniform point on the light) plus
-// push.sampling.y BSDF candidates (a closest-hit ray; an emissive triangle hit is a candidate),
-// combined by the balance heuristic over the two strategies, with target p̂ = luminance of the
-// unshadowed contribution. Optionally shadow-tests the pick (kRestirFlagInitialVisibility).
+// push.sampling.x light candidates (the environment map with its selection probability, else the
+// power alias table x uniform point on the light) plus push.sampling.y BSDF candidates (a
+// closest-hit ray; an emissive triangle hit, or the environment when the ray escapes, is a
+// candidate), combined by the balance heuristic over the two strategies, with target p̂ =
+// luminance of the unshadowed contribution. Optionally shadow-tests the pick (kRestirFlagInitialVisibility).
 // Reads: gbuffer position/normal/albedo_roughness/emission_metallic/ids, scene materials,
-// instances, lights, alias table, BVH (BSDF candidates, visibility). Writes: restir_surfaces
+// instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility). Writes: restir_surfaces
 // (history resource "restir.surfaces"), reservoirs_out. History: none read.
 // Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
 #version 460
@@ -52,20 +53,40 @@ float bsdf_area_pdf(ShadingPoint p, GpuLight light, vec3 y) {
   return cos_light > 0.0 ? bsdf_direction_pdf(p, l) * safe_ratio(cos_light, dist2) : 0.0;
 }
 
-// Light strategy density of (light, uv): selection pdf * point density.
-float light_strategy_pdf(uint index) {
-  return light_alias.e[index].pdf * light_eval_point_pdf(scene_lights.l[index]);
+// Light strategy density of (light, uv): selection pdf * point density (the alias table's pdf
+// is over the emitters; the environment takes p_env of the selections first).
+float light_strategy_pdf(uint index, float p_env) {
+  return (1.0 - p_env) * light_alias.e[index].pdf * light_eval_point_pdf(scene_lights.l[index]);
+}
+
+// Light strategy density of environment direction l (solid angle).
+float env_strategy_pdf(vec3 l, float p_env) {
+  return p_env > 0.0 ? p_env * env_pdf(env_header.env, l) : 0.0;
 }
 
 // The uv a shader will see after the reservoir is stored: evaluating there keeps p̂ and W exact.
 vec2 stored_uv(vec2 uv) { return unpackUnorm2x16(packUnorm2x16(uv)); }
 
+// An environment candidate in direction l (from either strategy): its stored uv and the balance
+// heuristic weight p̂ / (m_light p_light + m_bsdf p_bsdf), both densities in solid angle.
+float env_candidate(ShadingPoint p, vec3 l, float p_env, float m_light, float m_bsdf,
+                    out vec2 uv, out float target) {
+  uv = stored_uv(env_world_direction_to_uv(env_header.env, l));
+  vec3 stored = env_uv_to_world_direction(env_header.env, uv);
+  target = light_eval_target(restir_env_contribution(p, uv));
+  if (!(target > 0.0)) return 0.0;
+  float denominator = m_light * env_strategy_pdf(stored, p_env);
+  if (m_bsdf > 0.0) denominator += m_bsdf * bsdf_direction_pdf(p, stored);
+  return safe_ratio(target, denominator);
+}
+
 Reservoir resample(ShadingPoint p, inout uint rng) {
   Reservoir r = reservoir_empty();
   uint light_count = push.lights.x;
+  float p_env = restir_env_probability();
   float m_light = float(push.sampling.x);
   float m_bsdf = float(push.sampling.y);
-  if (light_count == 0u) {
+  if (light_count == 0u && p_env == 0.0) {
     r.M = m_light + m_bsdf;
     return r;
   }
@@ -74,10 +95,22 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
     float u1 = rng_next_float(rng);
     vec2 uv = stored_uv(rng_next_vec2(rng));
     float u_pick = rng_next_float(rng);
+    if (u0 < p_env || light_count == 0u) {
+      // The environment: u0 rescaled picks its row, the rest the column and the point.
+      vec3 l, le;
+      float u_row = clamp(u0 / max(p_env, 1e-30), 0.0, 0.99999994);
+      env_sample(env_header.env, vec4(u_row, u1, uv), l, le);
+      vec2 env_uv;
+      float target;
+      float weight = env_candidate(p, l, p_env, m_light, m_bsdf, env_uv, target);
+      reservoir_update(r, light_sample_make(kEnvironmentLight, env_uv, target), weight, u_pick);
+      continue;
+    }
+    u0 = p_env > 0.0 ? clamp((u0 - p_env) / (1.0 - p_env), 0.0, 0.99999994) : u0;
     uint slot = alias_slot(light_count, u0);
     uint index = alias_select(u1, light_alias.e[slot], slot);
     float target = light_eval_target(restir_contribution(p, index, uv));
-    float denominator = m_light * light_strategy_pdf(index);
+    float denominator = m_light * light_strategy_pdf(index, p_env);
     if (push.sampling.y > 0u && target > 0.0) {
       vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, push.reuse.w);
       denominator += m_bsdf * bsdf_area_pdf(p, scene_lights.l[index], y);
@@ -96,19 +129,26 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
     vec2 uv = vec2(0.0);
     vec3 m = abs(p.x);
     vec3 origin = p.x + p.ng * (kBvhShadowEpsilon * max(1.0, max(m.x, max(m.y, m.z))));
-    if (dot(l, p.ng) > 0.0 && vis_trace_closest(origin, l, kVisInfinity, hit)) {
-      uint first = scene_instances.i[hit.instance].bvh.y;
-      if (first != kInvalidLight && first + hit.primitive < light_count) {
-        index = first + hit.primitive;
-        uv = stored_uv(triangle_barycentrics_to_uv(hit.u, hit.v));
-      }
-    }
     float weight = 0.0;
     float target = 0.0;
-    if (index != kInvalidLight && light_kind(scene_lights.l[index]) == kLightTriangle) {
+    if (dot(l, p.ng) > 0.0) {
+      if (vis_trace_closest(origin, l, kVisInfinity, hit)) {
+        uint first = scene_instances.i[hit.instance].bvh.y;
+        if (first != kInvalidLight && first + hit.primitive < light_count) {
+          index = first + hit.primitive;
+          uv = stored_uv(triangle_barycentrics_to_uv(hit.u, hit.v));
+        }
+      } else if (p_env > 0.0) {
+        // The ray escapes: it sees the environment in direction l.
+        index = kEnvironmentLight;
+        weight = env_candidate(p, l, p_env, m_light, m_bsdf, uv, target);
+      }
+    }
+    if (index != kInvalidLight && index != kEnvironmentLight &&
+        light_kind(scene_lights.l[index]) == kLightTriangle) {
       target = light_eval_target(restir_contribution(p, index, uv));
       vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, push.reuse.w);
-      float denominator = m_light * light_strategy_pdf(index) +
+      float denominator = m_light * light_strategy_pdf(index, p_env) +
                           m_bsdf * bsdf_area_pdf(p, scene_lights.l[index], y);
       weight = safe_ratio(target, denominator);
     }
@@ -143,8 +183,7 @@ void main() {
     uint rng = rng_init(pixel, push.frame.z, push.frame.w, kRestirRngInitial);
     r = resample(p, rng);
     if ((push.lights.w & kRestirFlagInitialVisibility) != 0u && reservoir_has_sample(r)) {
-      GpuLight light = scene_lights.l[r.selected.light_index];
-      vec3 y = light_eval_position(light, vec2(r.selected.u, r.selected.v), p.x, push.reuse.w);
+      vec3 y = restir_light_position(p, r.selected.light_index, vec2(r.selected.u, r.selected.v));
       if (!vis_visible(p.x, y)) {
         // Keep M (the candidates were drawn) but no sample: the pick lights nothing here.
         r.W = 0.0;

@@ -3,7 +3,7 @@
 // sky pixels show the environment map along their camera ray (lib/environment.glsl). With a
 // debug view (push.sampling.w) writes that view instead. Never writes NaN/Inf.
 // Reads: restir_surfaces, reservoirs_in (the final reservoirs), gbuffer emission_metallic and
-// motion, temporal_status, frame constants, lights, BVH. Writes: hdr (vec4 per pixel).
+// motion, temporal_status, frame constants, lights, environment (env_*), BVH. Writes: hdr (vec4 per pixel).
 // History: none. Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
 #version 460
 #extension GL_GOOGLE_include_directive : require
@@ -65,7 +65,7 @@ void main() {
       vec2 uv = vec2(r.selected.u, r.selected.v);
       vec3 c = restir_contribution(p, r.selected.light_index, uv);
       if (c != vec3(0.0)) {
-        vec3 y = light_eval_position(scene_lights.l[r.selected.light_index], uv, p.x, push.reuse.w);
+        vec3 y = restir_light_position(p, r.selected.light_index, uv);
         if (vis_visible(p.x, y)) value += c * r.W;
       }
     }

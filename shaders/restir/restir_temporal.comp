@@ -2,10 +2,10 @@
 // reprojected pixel (motion vector; then up to 3 jittered retries within 1.5 px), when the
 // surface there passes the disocclusion test (relative view depth against the depth the previous
 // camera saw this point at, normal, material, roughness). The history sample's light is remapped
-// through light_previous_to_current; a removed light drops the history sample (M kept, as for
-// an empty history reservoir). History confidence M is capped (push.reuse.y). MIS weights per push.sampling.z. Optional boiling filter over the tile.
+// through light_previous_to_current (an environment sample stays one); a removed light drops the
+// history sample (M kept, as for an empty history reservoir). History confidence M is capped (push.reuse.y). MIS weights per push.sampling.z. Optional boiling filter over the tile.
 // Reads: restir_surfaces, surfaces_history, reservoirs_in, reservoirs_history, gbuffer_motion,
-// light_remap, frame constants, lights. Writes: reservoirs_out, temporal_status.
+// light_remap, frame constants, lights, environment (env_*). Writes: reservoirs_out, temporal_status.
 // History: "restir.surfaces" and "restir.reservoirs" of last frame; without
 // kRestirFlagHistoryValid the history bindings are stand-ins and are not read.
 // Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
@@ -68,7 +68,7 @@ void main() {
         // not depend on that outcome. (Zeroing M here skipped the merge exactly when the history
         // was empty: +7% on cornell_lights' lit surfaces, +18% with 1 candidate.)
         uint light = history.selected.light_index;
-        if (light != kInvalidLight) {
+        if (light != kInvalidLight && light != kEnvironmentLight) {
           light = light < push.lights.y ? light_remap.index[light] : kInvalidLight;
           if (light >= push.lights.x) light = kInvalidLight;
         }

@@ -86,6 +86,21 @@ LANTERN_FUNC vec2 env_direction_to_uv(vec3 d) {
   return vec2(u, v);
 }
 
+// (u, v) in [0,1]^2 -> map-space unit direction (inverse of env_direction_to_uv).
+LANTERN_FUNC vec3 env_uv_to_direction(vec2 uv) {
+  float phi = kTwoPi * uv.x - kPi;
+  float theta = kPi * uv.y;
+  return vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
+}
+
+// World-space direction <-> (u, v) of the map (the form ReSTIR stores an environment sample in).
+LANTERN_FUNC vec2 env_world_direction_to_uv(GpuEnvironment env, vec3 world_dir) {
+  return env_direction_to_uv(normalize(vec3(env.world_to_map * vec4(world_dir, 0.0f))));
+}
+LANTERN_FUNC vec3 env_uv_to_world_direction(GpuEnvironment env, vec2 uv) {
+  return normalize(vec3(env.map_to_world * vec4(env_uv_to_direction(uv), 0.0f)));
+}
+
 // Texel index of a world-space direction (clamped to the image).
 LANTERN_FUNC uvec2 env_texel_of(GpuEnvironment env, vec3 world_dir) {
   vec3 d = normalize(vec3(env.world_to_map * vec4(world_dir, 0.0f)));

@@ -20,9 +20,14 @@ LANTERN_BEGIN_SHARED
 // cannot overflow to Inf.
 LANTERN_CONST float kMaxReservoirWeight = 1e29f;
 
+// The light index of a sample of the environment map: (u, v) is the map coordinate of its
+// direction (shared/environment.h env_uv_to_world_direction), its measure solid angle. Fits the
+// packed reservoir's 24-bit index, so light lists must stay below it.
+LANTERN_CONST uint kEnvironmentLight = 0xfffffeu;
+
 // A light sample's identity plus its target value at the pixel that owns it.
 struct LightSample {
-  uint light_index;  // index into the light list (kInvalidLight: none)
+  uint light_index;  // index into the light list, kEnvironmentLight, or kInvalidLight (none)
   float u;           // point on the light: light-type-specific coordinates in [0,1)^2
   float v;
   float target_pdf;  // p̂(y) at the owning pixel (unnormalised target function)

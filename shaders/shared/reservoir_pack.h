@@ -29,6 +29,7 @@ LANTERN_CONST float kPackedMaxM = 65535.0f;
 LANTERN_CONST uint kPackedLightMask = 0xffffffu;
 LANTERN_CONST uint kPackedNoLight = 0xffffffu;  // the 24-bit form of kInvalidLight
 LANTERN_CONST uint kPackedMaxLights = 0xffffffu;  // light indices must stay below this
+                                                  // (kEnvironmentLight = kPackedMaxLights - 1)
 LANTERN_CONST uint kPackedMaxAge = 255u;
 LANTERN_CONST float kHalfMax = 65504.0f;
 
