@@ -6,30 +6,19 @@
 #include <fmt/format.h>
 
 #include <charconv>
-#include <numeric>
 
 #include "engine/core/error.h"
 #include "integrators/reference.h"
-#include "lighting/scene/gpu_scene.h"
-#include "runtime/gpu/bindings.h"
+#include "lighting/frame/tile_order.h"
+#include "lighting/integrators/gbuffer_shading_pass.h"
 
 namespace lantern::lighting {
 namespace {
 
-using runtime::graph::Access;
 using runtime::graph::BufferHandle;
-using runtime::graph::ImageHandle;
 
 // Upper bound on samples per pixel per frame (one dispatch; average frames for more).
 constexpr std::uint32_t kMaxSpp = 1u << 16;
-
-// A stride near count / golden ratio coprime to `count` (as integrators.baseline).
-std::uint32_t tile_stride(std::uint32_t count) {
-  if (count < 3 || count > 65535) return 1;
-  auto stride = static_cast<std::uint32_t>(static_cast<double>(count) * 0.6180339887);
-  while (std::gcd(stride, count) != 1) ++stride;
-  return stride;
-}
 
 }  // namespace
 
@@ -76,47 +65,17 @@ ReferenceIntegrator::~ReferenceIntegrator() = default;
 
 BufferHandle ReferenceIntegrator::add_passes(runtime::graph::RenderGraph& graph,
                                              const FrameInputs& inputs, BufferHandle hdr) {
-  struct Data {
-    BufferHandle hdr;
-    ImageHandle position, normal, emission, ids;
-  };
   const std::uint32_t width = inputs.width;
   const std::uint32_t height = inputs.height;
   gpu::ReferencePush push{};
   push.frame_index = inputs.frame_index;
   push.light_count = inputs.light_count;
   push.scene_radius = inputs.scene->scene_radius();
-  const std::uint32_t tiles = ((width + gpu::kReferenceTileSize - 1) / gpu::kReferenceTileSize) *
-                              ((height + gpu::kReferenceTileSize - 1) / gpu::kReferenceTileSize);
+  const std::uint32_t tiles = tile_count(width, height, gpu::kReferenceTileSize);
   push.tile_stride = tile_stride(tiles);
   push.spp = settings_.spp;
-  const GpuScene* scene = inputs.scene;
-  const Data& data = graph.add_pass<Data>(
-      "integrators.reference", runtime::graph::PassKind::Compute,
-      [&](runtime::graph::PassBuilder& b, Data& d) {
-        inputs.scene_handles.declare_reads(b);
-        d.position = inputs.gbuffer.position;
-        d.normal = inputs.gbuffer.normal;
-        d.emission = inputs.gbuffer.emission_metallic;
-        d.ids = inputs.gbuffer.ids;
-        for (ImageHandle h : {d.position, d.normal, d.emission, d.ids}) {
-          b.read(h, Access::StorageRead);
-        }
-        d.hdr = b.write(hdr, Access::StorageWrite);
-      },
-      [this, scene, push, tiles](runtime::graph::PassContext& ctx, const Data& d) {
-        runtime::Bindings bindings(pipeline_);
-        scene->bind(bindings);
-        bindings.buffer("radiance", ctx.buffer(d.hdr), 0, VK_WHOLE_SIZE)
-            .image_view("gbuffer_position", ctx.view(d.position), VK_IMAGE_LAYOUT_GENERAL)
-            .image_view("gbuffer_normal", ctx.view(d.normal), VK_IMAGE_LAYOUT_GENERAL)
-            .image_view("gbuffer_emission_metallic", ctx.view(d.emission), VK_IMAGE_LAYOUT_GENERAL)
-            .image_view("gbuffer_ids", ctx.view(d.ids), VK_IMAGE_LAYOUT_GENERAL);
-        pipeline_.bind(ctx.cmd(), bindings);
-        pipeline_.push_constants(ctx.cmd(), push);
-        pipeline_.dispatch(ctx.cmd(), tiles);
-      });
-  return data.hdr;
+  return add_gbuffer_shading_pass(graph, "integrators.reference", pipeline_, inputs, push, tiles,
+                                  hdr);
 }
 
 }  // namespace lantern::lighting

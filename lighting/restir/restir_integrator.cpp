@@ -7,6 +7,7 @@
 #include <array>
 
 #include "engine/core/error.h"
+#include "lighting/frame/tile_order.h"
 #include "lighting/restir/restir_pass_common.h"
 #include "lighting/scene/gpu_scene.h"
 #include "shared/reservoir_mis.h"
@@ -49,7 +50,7 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   std::uint32_t flags = 0;
   if (inputs.history_valid) flags |= gpu::kRestirFlagHistoryValid;
   if (s.initial_visibility) flags |= gpu::kRestirFlagInitialVisibility;
-  p.lights = {inputs.light_count, inputs.previous_light_count, restir_detail::tile_stride(tiles),
+  p.lights = {inputs.light_count, inputs.previous_light_count, tile_stride(tiles),
               flags};
   p.sampling = {s.light_candidates, s.bsdf_candidates,
                 static_cast<std::uint32_t>(s.bias_correction),

@@ -1,24 +1,15 @@
 // Dispatch shape and name-based binding helpers of the restir.* passes.
 #include "lighting/restir/restir_pass_common.h"
 
-#include <numeric>
-
 #include "engine/core/error.h"
+#include "lighting/frame/tile_order.h"
 #include "lighting/scene/gpu_scene.h"
 #include "shared/restir.h"
 
 namespace lantern::lighting::restir_detail {
 
 std::uint32_t tile_count(std::uint32_t width, std::uint32_t height) {
-  return ((width + gpu::kRestirTileSize - 1) / gpu::kRestirTileSize) *
-         ((height + gpu::kRestirTileSize - 1) / gpu::kRestirTileSize);
-}
-
-std::uint32_t tile_stride(std::uint32_t count) {
-  if (count < 3 || count > 65535) return 1;
-  auto stride = static_cast<std::uint32_t>(static_cast<double>(count) * 0.6180339887);
-  while (std::gcd(stride, count) != 1) ++stride;
-  return stride;
+  return lighting::tile_count(width, height, gpu::kRestirTileSize);
 }
 
 void bind_buffer(runtime::Bindings& b, const runtime::graph::PassContext& ctx,

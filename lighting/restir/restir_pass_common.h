@@ -1,4 +1,5 @@
-// What the restir.* pass files share: the shuffled 8x8 tile dispatch shape, and binding graph
+// What the restir.* pass files share: the shuffled 8x8 tile dispatch shape
+// (lighting/frame/tile_order.h), and binding graph
 // resources by the names the shaders give them (scene buffers, G-buffer images, the BVH behind
 // shaders/lib/visibility.glsl's compute backend).
 #pragma once
@@ -12,11 +13,8 @@
 
 namespace lantern::lighting::restir_detail {
 
-// Number of 8x8 tiles (= workgroups) covering width x height.
+// Number of 8x8 tiles (= workgroups) covering width x height (lighting/frame/tile_order.h).
 std::uint32_t tile_count(std::uint32_t width, std::uint32_t height);
-// A stride near count / golden ratio, coprime to count: g -> g * stride mod count scatters the
-// tiles so both lavapipe threads get sky and geometry (shared/PLATFORM.md).
-std::uint32_t tile_stride(std::uint32_t count);
 
 // Binds graph buffer `h` as the storage buffer named `name`.
 void bind_buffer(runtime::Bindings& b, const runtime::graph::PassContext& ctx,

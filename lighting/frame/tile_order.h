@@ -1,0 +1,18 @@
+// The dispatch shape of the per-pixel compute passes (integrators.baseline, integrators.reference,
+// restir.*): one workgroup per square tile, visited in a shuffled order g -> g * stride mod count
+// so neighbouring workgroups land far apart and both lavapipe threads get a mix of sky and
+// geometry (shared/PLATFORM.md).
+#pragma once
+
+#include <cstdint>
+
+namespace lantern::lighting {
+
+// Number of tile_size x tile_size tiles covering width x height.
+std::uint32_t tile_count(std::uint32_t width, std::uint32_t height, std::uint32_t tile_size);
+
+// A stride near count / golden ratio that is coprime to `count` (so the order is a permutation);
+// 1 when the product could overflow 32 bits.
+std::uint32_t tile_stride(std::uint32_t count);
+
+}  // namespace lantern::lighting
