@@ -5,6 +5,9 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "lighting/frame/frame_inputs.h"
 #include "runtime/gpu/compute_pipeline.h"
@@ -18,6 +21,10 @@ class BaselineIntegrator final : public Integrator {
 
   const char* name() const override { return "baseline"; }
   void warm_up() override { pipeline_.warm_up(); }
+  // One shadow ray per pixel (as restir.shade), so bench reports baseline's shadow rays/s too.
+  std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const override {
+    return {{"integrators.baseline", 1.0}};
+  }
   // Writes every pixel of `hdr` (StorageWrite).
   [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,

@@ -1,5 +1,6 @@
 # Runs COMMAND (a ;-list) and checks its exit code is EXPECT_CODE and, if given, that its
-# stderr contains EXPECT_STDERR and that FILE exists (or, with NO_FILE, does not).
+# stderr contains EXPECT_STDERR and that FILE exists (or, with NO_FILE, does not). JSON_POSITIVE:
+# comma-separated dotted paths into FILE (JSON) whose numbers must be > 0.
 separate_arguments(cmd UNIX_COMMAND "${COMMAND}")
 if(DEFINED FILE)
   file(REMOVE ${FILE})
@@ -25,4 +26,17 @@ if(DEFINED FILE AND NOT NO_FILE AND NOT EXISTS ${FILE})
 endif()
 if(DEFINED FILE AND NO_FILE AND EXISTS ${FILE})
   message(FATAL_ERROR "${FILE} was written although the command failed")
+endif()
+if(DEFINED JSON_POSITIVE)
+  file(READ ${FILE} json)
+  string(REPLACE "," ";" paths "${JSON_POSITIVE}")
+  foreach(path IN LISTS paths)
+    string(REPLACE "." ";" keys "${path}")
+    string(JSON value ERROR_VARIABLE json_error GET "${json}" ${keys})
+    if(json_error)
+      message(FATAL_ERROR "${FILE}: ${path}: ${json_error}")
+    elseif(NOT value GREATER 0)
+      message(FATAL_ERROR "${FILE}: ${path} = ${value}, expected a number > 0")
+    endif()
+  endforeach()
 endif()
