@@ -3,10 +3,11 @@
 // power alias table x uniform point on the light) plus push.sampling.y BSDF candidates (a
 // closest-hit ray; an emissive triangle hit, or the environment when the ray escapes, is a
 // candidate), combined by the balance heuristic over the two strategies, with target p̂ =
-// luminance of the unshadowed contribution. Optionally shadow-tests the pick (kRestirFlagInitialVisibility).
+// luminance of the unshadowed contribution. Optionally shadow-tests the pick
+// (kRestirFlagInitialVisibility).
 // Reads: gbuffer position/normal/albedo_roughness/emission_metallic/ids, scene materials,
-// instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility). Writes: restir_surfaces
-// (history resource "restir.surfaces"), reservoirs_out. History: none read.
+// instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility).
+// Writes: restir_surfaces (history resource "restir.surfaces"), reservoirs_out. History: none.
 // Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
 #version 460
 #extension GL_GOOGLE_include_directive : require

@@ -3,7 +3,8 @@
 // sky pixels show the environment map along their camera ray (lib/environment.glsl). With a
 // debug view (push.sampling.w) writes that view instead. Never writes NaN/Inf.
 // Reads: restir_surfaces, reservoirs_in (the final reservoirs), gbuffer emission_metallic and
-// motion, temporal_status, frame constants, lights, environment (env_*), BVH. Writes: hdr (vec4 per pixel).
+// motion, temporal_status, frame constants, lights, environment (env_*), BVH.
+// Writes: hdr (vec4 per pixel).
 // History: none. Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
 #version 460
 #extension GL_GOOGLE_include_directive : require

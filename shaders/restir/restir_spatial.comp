@@ -3,7 +3,8 @@
 // whose surface is dissimilar (depth, normal, material, roughness). Pixels short of history
 // (M below push.spatial.w, e.g. just disoccluded) draw push.spatial.z more neighbours. MIS
 // weights per push.sampling.z (none O(k), pairwise O(k), balance O(k^2) target evaluations).
-// Reads: restir_surfaces, reservoirs_in, frame constants, lights, environment (env_*). Writes: reservoirs_out.
+// Reads: restir_surfaces, reservoirs_in, frame constants, lights, environment (env_*).
+// Writes: reservoirs_out.
 // History: none (the last pass's output is the frame's final reservoirs, kept by the graph).
 // Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
 #version 460

@@ -3,9 +3,11 @@
 // surface there passes the disocclusion test (relative view depth against the depth the previous
 // camera saw this point at, normal, material, roughness). The history sample's light is remapped
 // through light_previous_to_current (an environment sample stays one); a removed light drops the
-// history sample (M kept, as for an empty history reservoir). History confidence M is capped (push.reuse.y). MIS weights per push.sampling.z. Optional boiling filter over the tile.
+// history sample (M kept, as for an empty history reservoir). History confidence M is capped
+// (push.reuse.y). MIS weights per push.sampling.z. Optional boiling filter over the tile.
 // Reads: restir_surfaces, surfaces_history, reservoirs_in, reservoirs_history, gbuffer_motion,
-// light_remap, frame constants, lights, environment (env_*). Writes: reservoirs_out, temporal_status.
+// light_remap, frame constants, lights, environment (env_*).
+// Writes: reservoirs_out, temporal_status.
 // History: "restir.surfaces" and "restir.reservoirs" of last frame; without
 // kRestirFlagHistoryValid the history bindings are stand-ins and are not read.
 // Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).

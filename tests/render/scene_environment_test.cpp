@@ -313,7 +313,8 @@ TEST_F(SceneEnvironmentConvergenceTest, RestirSamplesTheEnvironmentAndConverges)
   const std::vector<Case> cases = {
       {"restir balance", {{"bias_correction", "balance"}}},
       {"restir pairwise", {{"bias_correction", "pairwise"}}},
-      {"restir balance + bsdf candidates", {{"bias_correction", "balance"}, {"bsdf_candidates", "1"}}},
+      {"restir balance + bsdf candidates",
+       {{"bias_correction", "balance"}, {"bsdf_candidates", "1"}}},
   };
   for (const Case& c : cases) {
     OfflineRenderRequest restir = request_for(lighting::IntegratorKind::Restir, 64);
