@@ -34,7 +34,6 @@ void play(const PlayOptions& options, const CommonOptions& common) {
   // Settings are validated here (InputError, exit 2) before any window opens.
   const Level level = load_level_argument(options.level);
   config.integrator = integrator_config(options.integrator, common, level);
-  lighting::require_implemented(config.integrator.kind);
   run_play(config);
 }
 

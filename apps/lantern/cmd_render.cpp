@@ -98,7 +98,6 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
   request.frames = common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 1u;
   request.average = o.average;
   request.seed = common.seed;
-  lighting::require_implemented(request.integrator.kind);
   // Refuse a bad --out before any work.
   require_writable_parent(o.out, out_is_file(o.out, request.average ? 1u : request.frames));
   const auto level = std::make_shared<const Level>(load_level_argument(o.level));

@@ -30,8 +30,6 @@ const char* integrator_name(IntegratorKind kind) {
   return "?";
 }
 
-void require_implemented(IntegratorKind) {}
-
 void validate_integrator_config(const IntegratorConfig& config) {
   switch (config.kind) {
     case IntegratorKind::Baseline:
@@ -77,8 +75,7 @@ std::unique_ptr<Integrator> make_integrator(runtime::Device& device,
       return std::make_unique<RestirIntegrator>(
           device, shaders, make_restir_settings(config.preset, config.settings));
   }
-  throw InputError(fmt::format("integrator '{}' is not implemented yet (use baseline)",
-                               integrator_name(config.kind)));
+  throw InputError(fmt::format("unknown integrator kind {}", static_cast<int>(config.kind)));
 }
 
 }  // namespace lantern::lighting

@@ -25,9 +25,6 @@ enum class IntegratorKind { Baseline, Reference, Restir };
 // "baseline" | "reference" | "restir"; lantern::InputError naming the value otherwise.
 IntegratorKind parse_integrator(std::string_view name);
 const char* integrator_name(IntegratorKind kind);
-// Throws lantern::InputError for an integrator that is not implemented yet (so a command can
-// refuse before loading anything).
-void require_implemented(IntegratorKind kind);
 
 struct IntegratorConfig {
   IntegratorKind kind = IntegratorKind::Baseline;

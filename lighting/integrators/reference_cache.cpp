@@ -143,12 +143,6 @@ std::string sanitized(const std::string& name) {
 
 }  // namespace
 
-std::string level_content_hash(const Level& level) {
-  Fnv1a h;
-  hash_level(h, level);
-  return fmt::format("{:016x}", h.value());
-}
-
 std::string reference_cache_name(const Level& level, const ReferenceRequest& request) {
   Fnv1a h;
   h.pod(kReferenceFormatVersion);

@@ -37,8 +37,6 @@ struct ReferenceRequest {
   std::vector<std::pair<std::string, std::string>> settings;  // reference settings (--set)
 };
 
-// 64-bit FNV-1a over the level's content (see the file comment), as 16 hex digits.
-std::string level_content_hash(const Level& level);
 // The cache file name for `request` on `level` (no directory): "<level name>-<key hex>.exr".
 std::string reference_cache_name(const Level& level, const ReferenceRequest& request);
 // $LANTERN_CACHE_DIR, else <build dir>/reference-cache.

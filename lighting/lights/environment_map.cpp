@@ -1,4 +1,4 @@
-// Environment map loading, importance-sampling tables and their device buffers.
+// Environment map loading and importance-sampling tables.
 #include "lighting/lights/environment_map.h"
 
 #include <fmt/format.h>
@@ -10,7 +10,6 @@
 
 #include "engine/core/error.h"
 #include "lighting/lights/alias_table.h"
-#include "runtime/gpu/transfer.h"
 #include "runtime/image/image_io.h"
 #include "shared/color.h"
 
@@ -24,19 +23,6 @@ std::vector<gpu::AliasEntry> alias_entries(const std::vector<float>& weights) {
   for (float w : weights) sum += w;
   if (sum > 0.0) return AliasTable(weights).entries();
   return AliasTable(std::vector<float>(weights.size(), 1.0f)).entries();
-}
-
-template <class T>
-runtime::Buffer make_storage(runtime::Device& device, const std::vector<T>& values,
-                             const std::string& name) {
-  std::vector<T> data = values;
-  if (data.empty()) data.push_back(T{});
-  runtime::Buffer buffer(device, {.size = data.size() * sizeof(T),
-                                  .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                  .memory = runtime::MemoryUsage::DeviceLocal,
-                                  .name = name});
-  runtime::upload_buffer(device, buffer, std::span<const T>(data));
-  return buffer;
 }
 
 }  // namespace
@@ -115,41 +101,6 @@ float environment_selection_probability(double env_power, double lights_power) {
   if (!(env_power > 0.0) || !std::isfinite(env_power)) return 0.0f;
   if (!(lights_power > 0.0) || !std::isfinite(lights_power)) return 1.0f;
   return static_cast<float>(env_power / (env_power + lights_power));
-}
-
-GpuEnvironmentMap::GpuEnvironmentMap(runtime::Device& device, const gpu::GpuEnvironment& header,
-                                     const std::vector<gpu::vec4>& texels,
-                                     const std::vector<gpu::AliasEntry>& marginal,
-                                     const std::vector<gpu::AliasEntry>& conditional)
-    : header_(header),
-      header_buffer_(make_storage(device, std::vector{header}, "env.header")),
-      texels_(make_storage(device, texels, "env.texels")),
-      marginal_(make_storage(device, marginal, "env.marginal")),
-      conditional_(make_storage(device, conditional, "env.conditional")) {}
-
-GpuEnvironmentMap::GpuEnvironmentMap(runtime::Device& device,
-                                     const EnvironmentDistribution& distribution)
-    : GpuEnvironmentMap(device, distribution.header(), distribution.texels(),
-                        distribution.marginal(), distribution.conditional()) {}
-
-GpuEnvironmentMap GpuEnvironmentMap::dummy(runtime::Device& device) {
-  gpu::GpuEnvironment header{};
-  header.world_to_map = glm::mat4(1.0f);
-  header.map_to_world = glm::mat4(1.0f);
-  header.size = glm::uvec4(1u, 1u, 0u, 0u);
-  return GpuEnvironmentMap(device, header, {gpu::vec4(0.0f)}, {gpu::AliasEntry{1.0f, 0u, 1.0f, 0u}},
-                           {gpu::AliasEntry{1.0f, 0u, 1.0f, 0u}});
-}
-
-void GpuEnvironmentMap::bind(runtime::Bindings& bindings) const {
-  bindings.buffer("env_header", header_buffer_)
-      .buffer("env_texels", texels_)
-      .buffer("env_marginal", marginal_)
-      .buffer("env_conditional", conditional_);
-}
-
-std::uint64_t GpuEnvironmentMap::bytes() const {
-  return header_buffer_.size() + texels_.size() + marginal_.size() + conditional_.size();
 }
 
 }  // namespace lantern::lighting

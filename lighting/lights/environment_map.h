@@ -15,8 +15,6 @@
 #include <vector>
 
 #include "engine/scene/level.h"
-#include "runtime/gpu/bindings.h"
-#include "runtime/gpu/buffer.h"
 #include "runtime/image/image.h"
 #include "shared/environment.h"
 
@@ -46,8 +44,6 @@ class EnvironmentDistribution {
   float mean_luminance() const { return header_.params.y; }
   // Power proxy: 4 pi mean_luminance pi R^2 (see the file comment).
   double power_estimate(float scene_radius) const;
-  // Sets the probability that a light sample picks the environment (header().params.x).
-  void set_selection_probability(float p) { header_.params.x = p; }
 
   // Reads level.path with OpenImageIO (InputError naming the file when it cannot be read).
   static EnvironmentDistribution load(const EnvironmentMap& level_environment);
@@ -62,30 +58,5 @@ class EnvironmentDistribution {
 // P(pick the environment) = env_power / (env_power + lights_power); 1 without other emitters,
 // 0 for a black map.
 float environment_selection_probability(double env_power, double lights_power);
-
-// Device buffers of an EnvironmentDistribution, bound by the names the shaders use:
-// env_header, env_texels, env_marginal, env_conditional. dummy(): one-element buffers for shader
-// variants that declare the bindings when the level has no environment (size.z = 0, black).
-class GpuEnvironmentMap {
- public:
-  GpuEnvironmentMap(runtime::Device& device, const EnvironmentDistribution& distribution);
-  static GpuEnvironmentMap dummy(runtime::Device& device);
-
-  void bind(runtime::Bindings& bindings) const;
-  std::uint64_t bytes() const;
-  const gpu::GpuEnvironment& header() const { return header_; }
-
- private:
-  GpuEnvironmentMap(runtime::Device& device, const gpu::GpuEnvironment& header,
-                    const std::vector<gpu::vec4>& texels,
-                    const std::vector<gpu::AliasEntry>& marginal,
-                    const std::vector<gpu::AliasEntry>& conditional);
-
-  gpu::GpuEnvironment header_{};
-  runtime::Buffer header_buffer_;
-  runtime::Buffer texels_;
-  runtime::Buffer marginal_;
-  runtime::Buffer conditional_;
-};
 
 }  // namespace lantern::lighting

@@ -10,7 +10,6 @@
 #include "lighting/frame/tile_order.h"
 #include "lighting/restir/restir_pass_common.h"
 #include "lighting/scene/gpu_scene.h"
-#include "shared/reservoir_mis.h"
 #include "shared/reservoir_pack.h"
 
 namespace lantern::lighting {
@@ -87,9 +86,9 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   const bool history = surfaces_history.valid() && reservoirs_history.valid();
   if (!history) push.lights.w &= ~gpu::kRestirFlagHistoryValid;
 
-  last_plan_ = buffers_.next_frame({.temporal = s.temporal,
-                                    .spatial_passes = s.spatial_passes,
-                                    .history_valid = history});
+  const std::vector<ReservoirStep> plan = buffers_.next_frame({.temporal = s.temporal,
+                                                               .spatial_passes = s.spatial_passes,
+                                                               .history_valid = history});
 
   // Latest version of each buffer the plan names.
   BufferHandle scratch_a;
@@ -114,7 +113,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
 
   BufferHandle status = graph.create_buffer("restir.temporal_status", {pixels * sizeof(std::uint32_t)});
   bool status_written = false;
-  for (const ReservoirStep& step : last_plan_) {
+  for (const ReservoirStep& step : plan) {
     switch (step.stage) {
       case ReservoirStage::Initial: {
         const RestirInitialPass::Output out =

@@ -37,8 +37,6 @@ class RestirIntegrator final : public Integrator {
   const RestirSettings& settings() const { return settings_; }
   // Takes effect next frame; a change of the chain's shape keeps history (Final is always kept).
   void set_settings(const RestirSettings& settings) { settings_ = settings; }
-  // The plan of the last frame added (for tests and logs).
-  const std::vector<ReservoirStep>& last_plan() const { return last_plan_; }
 
   // The push constants a frame with these inputs gets (the pass index and flags aside).
   static gpu::RestirPush make_push(const RestirSettings& settings, const FrameInputs& inputs);
@@ -51,7 +49,6 @@ class RestirIntegrator final : public Integrator {
   RestirSpatialPass spatial_;
   RestirShadePass shade_;
   ReservoirBuffers buffers_;
-  std::vector<ReservoirStep> last_plan_;
 };
 
 }  // namespace lantern::lighting

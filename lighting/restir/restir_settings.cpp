@@ -5,7 +5,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <functional>
 
 #include "engine/core/error.h"
 #include "shared/restir.h"

@@ -12,12 +12,6 @@ std::string_view visibility_backend_name(VisibilityBackend backend) {
   return backend == VisibilityBackend::RayQuery ? "rayquery" : "bvh";
 }
 
-VisibilityBackend parse_visibility_backend(std::string_view name) {
-  if (name == "bvh") return VisibilityBackend::Bvh;
-  if (name == "rayquery" || name == "ray_query") return VisibilityBackend::RayQuery;
-  throw InputError(fmt::format("unknown visibility backend '{}' (choices: bvh, rayquery)", name));
-}
-
 VisibilityBackend choose_visibility_backend(const runtime::DeviceCaps& caps, bool want_ray_query) {
   if (!want_ray_query) return VisibilityBackend::Bvh;
   if (!caps.ray_query)

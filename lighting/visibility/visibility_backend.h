@@ -24,8 +24,6 @@ constexpr std::string_view visibility_variant(VisibilityBackend backend) {
 
 // "bvh" / "rayquery" (for logs, benchmark output and the --set visibility=... value).
 std::string_view visibility_backend_name(VisibilityBackend backend);
-// Parses "bvh" / "rayquery" (also "ray_query"); throws lantern::InputError naming the choices.
-VisibilityBackend parse_visibility_backend(std::string_view name);
 
 // The backend to use on a device: the BVH unless ray query is requested. Requesting ray query on a
 // device without it throws lantern::InputError naming the device capability.

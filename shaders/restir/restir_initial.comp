@@ -187,8 +187,7 @@ void main() {
       vec3 y = restir_light_position(p, r.selected.light_index, vec2(r.selected.u, r.selected.v));
       if (!vis_visible(p.x, y)) {
         // Keep M (the candidates were drawn) but no sample: the pick lights nothing here.
-        r.W = 0.0;
-        r.selected.light_index = kInvalidLight;
+        reservoir_drop_sample(r);
       }
     }
   }

@@ -13,7 +13,6 @@
 // 1.24x faster restir.shade than storage buffers on night_market.
 #include "lib/visibility.glsl"
 #include "restir/restir_common.glsl"
-#include "lib/environment.glsl"
 
 layout(binding = 10, rgba32f) readonly uniform image2D gbuffer_emission_metallic;
 layout(binding = 11, rgba32f) readonly uniform image2D gbuffer_motion;

@@ -25,7 +25,6 @@ LANTERN_CONST uint kRestirTemporalTries = 4u;   // reprojected pixel, then 3 jit
 // RestirPush.lights.w flags.
 LANTERN_CONST uint kRestirFlagHistoryValid = 1u;       // last frame's reservoirs may be reused
 LANTERN_CONST uint kRestirFlagInitialVisibility = 2u;  // shadow-test the initial pick
-LANTERN_CONST uint kRestirFlagLastSpatial = 4u;        // this spatial pass writes the history
 
 // Debug views (`debug_view` setting): written into hdr instead of radiance.
 LANTERN_CONST uint kRestirDebugNone = 0u;
@@ -45,7 +44,6 @@ LANTERN_CONST uint kRestirStatusReprojected = 1u;  // 1 + retry index when a ret
 LANTERN_CONST uint kRestirRngInitial = 0x52490u;
 LANTERN_CONST uint kRestirRngTemporal = 0x52491u;
 LANTERN_CONST uint kRestirRngSpatial = 0x52492u;  // + pass index
-LANTERN_CONST uint kRestirRngShade = 0x524a0u;
 
 struct RestirPush {
   uvec4 frame;       // x, y: render size; z: frame index; w: seed

@@ -115,14 +115,6 @@ Entity PlayLights::add_light_entity(std::uint32_t index) {
   return e;
 }
 
-Entity PlayLights::find_light_entity(std::uint32_t index) const {
-  Entity found;
-  world_.registry().view<const LightComponent>().each([&](Entity e, const LightComponent& lc) {
-    if (lc.index == index) found = e;
-  });
-  return found;
-}
-
 void PlayLights::toggle_flashlight() {
   Registry& r = world_.registry();
   if (flashlight_) {

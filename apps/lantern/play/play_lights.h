@@ -60,7 +60,6 @@ class PlayLights {
 
  private:
   Entity add_light_entity(std::uint32_t index);
-  Entity find_light_entity(std::uint32_t index) const;
 
   World& world_;
   PlayLightSlots slots_;

@@ -209,7 +209,6 @@ PlayReport run_play(const PlayConfig& config) {
   PlayInput before;
   std::uint32_t accumulated = 0;
   bool drop_history = false;
-  std::uint64_t polls = 0;
   auto last_wall = Clock::now();
   log::info("play: {} at {}x{}, {} integrator, exposure {:.3g}; keys:\n{}", config.level, width,
             height, lighting::integrator_name(panel.integrator), exposure, play_keys_help());
@@ -227,7 +226,6 @@ PlayReport run_play(const PlayConfig& config) {
     window.poll_events();
     PlayInput input = input_from_window(window.input());
     script.apply(report.frames, input);
-    ++polls;
     if (input.quit || window.should_close() || input.key(GLFW_KEY_ESCAPE)) break;
     if (config.max_frames > 0 && report.frames >= config.max_frames) break;
 
@@ -464,7 +462,6 @@ PlayReport run_play(const PlayConfig& config) {
       "moved {:.2f} m, {} validation errors",
       report.frames, report.skipped, median(report.frame_ms), median(report.wall_ms),
       report.camera_travel, report.validation_errors);
-  (void)polls;
   if (device.validation_enabled() && device.validation_errors() > 0)
     throw RuntimeError(fmt::format("play: {} validation errors", device.validation_errors()));
   return report;
