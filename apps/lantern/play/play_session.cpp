@@ -250,10 +250,8 @@ PlayReport run_play(const PlayConfig& config) {
           report.last_reload_error = error.what();
           panel.reload_error = error.what();
           panel.reload_status = "pipelines failed to build; keeping the old ones";
+          // build_bundle threw before `bundle` was assigned: the old bundle is intact.
           log::warn("play: shader reload failed, keeping the old pipelines: {}", error.what());
-          device.wait_idle();
-          bundle = build_bundle(device, reloader, level, config_for(panel, config.integrator),
-                                width, height, config.seed);
         }
       }
     }
