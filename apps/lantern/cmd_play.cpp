@@ -32,8 +32,8 @@ void play(const PlayOptions& options, const CommonOptions& common) {
   config.show_panel = options.panel;
   if (!options.script.empty()) config.script = InputScript::load(options.script);
   // Settings are validated here (InputError, exit 2) before any window opens.
-  const Level level = load_level_argument(options.level);
-  config.integrator = integrator_config(options.integrator, common, level);
+  config.loaded_level = std::make_shared<const Level>(load_level_argument(options.level));
+  config.integrator = integrator_config(options.integrator, common, *config.loaded_level);
   run_play(config);
 }
 

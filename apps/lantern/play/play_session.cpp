@@ -138,8 +138,10 @@ bool same_pose(const SnapshotCamera& a, const SnapshotCamera& b) {
 
 PlayReport run_play(const PlayConfig& config) {
   PlayReport report;
-  Level loaded = load_level_argument(config.level);
-  const auto original = std::make_shared<const Level>(loaded);
+  const std::shared_ptr<const Level> authored =
+      config.loaded_level ? config.loaded_level
+                          : std::make_shared<const Level>(load_level_argument(config.level));
+  Level loaded = *authored;  // gets the play lights below
 
   runtime::DeviceOptions device_options{.selector = config.device};
   const auto glfw = runtime::enable_presentation(device_options);
@@ -163,7 +165,7 @@ PlayReport run_play(const PlayConfig& config) {
     probe.height = std::max<std::uint32_t>(1, probe.width * height / std::max(width, 1u));
     probe.seed = config.seed;
     exposure = lighting::auto_exposure(
-        lighting::render_offline(device, probe_shaders, original, probe).images.front());
+        lighting::render_offline(device, probe_shaders, authored, probe).images.front());
   }
   const PlayLightSlots slots = add_play_lights(loaded, exposure);
   const auto level = std::make_shared<const Level>(std::move(loaded));

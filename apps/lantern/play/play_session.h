@@ -5,16 +5,21 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "apps/lantern/play/play_input.h"
+#include "engine/scene/level.h"
 #include "lighting/integrators/integrator_factory.h"
 
 namespace lantern::app {
 
 struct PlayConfig {
   std::string level = "cornell_lights";  // name or path
+  // The level already loaded from `level` (the command loads it to validate settings); null:
+  // run_play loads it.
+  std::shared_ptr<const Level> loaded_level;
   lighting::IntegratorConfig integrator{.kind = lighting::IntegratorKind::Restir};
   std::uint32_t width = 640;  // initial window size; the render size follows the window
   std::uint32_t height = 360;
