@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <numeric>
 #include <string>
 
 #include "engine/core/error.h"
@@ -330,24 +331,29 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
     changed = true;
   }
 
-  const std::vector<std::uint32_t> old_remap = remap_;
+  // The previous -> current index map; uploaded only when it differs from last frame's.
+  auto set_remap = [&](std::vector<std::uint32_t>&& next) {
+    if (next == remap_) return;
+    remap_ = std::move(next);
+    ensure_capacity(kRemap);
+    mark_all_dirty(kRemap);
+  };
   if (changed) {
     stats_.lights_changed = true;
     stats_.alias_rebuilt = data_.lights.update(emitters_);
-    remap_ = data_.lights.previous_to_current();
+    set_remap(std::vector<std::uint32_t>(data_.lights.previous_to_current()));
+    remap_is_identity_ = false;
     ensure_capacity(kLights);  // ranges marked above (everything when the buffer grew)
     if (stats_.alias_rebuilt) {
       ensure_capacity(kAlias);
       mark_all_dirty(kAlias);
     }
-  } else {
-    // Nothing changed: every light keeps its index.
-    remap_.resize(data_.lights.lights().size());
-    for (std::uint32_t i = 0; i < remap_.size(); ++i) remap_[i] = i;
-  }
-  if (remap_ != old_remap) {
-    ensure_capacity(kRemap);
-    mark_all_dirty(kRemap);
+  } else if (!remap_is_identity_ || remap_.size() != data_.lights.lights().size()) {
+    // Nothing changed: every light keeps its index (O(lights) once, not every frame).
+    std::vector<std::uint32_t> identity(data_.lights.lights().size());
+    std::iota(identity.begin(), identity.end(), 0u);
+    set_remap(std::move(identity));
+    remap_is_identity_ = true;
   }
   if (changed) update_environment_probability();
 }

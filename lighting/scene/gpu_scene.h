@@ -174,6 +174,7 @@ class GpuScene {
   float scene_radius_ = 1.0f;
   gpu::FrameConstants constants_{};
   std::vector<std::uint32_t> remap_;    // previous light -> current
+  bool remap_is_identity_ = false;      // remap_ is the identity over the current lights
   std::vector<LightEmitter> emitters_;  // triangles (instance order), then analytic lights
   std::uint32_t triangle_emitters_ = 0;
   std::vector<EmissiveInstance> emissive_;
