@@ -71,9 +71,8 @@ RayQueryScene::RayQueryScene(runtime::Device& device, const SceneBvh& bvh)
     scratch_total += align_up(sizes.buildScratchSize, kScratchAlignment);
     blas_builds_.push_back(std::move(build));
   }
-  scratch_.reserve(std::max<VkDeviceSize>(scratch_total, kScratchAlignment));
-
-  write_instances(bvh);
+  blas_scratch_end_ = scratch_total;
+  write_instances(bvh);  // reserves the scratch for the BLAS ranges and the TLAS behind them
   device.submit_and_wait([&](VkCommandBuffer cmd) {
     record_blas_builds(cmd);
     runtime::record_acceleration_structure_barrier(device, cmd);
@@ -102,14 +101,8 @@ void RayQueryScene::ensure_tlas_capacity(std::uint32_t count) {
   tlas_ = runtime::AccelerationStructure(*device_, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
                                          sizes.accelerationStructureSize, "visibility.tlas");
   // The TLAS scratch follows the BLAS ranges, so a TLAS rebuild never overlaps a BLAS build's.
-  VkDeviceSize blas_total = 0;
-  for (std::size_t i = 0; i < blases_.size(); ++i) {
-    const auto blas_sizes = runtime::acceleration_structure_build_sizes(*device_, blas_builds_[i]);
-    blas_total =
-        blas_scratch_offsets_[i] + align_up(blas_sizes.buildScratchSize, kScratchAlignment);
-  }
-  tlas_scratch_offset_ = blas_total;
-  scratch_.reserve(blas_total + align_up(sizes.buildScratchSize, kScratchAlignment));
+  tlas_scratch_offset_ = blas_scratch_end_;
+  scratch_.reserve(blas_scratch_end_ + align_up(sizes.buildScratchSize, kScratchAlignment));
   instance_capacity_ = capacity;
 }
 
@@ -144,12 +137,6 @@ void RayQueryScene::update_instances(const SceneBvh& bvh) {
     record_tlas_build(cmd);
     runtime::record_acceleration_structure_barrier(*device_, cmd);
   });
-}
-
-std::uint64_t RayQueryScene::bytes() const {
-  std::uint64_t total = positions_.size() + instance_records_.size() + tlas_.size();
-  for (const auto& b : blases_) total += b.size();
-  return total;
 }
 
 }  // namespace lantern::lighting

@@ -39,7 +39,6 @@ class RayQueryScene {
 
   VkAccelerationStructureKHR tlas() const { return tlas_.handle(); }
   std::uint32_t blas_count() const { return static_cast<std::uint32_t>(blases_.size()); }
-  std::uint64_t bytes() const;
 
  private:
   void ensure_tlas_capacity(std::uint32_t count);
@@ -55,6 +54,7 @@ class RayQueryScene {
   std::uint32_t instance_capacity_ = 0;
   std::uint32_t instance_count_ = 0;
   runtime::AccelerationStructure tlas_;
+  VkDeviceSize blas_scratch_end_ = 0;     // scratch bytes the BLAS builds use (TLAS range follows)
   VkDeviceSize tlas_scratch_offset_ = 0;
 };
 

@@ -87,10 +87,4 @@ void VisibilityScene::bind(runtime::Bindings& bindings) const {
   }
 }
 
-std::uint64_t VisibilityScene::bytes() const {
-  std::uint64_t total = header_.size() + nodes_.size() + triangles_.size() + instances_.size();
-  if (ray_query_) total += ray_query_->bytes();
-  return total;
-}
-
 }  // namespace lantern::lighting

@@ -48,7 +48,6 @@ class VisibilityScene {
   void bind(runtime::Bindings& bindings) const;
 
   const RayQueryScene* ray_query() const { return ray_query_.get(); }
-  std::uint64_t bytes() const;
 
  private:
   void upload_bvh(const SceneBvh& bvh);

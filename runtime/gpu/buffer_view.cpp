@@ -10,35 +10,12 @@
 #include "runtime/core/device.h"
 #include "runtime/core/vk_check.h"
 #include "runtime/gpu/buffer.h"
+#include "runtime/gpu/image.h"
 
 namespace lantern::runtime {
-namespace {
-
-VkDeviceSize texel_bytes(VkFormat format) {
-  switch (format) {
-    case VK_FORMAT_R32G32B32A32_UINT:
-    case VK_FORMAT_R32G32B32A32_SFLOAT:
-    case VK_FORMAT_R32G32B32A32_SINT:
-      return 16;
-    case VK_FORMAT_R32G32_UINT:
-    case VK_FORMAT_R32G32_SFLOAT:
-      return 8;
-    case VK_FORMAT_R32_UINT:
-    case VK_FORMAT_R32_SFLOAT:
-      return 4;
-    default:
-      return 0;
-  }
-}
-
-}  // namespace
-
 BufferView::BufferView(Device& device, const Buffer& buffer, VkFormat format, std::string_view name)
     : device_(&device) {
-  const VkDeviceSize texel = texel_bytes(format);
-  if (texel == 0)
-    throw RuntimeError(
-        fmt::format("buffer view '{}': unsupported format {}", name, static_cast<int>(format)));
+  const VkDeviceSize texel = texel_size(format);  // throws for a format it does not know
   const VkDeviceSize elements = buffer.size() / texel;
   if (elements > device.properties().limits.maxTexelBufferElements)
     throw RuntimeError(

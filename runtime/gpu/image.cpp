@@ -54,6 +54,7 @@ std::uint32_t texel_size(VkFormat format) {
       return 8;
     case VK_FORMAT_R32G32B32A32_SFLOAT:
     case VK_FORMAT_R32G32B32A32_UINT:
+    case VK_FORMAT_R32G32B32A32_SINT:
       return 16;
     default:
       throw RuntimeError(

@@ -14,6 +14,7 @@
 
 #include "engine/scene/camera.h"
 #include "lighting/bvh/scene_bvh.h"
+#include "lighting/frame/tile_order.h"
 #include "lighting/lights/light_table.h"
 #include "lighting/scene/frame_constants.h"
 #include "lighting/visibility/visibility_scene.h"
@@ -144,14 +145,9 @@ class Probe {
     if (!rays.empty()) runtime::upload_buffer(device_, rays_, rays);
     const auto count = static_cast<std::uint32_t>(rays.size());
     const std::uint32_t groups = std::max<std::uint32_t>((count + 63) / 64, 1);
-    // A stride near groups * 0.618 that is coprime with groups: neighbouring workgroups land far
-    // apart, so both lavapipe threads get a mix of cheap and expensive rays.
-    std::uint32_t stride = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(groups * 0.618));
-    auto gcd = [](std::uint32_t a, std::uint32_t b) {
-      while (b != 0) a = std::exchange(b, a % b);
-      return a;
-    };
-    while (gcd(stride, groups) != 1) ++stride;
+    // Neighbouring workgroups land far apart, so both lavapipe threads get a mix of cheap and
+    // expensive rays (the shuffled order the passes use).
+    const std::uint32_t stride = lighting::tile_stride(groups);
     runtime::Bindings bindings(pipeline_);
     scene.bind(bindings);
     bindings.buffer("probe_rays", rays_).buffer("probe_results", results_);
