@@ -8,8 +8,8 @@
 //     their surface; a hit at exactly t = 0 is never reported.
 //   bool vis_visible(vec3 origin, vec3 target)
 //     Shadow ray (any hit): true when nothing blocks the open segment. Epsilon policy (one owner,
-//     bvh_shadow_t_epsilon in shared/bvh.h): both ends are pulled in by
-//     kBvhShadowEpsilon * max(1, largest |coordinate| of either end) in world units, so the
+//     bvh_shadow_t_epsilon in shared/bvh.h): both ends are pulled in by bvh_position_epsilon
+//     (max(1e-4 m, 4e-6 x largest |coordinate| of either end), ~32 ulps), so the
 //     surface the ray leaves and the emitter it reaches never count as blockers; points closer
 //     than two epsilons see each other. Pass surface points and light points as they are.
 // Backend, chosen at compile time (lighting/visibility/visibility_backend.h maps a shader path to

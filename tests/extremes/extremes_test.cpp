@@ -280,11 +280,10 @@ TEST_F(ExtremesTest, SliverOnlyEmitterMatchesReference) {
 //                      x1e-3. Measured: identical means, relMSE 3e-12 (x1e-3) and 3e-14 (x1e4))
 //   +1e5 m:       5%   (float ulp at 1e5 is 2^-7 = 7.8 mm: the geometry snaps to an 8 mm grid,
 //                      ~770 steps across the 6 m room, and G-buffer positions carry that error.
-//                      Measured: mean +3.6% baseline, +3.0% restir, relMSE 0.027 — not precision
-//                      but missing shadows: the shadow epsilon kBvhShadowEpsilon * max(1, |p|) is
-//                      10 m at 1e5, so bvh_shadow_t_epsilon calls every pair closer than 20 m
-//                      mutually visible. See ShadowEpsilonAt1e5 and
-//                      SceneTranslatedTo1e5KeepsShadows below.)
+//                      The relative shadow epsilon (bvh_position_epsilon, 4e-6 |p| = 0.4 m at
+//                      1e5) loses contact shadows within 0.4 m of an occluder. Before the fix the
+//                      epsilon was 1e-4 |p| = 10 m and erased every shadow (mean +3.6%, relMSE
+//                      0.027); SceneTranslatedTo1e5KeepsShadows below pins the fix.)
 struct ScaleCase {
   const char* name;
   float scale;
@@ -316,10 +315,9 @@ TEST_F(ExtremesTest, SceneScaledAndTranslatedMatchesUnitScene) {
 }
 
 // The shadow-ray epsilon (shaders/shared/bvh.h, shared by every visibility backend) at the
-// coordinates of the scene translated to 1e5: a light 2 m above a floor point is reported
-// visible without tracing (-1), so occluders cast no shadow. Pins today's behaviour; when the
-// epsilon becomes relative to float precision (see the report), flip this and enable the test
-// below.
+// coordinates of the scene translated to 1e5: a light 2 m above a floor point is traced (the
+// epsilon is relative to float precision), so occluders there cast shadows. It used to report
+// such a pair visible without tracing (-1).
 TEST(ExtremesShadowEpsilon, ShadowEpsilonAt1e5) {
   const glm::vec3 floor_point(1e5f, 1e5f, 1e5f);
   const glm::vec3 light = floor_point + glm::vec3(0.3f, 2.0f, 0.5f);
