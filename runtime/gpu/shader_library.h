@@ -1,7 +1,8 @@
 // Loads compiled SPIR-V by its source-relative path ("restir/restir_initial.comp" ->
 // <dir>/restir/restir_initial.comp.spv; variant "rq" -> ...comp.rq.spv), reflects it once and
 // caches it. The directory is, in order: the constructor argument, $LANTERN_SHADER_DIR, the
-// build's shader dir (compile definition LANTERN_SHADER_DIR), <exe dir>/../shaders.
+// build's shader dir (compile definition LANTERN_SHADER_DIR), <exe dir>/../shaders. A program
+// built against the installed package passes its config's Lantern_SHADER_DIR (README "Embedding").
 #pragma once
 
 #include <cstdint>
