@@ -10,42 +10,12 @@
 #include <vector>
 
 #include "engine/world/frame_snapshot.h"
+#include "lighting/scene/scene_buffers.h"
 #include "runtime/graph/render_graph.h"
 
 namespace lantern::lighting {
 
 class GpuScene;
-
-// The scene's device buffers imported into this frame's graph (written by scene.upload, read-only
-// for integrators). The Vulkan objects behind them are the ones GpuScene::bind() binds.
-struct SceneHandles {
-  runtime::graph::BufferHandle frame_constants;  // one gpu::FrameConstants
-  runtime::graph::BufferHandle vertices;
-  runtime::graph::BufferHandle indices;
-  runtime::graph::BufferHandle materials;
-  runtime::graph::BufferHandle instances;  // gpu::GpuInstance, with previous transforms
-  runtime::graph::BufferHandle lights;     // gpu::GpuLight, current frame
-  runtime::graph::BufferHandle alias;      // gpu::AliasEntry over current lights' power
-  runtime::graph::BufferHandle bvh_header;
-  runtime::graph::BufferHandle bvh_nodes;
-  runtime::graph::BufferHandle bvh_triangles;
-  runtime::graph::BufferHandle bvh_instances;
-  // uint per previous-frame light: its current index, or kInvalidLight when it was removed.
-  runtime::graph::BufferHandle light_previous_to_current;
-  // The environment map (shaders/lib/environment.glsl; a black 1-texel stand-in without one):
-  // gpu::GpuEnvironment (params.x = light-selection probability, written by scene.upload when
-  // the lights change), radiance texels, marginal and conditional alias tables.
-  runtime::graph::BufferHandle env_header;
-  runtime::graph::BufferHandle env_texels;
-  runtime::graph::BufferHandle env_marginal;
-  runtime::graph::BufferHandle env_conditional;
-
-  // Declares what a pass that calls GpuScene::bind needs: a StorageRead of every scene buffer,
-  // plus a UniformTexelRead of the BVH nodes, triangles and instances (lib/visibility.glsl reads
-  // them through rgba32ui texel views by default; passes still on storage-buffer BVH reads are
-  // covered by the StorageRead).
-  void declare_reads(runtime::graph::PassBuilder& builder) const;
-};
 
 // The G-buffer images of shaders/shared/gbuffer.h, after the gbuffer pass wrote them.
 struct GBufferHandles {
@@ -56,13 +26,17 @@ struct GBufferHandles {
   runtime::graph::ImageHandle ids;
   runtime::graph::ImageHandle motion;
 
-  // Declares a StorageRead of every colour image (read with imageLoad, layout GENERAL).
-  void declare_reads(runtime::graph::PassBuilder& builder) const;
+  // Declares a StorageRead of every image the pipeline's shaders use (imageLoad, layout GENERAL),
+  // found by its GLSL name: gbuffer_position, gbuffer_normal, gbuffer_albedo_roughness,
+  // gbuffer_emission_metallic, gbuffer_ids, gbuffer_motion.
+  void declare_reads(runtime::graph::PassBuilder& builder, const runtime::Pipeline& pipeline) const;
+  // Binds those images by the same names.
+  void bind(runtime::Bindings& bindings, const runtime::graph::PassContext& ctx) const;
 };
 
 struct FrameInputs {
   const FrameSnapshot* snapshot = nullptr;
-  const GpuScene* scene = nullptr;  // bind() binds the buffers behind `scene_handles`
+  const GpuScene* scene = nullptr;  // the CPU side of `scene_handles` (counts, radius)
   SceneHandles scene_handles;
   GBufferHandles gbuffer;
   std::uint32_t width = 0;

@@ -76,38 +76,13 @@ VkClearColorValue visibility_clear() {
   return value;
 }
 
-struct SceneBuffers {
-  BufferHandle frame_constants, vertices, indices, materials, instances;
-
-  static SceneBuffers read(PassBuilder& b, const SceneHandles& scene, bool materials) {
-    SceneBuffers out{scene.frame_constants, scene.vertices, scene.indices, scene.materials,
-                     scene.instances};
-    for (BufferHandle h : {scene.frame_constants, scene.vertices, scene.indices, scene.instances}) {
-      b.read(h, Access::StorageRead);
-    }
-    if (materials) b.read(scene.materials, Access::StorageRead);
-    return out;
-  }
-
-  // Binds the ones the pipeline's shaders declare, by their GLSL block names.
-  void bind(runtime::Bindings& bindings, PassContext& ctx) const {
-    const std::pair<const char*, BufferHandle> all[] = {{"frame_constants", frame_constants},
-                                                        {"scene_vertices", vertices},
-                                                        {"scene_indices", indices},
-                                                        {"scene_materials", materials},
-                                                        {"scene_instances", instances}};
-    for (const auto& [name, handle] : all) {
-      if (bindings.has(name)) bindings.buffer(name, ctx.buffer(handle), 0, VK_WHOLE_SIZE);
-    }
-  }
-};
-
 struct DrawsData {
-  BufferHandle instances, chunks, dispatch, draw;
+  SceneHandles scene;
+  BufferHandle chunks, dispatch, draw;
 };
 
 struct CullData {
-  SceneBuffers scene;
+  SceneHandles scene;
   BufferHandle chunks, dispatch, draw, triangles, clip;
 };
 
@@ -117,14 +92,14 @@ struct VisibilityData {
 };
 
 struct ResolveData {
-  SceneBuffers scene;
+  SceneHandles scene;
   BufferHandle triangles;
   ImageHandle visibility;
   std::array<ImageHandle, 6> colors;
 };
 
 struct ForwardData {
-  SceneBuffers scene;
+  SceneHandles scene;
   BufferHandle draws;
   std::array<ImageHandle, 6> colors;
   ImageHandle depth;
@@ -230,14 +205,8 @@ GBufferHandles GBufferPass::add_method(RenderGraph& graph, const SceneHandles& s
   if (width == 0 || height == 0) {
     throw InputError(fmt::format("gbuffer: render size {}x{} must be positive", width, height));
   }
-  for (const auto& [handle, name] :
-       {std::pair{scene.frame_constants, "frame_constants"}, std::pair{scene.vertices, "vertices"},
-        std::pair{scene.indices, "indices"}, std::pair{scene.materials, "materials"},
-        std::pair{scene.instances, "instances"}}) {
-    if (!handle.valid()) {
-      throw RuntimeError(fmt::format("gbuffer: scene handle '{}' is not set", name));
-    }
-  }
+  // A scene buffer the G-buffer's shaders read but `scene` lacks: SceneHandles::declare_reads
+  // throws naming it.
   if (triangles > 0xffffffffull / 3) {
     throw RuntimeError(fmt::format("gbuffer: {} triangles exceed one draw", triangles));
   }
@@ -258,8 +227,8 @@ GBufferHandles GBufferPass::add_visibility(RenderGraph& graph, const SceneHandle
   const DrawsData& d = graph.add_pass<DrawsData>(
       "gbuffer.draws", PassKind::Compute,
       [&](PassBuilder& b, DrawsData& data) {
-        data.instances = scene.instances;
-        b.read(scene.instances, Access::StorageRead);
+        data.scene = scene;
+        scene.declare_reads(b, *draws_);
         data.chunks =
             b.write(graph.create_buffer("gbuffer.chunks",
                                         {4 * std::uint64_t{std::max(instance_count, 1u)}}),
@@ -271,8 +240,8 @@ GBufferHandles GBufferPass::add_visibility(RenderGraph& graph, const SceneHandle
       },
       [this, push](PassContext& ctx, const DrawsData& data) {
         runtime::Bindings bindings(*draws_);
-        bindings.buffer("scene_instances", ctx.buffer(data.instances), 0, VK_WHOLE_SIZE)
-            .buffer("gbuffer_chunks", ctx.buffer(data.chunks), 0, VK_WHOLE_SIZE)
+        data.scene.bind(bindings, ctx);
+        bindings.buffer("gbuffer_chunks", ctx.buffer(data.chunks), 0, VK_WHOLE_SIZE)
             .buffer("gbuffer_dispatch", ctx.buffer(data.dispatch), 0, VK_WHOLE_SIZE)
             .buffer("gbuffer_draw", ctx.buffer(data.draw), 0, VK_WHOLE_SIZE);
         draws_->bind(ctx.cmd(), bindings);
@@ -283,7 +252,8 @@ GBufferHandles GBufferPass::add_visibility(RenderGraph& graph, const SceneHandle
   const CullData& c = graph.add_pass<CullData>(
       "gbuffer.cull", PassKind::Compute,
       [&](PassBuilder& b, CullData& data) {
-        data.scene = SceneBuffers::read(b, scene, false);
+        data.scene = scene;
+        scene.declare_reads(b, *cull_);
         data.chunks = d.chunks;
         b.read(d.chunks, Access::StorageRead);
         data.dispatch = d.dispatch;
@@ -338,7 +308,8 @@ GBufferHandles GBufferPass::add_visibility(RenderGraph& graph, const SceneHandle
   const ResolveData& r = graph.add_pass<ResolveData>(
       "gbuffer.resolve", PassKind::Graphics,
       [&](PassBuilder& b, ResolveData& data) {
-        data.scene = SceneBuffers::read(b, scene, true);
+        data.scene = scene;
+        scene.declare_reads(b, *resolve_);
         data.triangles = c.triangles;
         b.read(c.triangles, Access::StorageRead);
         data.visibility = v.visibility;
@@ -374,8 +345,8 @@ GBufferHandles GBufferPass::add_forward(RenderGraph& graph, const SceneHandles& 
     const DrawsData& d = graph.add_pass<DrawsData>(
         "gbuffer.draws", PassKind::Compute,
         [&](PassBuilder& b, DrawsData& data) {
-          data.instances = scene.instances;
-          b.read(scene.instances, Access::StorageRead);
+          data.scene = scene;
+          scene.declare_reads(b, *forward_draws_);
           data.draw = b.write(graph.create_buffer("gbuffer.draws", {std::uint64_t{instance_count} *
                                                                     kDrawCommandBytes}),
                               Access::StorageWrite);
@@ -384,8 +355,8 @@ GBufferHandles GBufferPass::add_forward(RenderGraph& graph, const SceneHandles& 
           // The culled method's outputs are unused here: bind the draw buffer in their place.
           const VkBuffer draw = ctx.buffer(data.draw);
           runtime::Bindings bindings(*forward_draws_);
-          bindings.buffer("scene_instances", ctx.buffer(data.instances), 0, VK_WHOLE_SIZE)
-              .buffer("gbuffer_chunks", draw, 0, VK_WHOLE_SIZE)
+          data.scene.bind(bindings, ctx);
+          bindings.buffer("gbuffer_chunks", draw, 0, VK_WHOLE_SIZE)
               .buffer("gbuffer_dispatch", draw, 0, VK_WHOLE_SIZE)
               .buffer("gbuffer_draw", draw, 0, VK_WHOLE_SIZE);
           forward_draws_->bind(ctx.cmd(), bindings);
@@ -398,7 +369,8 @@ GBufferHandles GBufferPass::add_forward(RenderGraph& graph, const SceneHandles& 
   const ForwardData& f = graph.add_pass<ForwardData>(
       "gbuffer", PassKind::Graphics,
       [&](PassBuilder& b, ForwardData& data) {
-        data.scene = SceneBuffers::read(b, scene, true);
+        data.scene = scene;
+        scene.declare_reads(b, *forward_raster_);
         if (draws.valid()) {
           data.draws = draws;
           b.read(draws, Access::IndirectBuffer);
@@ -487,11 +459,11 @@ void GBufferPass::warm_up() {
                                  read_only);
     };
     SceneHandles scene;
-    scene.frame_constants = import(0);
-    scene.vertices = import(1);
-    scene.indices = import(2);
-    scene.materials = import(3);
-    scene.instances = import(4);
+    scene[gpu::kSceneFrameConstants] = import(0);
+    scene[gpu::kSceneVertices] = import(1);
+    scene[gpu::kSceneIndices] = import(2);
+    scene[gpu::kSceneMaterials] = import(3);
+    scene[gpu::kSceneInstances] = import(4);
     const GBufferHandles out = add_method(graph, scene, 1, 1, 1, 1, method);
     // Keep the passes alive: a consumer of one of their images.
     struct Keep {};

@@ -5,6 +5,7 @@
 #include "integrators/baseline.h"
 #include "lighting/frame/tile_order.h"
 #include "lighting/integrators/gbuffer_shading_pass.h"
+#include "lighting/scene/gpu_scene.h"
 
 namespace lantern::lighting {
 

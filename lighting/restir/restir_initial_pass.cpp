@@ -29,25 +29,15 @@ RestirInitialPass::Output RestirInitialPass::add(runtime::graph::RenderGraph& gr
       [&](runtime::graph::PassBuilder& b, Data& d) {
         d.scene = inputs.scene_handles;
         d.gbuffer = inputs.gbuffer;
-        inputs.scene_handles.declare_reads(b);
-        inputs.gbuffer.declare_reads(b);
+        inputs.scene_handles.declare_reads(b, pipeline_);
+        inputs.gbuffer.declare_reads(b, pipeline_);
         d.out.surfaces = b.write(surfaces, Access::StorageWrite);
         d.out.reservoirs = b.write(reservoirs, Access::StorageWrite);
       },
-      [this, push, scene = inputs.scene](runtime::graph::PassContext& ctx, const Data& d) {
+      [this, push](runtime::graph::PassContext& ctx, const Data& d) {
         runtime::Bindings b(pipeline_);
-        bind_visibility(b, ctx, d.scene, scene);  // first: the graph's buffers below win
-        bind_environment(b, ctx, d.scene);
-        bind_buffer(b, ctx, "frame_constants", d.scene.frame_constants);
-        bind_buffer(b, ctx, "scene_lights", d.scene.lights);
-        bind_buffer(b, ctx, "scene_materials", d.scene.materials);
-        bind_buffer(b, ctx, "scene_instances", d.scene.instances);
-        bind_buffer(b, ctx, "light_alias", d.scene.alias);
-        bind_image(b, ctx, "gbuffer_position", d.gbuffer.position);
-        bind_image(b, ctx, "gbuffer_normal", d.gbuffer.normal);
-        bind_image(b, ctx, "gbuffer_albedo_roughness", d.gbuffer.albedo_roughness);
-        bind_image(b, ctx, "gbuffer_emission_metallic", d.gbuffer.emission_metallic);
-        bind_image(b, ctx, "gbuffer_ids", d.gbuffer.ids);
+        d.scene.bind(b, ctx);
+        d.gbuffer.bind(b, ctx);
         bind_buffer(b, ctx, "restir_surfaces", d.out.surfaces);
         bind_buffer(b, ctx, "reservoirs_out", d.out.reservoirs);
         pipeline_.bind(ctx.cmd(), b);

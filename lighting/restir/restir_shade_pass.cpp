@@ -20,8 +20,7 @@ BufferHandle RestirShadePass::add(runtime::graph::RenderGraph& graph, const Fram
                                   BufferHandle hdr) const {
   struct Data {
     SceneHandles scene;
-    runtime::graph::ImageHandle emission;
-    runtime::graph::ImageHandle motion;
+    GBufferHandles gbuffer;
     BufferHandle surfaces;
     BufferHandle reservoirs;
     BufferHandle status;
@@ -31,27 +30,21 @@ BufferHandle RestirShadePass::add(runtime::graph::RenderGraph& graph, const Fram
       "restir.shade", runtime::graph::PassKind::Compute,
       [&](runtime::graph::PassBuilder& b, Data& d) {
         d.scene = inputs.scene_handles;
-        d.emission = inputs.gbuffer.emission_metallic;
-        d.motion = inputs.gbuffer.motion;
+        d.gbuffer = inputs.gbuffer;
         d.surfaces = surfaces;
         d.reservoirs = reservoirs;
         d.status = status;
-        inputs.scene_handles.declare_reads(b);  // lights, frame constants, BVH (texel views)
-        b.read(d.emission, Access::StorageRead);
-        b.read(d.motion, Access::StorageRead);
+        d.scene.declare_reads(b, pipeline_);
+        d.gbuffer.declare_reads(b, pipeline_);
         b.read(surfaces, Access::StorageRead);
         b.read(reservoirs, Access::StorageRead);
         b.read(status, Access::StorageRead);
         d.hdr = b.write(hdr, Access::StorageWrite);
       },
-      [this, push, scene = inputs.scene](runtime::graph::PassContext& ctx, const Data& d) {
+      [this, push](runtime::graph::PassContext& ctx, const Data& d) {
         runtime::Bindings b(pipeline_);
-        bind_visibility(b, ctx, d.scene, scene);  // first: the graph's buffers below win
-        bind_environment(b, ctx, d.scene);
-        bind_buffer(b, ctx, "frame_constants", d.scene.frame_constants);
-        bind_buffer(b, ctx, "scene_lights", d.scene.lights);
-        bind_image(b, ctx, "gbuffer_emission_metallic", d.emission);
-        bind_image(b, ctx, "gbuffer_motion", d.motion);
+        d.scene.bind(b, ctx);
+        d.gbuffer.bind(b, ctx);
         bind_buffer(b, ctx, "restir_surfaces", d.surfaces);
         bind_buffer(b, ctx, "reservoirs_in", d.reservoirs);
         bind_buffer(b, ctx, "temporal_status", d.status);

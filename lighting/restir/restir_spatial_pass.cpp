@@ -20,8 +20,6 @@ BufferHandle RestirSpatialPass::add(runtime::graph::RenderGraph& graph, const Fr
                                     BufferHandle reservoirs_in, BufferHandle reservoirs_out) const {
   struct Data {
     SceneHandles scene;
-    BufferHandle frame_constants;
-    BufferHandle lights;
     BufferHandle surfaces;
     BufferHandle in;
     BufferHandle out;
@@ -30,25 +28,19 @@ BufferHandle RestirSpatialPass::add(runtime::graph::RenderGraph& graph, const Fr
       "restir.spatial", runtime::graph::PassKind::Compute,
       [&](runtime::graph::PassBuilder& b, Data& d) {
         d.scene = inputs.scene_handles;
-        d.frame_constants = inputs.scene_handles.frame_constants;
-        d.lights = inputs.scene_handles.lights;
         d.surfaces = surfaces;
         d.in = reservoirs_in;
-        b.read(d.frame_constants, Access::StorageRead);
-        b.read(d.lights, Access::StorageRead);
+        d.scene.declare_reads(b, pipeline_);
         b.read(surfaces, Access::StorageRead);
         b.read(reservoirs_in, Access::StorageRead);
-        declare_environment_reads(b, d.scene);
         d.out = b.write(reservoirs_out, Access::StorageWrite);
       },
       [this, push](runtime::graph::PassContext& ctx, const Data& d) {
         runtime::Bindings b(pipeline_);
-        bind_buffer(b, ctx, "frame_constants", d.frame_constants);
-        bind_buffer(b, ctx, "scene_lights", d.lights);
+        d.scene.bind(b, ctx);
         bind_buffer(b, ctx, "restir_surfaces", d.surfaces);
         bind_buffer(b, ctx, "reservoirs_in", d.in);
         bind_buffer(b, ctx, "reservoirs_out", d.out);
-        bind_environment(b, ctx, d.scene);
         pipeline_.bind(ctx.cmd(), b);
         pipeline_.push_constants(ctx.cmd(), push);
         pipeline_.dispatch(ctx.cmd(), tile_count(push.frame.x, push.frame.y));

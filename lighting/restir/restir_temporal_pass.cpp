@@ -20,7 +20,7 @@ RestirTemporalPass::Output RestirTemporalPass::add(runtime::graph::RenderGraph& 
                                                    const Input& input) const {
   struct Data {
     SceneHandles scene;
-    runtime::graph::ImageHandle motion;
+    GBufferHandles gbuffer;
     Input in;
     Output out;
   };
@@ -28,13 +28,10 @@ RestirTemporalPass::Output RestirTemporalPass::add(runtime::graph::RenderGraph& 
       "restir.temporal", runtime::graph::PassKind::Compute,
       [&](runtime::graph::PassBuilder& b, Data& d) {
         d.scene = inputs.scene_handles;
-        d.motion = inputs.gbuffer.motion;
+        d.gbuffer = inputs.gbuffer;
         d.in = input;
-        b.read(d.scene.frame_constants, Access::StorageRead);
-        b.read(d.scene.lights, Access::StorageRead);
-        b.read(d.scene.light_previous_to_current, Access::StorageRead);
-        declare_environment_reads(b, d.scene);
-        b.read(d.motion, Access::StorageRead);
+        d.scene.declare_reads(b, pipeline_);
+        d.gbuffer.declare_reads(b, pipeline_);
         b.read(input.surfaces, Access::StorageRead);
         b.read(input.reservoirs_in, Access::StorageRead);
         // Without history the shader does not read the history bindings: this frame's surfaces
@@ -47,11 +44,8 @@ RestirTemporalPass::Output RestirTemporalPass::add(runtime::graph::RenderGraph& 
       [this, push](runtime::graph::PassContext& ctx, const Data& d) {
         const bool history = d.in.surfaces_history && d.in.reservoirs_history;
         runtime::Bindings b(pipeline_);
-        bind_buffer(b, ctx, "frame_constants", d.scene.frame_constants);
-        bind_buffer(b, ctx, "scene_lights", d.scene.lights);
-        bind_buffer(b, ctx, "light_remap", d.scene.light_previous_to_current);
-        bind_environment(b, ctx, d.scene);
-        bind_image(b, ctx, "gbuffer_motion", d.motion);
+        d.scene.bind(b, ctx);
+        d.gbuffer.bind(b, ctx);
         bind_buffer(b, ctx, "restir_surfaces", d.in.surfaces);
         bind_buffer(b, ctx, "reservoirs_in", d.in.reservoirs_in);
         bind_buffer(b, ctx, "surfaces_history", history ? d.in.surfaces_history : d.in.surfaces);

@@ -12,7 +12,6 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "runtime/core/device.h"
-#include "runtime/gpu/pipeline.h"
 #include "runtime/gpu/transfer.h"
 
 namespace lantern::lighting {
@@ -22,40 +21,6 @@ using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-constexpr const char* kSlotNames[GpuScene::kSlotCount] = {
-    "scene.frame_constants", "scene.vertices",      "scene.indices",
-    "scene.materials",       "scene.instances",     "scene.lights",
-    "scene.light_alias",     "scene.bvh_header",    "scene.bvh_nodes",
-    "scene.bvh_triangles",   "scene.bvh_instances", "scene.light_previous_to_current",
-    "scene.env_header",      "scene.env_texels",    "scene.env_marginal",
-    "scene.env_conditional"};
-
-// Shader names of each slot (bind()).
-constexpr const char* kBindNames[GpuScene::kSlotCount] = {
-    "frame_constants", "scene_vertices",    "scene_indices",     "scene_materials",
-    "scene_instances", "scene_lights",      "light_alias",       "BvhHeaderBuffer",
-    "BvhNodeBuffer",   "BvhTriangleBuffer", "BvhInstanceBuffer", "light_previous_to_current",
-    "env_header",      "env_texels",        "env_marginal",      "env_conditional"};
-
-// Texel-view names of the BVH arrays (lib/bvh_traverse.glsl with BVH_TEXEL_BUFFERS).
-constexpr const char* texel_bind_name(GpuScene::Slot slot) {
-  switch (slot) {
-    case GpuScene::kBvhNodes:
-      return "bvh_node_texels";
-    case GpuScene::kBvhTriangles:
-      return "bvh_triangle_texels";
-    case GpuScene::kBvhInstances:
-      return "bvh_instance_texels";
-    default:
-      return nullptr;
-  }
-}
-
-template <class T>
-std::span<const std::byte> bytes_of(const std::vector<T>& v) {
-  return std::as_bytes(std::span<const T>(v));
 }
 
 // How an imported scene buffer may have been used by the previous frames (conservative: any
@@ -127,14 +92,11 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level)
         env_header_.params.x);
   }
 
-  for (std::uint32_t s = 0; s < kSlotCount; ++s) {
-    arrays_[s].read_only = s == kVertices || s == kIndices || s == kMaterials ||
-                           s == kBvhTriangles || s == kEnvTexels || s == kEnvMarginal ||
-                           s == kEnvConditional;
-    ensure_capacity(static_cast<Slot>(s));
+  for (std::uint32_t s = 0; s < gpu::kSceneBufferCount; ++s) {
+    ensure_capacity(s);
     // Everything starts uploaded (blocking, setup time); per-frame changes go through the graph.
     std::vector<std::byte> bytes(arrays_[s].buffer.size());  // zero-filled past the array
-    const std::span<const std::byte> src = cpu_bytes(static_cast<Slot>(s));
+    const std::span<const std::byte> src = cpu_bytes(s);
     std::copy(src.begin(), src.end(), bytes.begin());
     runtime::upload_buffer(device_, arrays_[s].buffer, std::span<const std::byte>(bytes));
     arrays_[s].dirty.clear();
@@ -143,55 +105,30 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level)
 
 GpuScene::~GpuScene() = default;
 
-std::span<const std::byte> GpuScene::cpu_bytes(Slot slot) const {
-  switch (slot) {
-    case kFrameConstants:
-      return std::as_bytes(std::span<const gpu::FrameConstants>(&constants_, 1));
-    case kVertices:
-      return bytes_of(data_.vertices);
-    case kIndices:
-      return bytes_of(data_.indices);
-    case kMaterials:
-      return bytes_of(data_.materials);
-    case kInstances:
-      return bytes_of(data_.instances);
-    case kLights:
-      return bytes_of(data_.lights.lights());
-    case kAlias:
-      return bytes_of(data_.lights.alias_table().entries());
-    case kBvhHeader:
-      return std::as_bytes(std::span<const gpu::BvhSceneHeader>(&data_.bvh.header(), 1));
-    case kBvhNodes:
-      return bytes_of(data_.bvh.nodes());
-    case kBvhTriangles:
-      return bytes_of(data_.bvh.triangles());
-    case kBvhInstances:
-      return bytes_of(data_.bvh.instances());
-    case kRemap:
-      return bytes_of(remap_);
-    case kEnvHeader:
-      return std::as_bytes(std::span<const gpu::GpuEnvironment>(&env_header_, 1));
-    case kEnvTexels:
-      return env_ ? bytes_of(env_->texels()) : bytes_of(env_dummy_texels_);
-    case kEnvMarginal:
-      return env_ ? bytes_of(env_->marginal()) : bytes_of(env_dummy_alias_);
-    case kEnvConditional:
-      return env_ ? bytes_of(env_->conditional()) : bytes_of(env_dummy_alias_);
-    case kSlotCount:
-      break;
-  }
-  return {};
+std::span<const std::byte> GpuScene::cpu_bytes(std::uint32_t slot) const {
+  SceneBufferSources sources;
+  sources.frame_constants = &constants_;
+  sources.data = &data_;
+  sources.light_previous_to_current = &remap_;
+  sources.env_header = &env_header_;
+  sources.env_texels = env_ ? std::as_bytes(std::span(env_->texels()))
+                            : std::as_bytes(std::span(env_dummy_texels_));
+  sources.env_marginal = env_ ? std::as_bytes(std::span(env_->marginal()))
+                              : std::as_bytes(std::span(env_dummy_alias_));
+  sources.env_conditional = env_ ? std::as_bytes(std::span(env_->conditional()))
+                                 : std::as_bytes(std::span(env_dummy_alias_));
+  return kSceneBuffers[slot].bytes(sources);
 }
 
-void GpuScene::mark_dirty(Slot slot, std::uint64_t begin, std::uint64_t end) {
+void GpuScene::mark_dirty(std::uint32_t slot, std::uint64_t begin, std::uint64_t end) {
   if (begin < end) arrays_[slot].dirty.emplace_back(begin, end);
 }
 
-void GpuScene::mark_all_dirty(Slot slot) {
+void GpuScene::mark_all_dirty(std::uint32_t slot) {
   mark_dirty(slot, 0, cpu_bytes(slot).size());
 }
 
-void GpuScene::ensure_capacity(Slot slot) {
+void GpuScene::ensure_capacity(std::uint32_t slot) {
   DeviceArray& a = arrays_[slot];
   // Never empty: Vulkan has no zero-sized buffers (an empty array reads as one zeroed element).
   const VkDeviceSize needed = std::max<VkDeviceSize>(cpu_bytes(slot).size(), 16);
@@ -201,7 +138,7 @@ void GpuScene::ensure_capacity(Slot slot) {
     size = std::max<VkDeviceSize>(needed, a.buffer.size() + a.buffer.size() / 2);
     retired_.push_back({uploads_, std::move(a.buffer), std::move(a.texels)});
   }
-  const char* texel_name = texel_bind_name(slot);
+  const char* texel_name = kSceneBuffers[slot].texel_name;
   a.buffer = runtime::Buffer(
       device_,
       {.size = size,
@@ -209,10 +146,10 @@ void GpuScene::ensure_capacity(Slot slot) {
                                                            VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT}
                                       : VkBufferUsageFlags{VK_BUFFER_USAGE_STORAGE_BUFFER_BIT},
        .memory = runtime::MemoryUsage::DeviceLocal,
-       .name = kSlotNames[slot]});
+       .name = kSceneBuffers[slot].graph_name});
   if (texel_name != nullptr) {
     a.texels = runtime::BufferView(device_, a.buffer, VK_FORMAT_R32G32B32A32_UINT,
-                                   fmt::format("{}.texels", kSlotNames[slot]));
+                                   fmt::format("{}.texels", kSceneBuffers[slot].graph_name));
   }
   // A fresh buffer holds nothing: the next scene.upload copies the whole array.
   mark_all_dirty(slot);
@@ -272,18 +209,18 @@ void GpuScene::update_instances(const FrameSnapshot& snapshot) {
     }
   }
   if (lo < hi) {
-    mark_dirty(kInstances, lo * sizeof(gpu::GpuInstance), hi * sizeof(gpu::GpuInstance));
+    mark_dirty(gpu::kSceneInstances, lo * sizeof(gpu::GpuInstance), hi * sizeof(gpu::GpuInstance));
   }
   if (moved) {
     data_.bvh.set_instances(bvh_descs_);
     stats_.tlas_rebuilt = true;
-    ensure_capacity(kBvhNodes);
+    ensure_capacity(gpu::kSceneBvhNodes);
     const gpu::BvhSceneHeader& h = data_.bvh.header();
-    mark_dirty(kBvhNodes, std::uint64_t{h.tlas_node_offset} * sizeof(gpu::BvhNode),
+    mark_dirty(gpu::kSceneBvhNodes, std::uint64_t{h.tlas_node_offset} * sizeof(gpu::BvhNode),
                data_.bvh.nodes().size() * sizeof(gpu::BvhNode));
-    mark_all_dirty(kBvhHeader);
-    ensure_capacity(kBvhInstances);
-    mark_all_dirty(kBvhInstances);
+    mark_all_dirty(gpu::kSceneBvhHeader);
+    ensure_capacity(gpu::kSceneBvhInstances);
+    mark_all_dirty(gpu::kSceneBvhInstances);
   }
 }
 
@@ -303,7 +240,7 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
     append_triangle_emitters(mesh, e.world, e.radiance * std::max(scale, 0.0f), e.instance,
                              scratch);
     std::copy(scratch.begin(), scratch.end(), emitters_.begin() + e.first);
-    mark_dirty(kLights, std::uint64_t{e.first} * sizeof(gpu::GpuLight),
+    mark_dirty(gpu::kSceneLights, std::uint64_t{e.first} * sizeof(gpu::GpuLight),
                std::uint64_t{e.first + e.count} * sizeof(gpu::GpuLight));
     ++stats_.reextracted_instances;
     stats_.reextracted_triangles += e.count;
@@ -326,7 +263,7 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
                   })) {
     emitters_.resize(triangle_emitters_);
     emitters_.insert(emitters_.end(), analytic.begin(), analytic.end());
-    mark_dirty(kLights, std::uint64_t{triangle_emitters_} * sizeof(gpu::GpuLight),
+    mark_dirty(gpu::kSceneLights, std::uint64_t{triangle_emitters_} * sizeof(gpu::GpuLight),
                emitters_.size() * sizeof(gpu::GpuLight));
     changed = true;
   }
@@ -335,18 +272,18 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
   auto set_remap = [&](std::vector<std::uint32_t>&& next) {
     if (next == remap_) return;
     remap_ = std::move(next);
-    ensure_capacity(kRemap);
-    mark_all_dirty(kRemap);
+    ensure_capacity(gpu::kSceneLightPreviousToCurrent);
+    mark_all_dirty(gpu::kSceneLightPreviousToCurrent);
   };
   if (changed) {
     stats_.lights_changed = true;
     stats_.alias_rebuilt = data_.lights.update(emitters_);
     set_remap(std::vector<std::uint32_t>(data_.lights.previous_to_current()));
     remap_is_identity_ = false;
-    ensure_capacity(kLights);  // ranges marked above (everything when the buffer grew)
+    ensure_capacity(gpu::kSceneLights);  // ranges marked above (everything when the buffer grew)
     if (stats_.alias_rebuilt) {
-      ensure_capacity(kAlias);
-      mark_all_dirty(kAlias);
+      ensure_capacity(gpu::kSceneLightAlias);
+      mark_all_dirty(gpu::kSceneLightAlias);
     }
   } else if (!remap_is_identity_ || remap_.size() != data_.lights.lights().size()) {
     // Nothing changed: every light keeps its index (O(lights) once, not every frame).
@@ -365,37 +302,22 @@ void GpuScene::update_environment_probability() {
   const float p = environment_selection_probability(env_power_, lights_power);
   if (p == env_header_.params.x) return;
   env_header_.params.x = p;
-  mark_all_dirty(kEnvHeader);
+  mark_all_dirty(gpu::kSceneEnvHeader);
 }
 
 void GpuScene::set_frame_constants(const gpu::FrameConstants& constants) {
   constants_ = constants;
-  mark_all_dirty(kFrameConstants);
+  mark_all_dirty(gpu::kSceneFrameConstants);
 }
 
 SceneHandles GpuScene::import(runtime::graph::RenderGraph& graph) const {
-  auto imp = [&](Slot s) {
-    const DeviceArray& a = arrays_[s];
-    return graph.import_buffer(kSlotNames[s], a.buffer.handle(), {a.buffer.size()},
-                               {.read_only = a.read_only, .initial = kAnyPriorUse});
-  };
   SceneHandles h;
-  h.frame_constants = imp(kFrameConstants);
-  h.vertices = imp(kVertices);
-  h.indices = imp(kIndices);
-  h.materials = imp(kMaterials);
-  h.instances = imp(kInstances);
-  h.lights = imp(kLights);
-  h.alias = imp(kAlias);
-  h.bvh_header = imp(kBvhHeader);
-  h.bvh_nodes = imp(kBvhNodes);
-  h.bvh_triangles = imp(kBvhTriangles);
-  h.bvh_instances = imp(kBvhInstances);
-  h.light_previous_to_current = imp(kRemap);
-  h.env_header = imp(kEnvHeader);
-  h.env_texels = imp(kEnvTexels);
-  h.env_marginal = imp(kEnvMarginal);
-  h.env_conditional = imp(kEnvConditional);
+  for (const SceneBufferRow& row : kSceneBuffers) {
+    const DeviceArray& a = arrays_[row.slot];
+    h[row.slot] = graph.import_buffer(row.graph_name, a.buffer.handle(), {a.buffer.size()},
+                                      {.read_only = row.read_only, .initial = kAnyPriorUse});
+    h.texel_views[row.slot] = a.texels ? a.texels.handle() : VK_NULL_HANDLE;
+  }
   return h;
 }
 
@@ -408,17 +330,17 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
 
   // Merge each buffer's dirty ranges (sorted, gaps under 4 KiB joined, clamped to the array).
   struct Copy {
-    Slot slot;
+    std::uint32_t slot;
     std::vector<VkBufferCopy> regions;
   };
   std::vector<Copy> copies;
   std::uint64_t total = 0;
-  for (std::uint32_t s = 0; s < kSlotCount; ++s) {
+  for (std::uint32_t s = 0; s < gpu::kSceneBufferCount; ++s) {
     DeviceArray& a = arrays_[s];
     if (a.dirty.empty()) continue;
-    const std::uint64_t size = cpu_bytes(static_cast<Slot>(s)).size();
+    const std::uint64_t size = cpu_bytes(s).size();
     std::sort(a.dirty.begin(), a.dirty.end());
-    Copy copy{static_cast<Slot>(s), {}};
+    Copy copy{s, {}};
     for (auto [begin, end] : a.dirty) {
       end = std::min(end, size);
       if (begin >= end) continue;
@@ -458,45 +380,6 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
 
   SceneHandles out = imported;
   if (copies.empty()) return out;
-  auto handle_of = [](SceneHandles& h, Slot s) -> runtime::graph::BufferHandle& {
-    switch (s) {
-      case kFrameConstants:
-        return h.frame_constants;
-      case kVertices:
-        return h.vertices;
-      case kIndices:
-        return h.indices;
-      case kMaterials:
-        return h.materials;
-      case kInstances:
-        return h.instances;
-      case kLights:
-        return h.lights;
-      case kAlias:
-        return h.alias;
-      case kBvhHeader:
-        return h.bvh_header;
-      case kBvhNodes:
-        return h.bvh_nodes;
-      case kBvhTriangles:
-        return h.bvh_triangles;
-      case kBvhInstances:
-        return h.bvh_instances;
-      case kEnvHeader:
-        return h.env_header;
-      case kEnvTexels:
-        return h.env_texels;
-      case kEnvMarginal:
-        return h.env_marginal;
-      case kEnvConditional:
-        return h.env_conditional;
-      case kRemap:
-      case kSlotCount:
-        break;
-    }
-    return h.light_previous_to_current;
-  };
-
   const runtime::graph::BufferHandle source =
       graph.import_buffer("scene.staging", staging.handle(), {staging.size()},
                           {.read_only = true,
@@ -512,7 +395,7 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
         d.source = source;
         b.read(source, runtime::graph::Access::TransferSrc);
         for (const Copy& c : copies) {
-          runtime::graph::BufferHandle& h = handle_of(out, c.slot);  // one copy per buffer
+          runtime::graph::BufferHandle& h = out[c.slot];  // one copy per buffer
           h = b.write(h, runtime::graph::Access::TransferDst);
           d.copies.emplace_back(h, c.regions);
         }
@@ -525,16 +408,6 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
         }
       });
   return out;
-}
-
-void GpuScene::bind(runtime::Bindings& bindings) const {
-  for (std::uint32_t s = 0; s < kSlotCount; ++s) {
-    if (bindings.has(kBindNames[s])) bindings.buffer(kBindNames[s], arrays_[s].buffer);
-    const char* texel_name = texel_bind_name(static_cast<Slot>(s));
-    if (texel_name != nullptr && bindings.has(texel_name)) {
-      bindings.texel_buffer(texel_name, arrays_[s].texels.handle());
-    }
-  }
 }
 
 std::uint32_t GpuScene::light_count() const {

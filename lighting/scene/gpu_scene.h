@@ -9,14 +9,9 @@
 // staging ring (one staging buffer per frame in flight, plus one) into the device buffers. No
 // barrier is recorded outside the graph; buffers that grow are retired after kRetireFrames.
 //
-// Shader names bind() sets, when (and only when) the pipeline declares them:
-//   frame_constants (FrameConstants), scene_vertices, scene_indices, scene_materials,
-//   scene_instances (GpuInstance), scene_lights (GpuLight), light_alias (AliasEntry),
-//   light_previous_to_current (uint per previous-frame light: current index or kInvalidLight),
-//   BvhHeaderBuffer, BvhNodeBuffer, BvhTriangleBuffer, BvhInstanceBuffer (storage BVH) or
-//   bvh_node_texels, bvh_triangle_texels, bvh_instance_texels (rgba32ui uniform texel views of the
-//   same three buffers: lib/visibility.glsl's default), env_header (GpuEnvironment), env_texels,
-//   env_marginal, env_conditional (shaders/lib/environment.glsl).
+// The buffers are the rows of lighting/scene/scene_buffers.h (one table: slot, graph name, shader
+// name, texel view, access, source); passes read them through the SceneHandles import() and
+// add_upload_pass() return.
 // Never-empty buffers: an empty array is uploaded as one zeroed element.
 //
 // Environment: the level's map (if any) is loaded once (EnvironmentDistribution) and its tables
@@ -39,7 +34,6 @@
 #include "lighting/frame/frame_inputs.h"
 #include "lighting/lights/environment_map.h"
 #include "lighting/scene/scene_data.h"
-#include "runtime/gpu/bindings.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/gpu/buffer_view.h"
 #include "runtime/graph/render_graph.h"
@@ -87,9 +81,6 @@ class GpuScene {
   [[nodiscard]] SceneHandles add_upload_pass(runtime::graph::RenderGraph& graph,
                                              const SceneHandles& imported);
 
-  // Binds the scene buffers the pipeline declares, by the names listed above.
-  void bind(runtime::Bindings& bindings) const;
-
   // Lights in the alias table (0 when no light has power: nothing can be sampled).
   std::uint32_t light_count() const;
   std::uint32_t light_record_count() const {
@@ -117,34 +108,14 @@ class GpuScene {
   static constexpr std::uint32_t kStagingSlots = 3;  // frames in flight (2) + 1
   static constexpr std::uint64_t kRetireFrames = 3;
 
-  enum Slot : std::uint32_t {
-    kFrameConstants,
-    kVertices,
-    kIndices,
-    kMaterials,
-    kInstances,
-    kLights,
-    kAlias,
-    kBvhHeader,
-    kBvhNodes,
-    kBvhTriangles,
-    kBvhInstances,
-    kRemap,
-    kEnvHeader,
-    kEnvTexels,
-    kEnvMarginal,
-    kEnvConditional,
-    kSlotCount
-  };
-
   // The device buffer behind a slot (tests, debugging; valid until the next update()).
-  const runtime::Buffer& device_buffer(Slot slot) const { return arrays_[slot].buffer; }
+  // `slot`: a gpu::kScene* constant (shared/scene_bindings.h).
+  const runtime::Buffer& device_buffer(std::uint32_t slot) const { return arrays_[slot].buffer; }
 
  private:
   struct DeviceArray {
     runtime::Buffer buffer;
-    runtime::BufferView texels;  // rgba32ui view (BVH nodes, triangles, instances only)
-    bool read_only = false;
+    runtime::BufferView texels;  // rgba32ui view (rows with a texel_name only)
     // Pending upload: byte ranges [begin, end) of the CPU array (merged at upload).
     std::vector<std::pair<std::uint64_t, std::uint64_t>> dirty;
   };
@@ -157,11 +128,11 @@ class GpuScene {
     glm::vec3 radiance{0.0f};  // material emission at scale 1
   };
 
-  std::span<const std::byte> cpu_bytes(Slot slot) const;
-  void mark_dirty(Slot slot, std::uint64_t begin, std::uint64_t end);
-  void mark_all_dirty(Slot slot);
+  std::span<const std::byte> cpu_bytes(std::uint32_t slot) const;
+  void mark_dirty(std::uint32_t slot, std::uint64_t begin, std::uint64_t end);
+  void mark_all_dirty(std::uint32_t slot);
   // Grows the device buffer of `slot` to hold its CPU array (retiring the old one).
-  void ensure_capacity(Slot slot);
+  void ensure_capacity(std::uint32_t slot);
   void update_instances(const FrameSnapshot& snapshot);
   void update_lights(const FrameSnapshot& snapshot);
   // Recomputes the environment's selection probability against the alias table's power; marks
@@ -179,7 +150,7 @@ class GpuScene {
   std::uint32_t triangle_emitters_ = 0;
   std::vector<EmissiveInstance> emissive_;
   std::vector<BvhInstanceDesc> bvh_descs_;
-  std::array<DeviceArray, kSlotCount> arrays_;
+  std::array<DeviceArray, gpu::kSceneBufferCount> arrays_;
   std::array<runtime::Buffer, kStagingSlots> staging_;
   struct Retired {
     std::uint64_t upload = 0;  // uploads_ when it was retired

@@ -20,6 +20,10 @@ Bindings::Slot& Bindings::slot(std::string_view name,
                                std::initializer_list<VkDescriptorType> accepted, const char* call) {
   auto it = std::find_if(slots_.begin(), slots_.end(),
                          [&](const Slot& s) { return s.binding->name == name; });
+  if (it == slots_.end() && pipeline_->declares_unused(name)) {
+    ignored_ = Slot{};  // declared, never read by the shader: not in the layout, nothing to write
+    return ignored_;
+  }
   if (it == slots_.end()) {
     std::string known;
     for (const auto& s : slots_)

@@ -1,7 +1,8 @@
 // Bindings: the resources for one pipeline's descriptors, set BY NAME as the shader spells them
 // (`Bindings(pipeline).buffer("reservoirs", reservoirs).storage_image("radiance", hdr)`).
 // Unknown names, wrong resource kinds and forgotten bindings are errors that name the shader's
-// bindings, never silent mis-binds.
+// bindings, never silent mis-binds. A name the shader declares but never uses (left out of the
+// layout by the reflection) is accepted and ignored; has() is true only for used ones.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -63,6 +64,7 @@ class Bindings {
 
   const Pipeline* pipeline_;
   mutable std::vector<Slot> slots_;
+  Slot ignored_;  // target of bindings the shader declares but never uses
 };
 
 }  // namespace lantern::runtime

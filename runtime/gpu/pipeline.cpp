@@ -86,6 +86,11 @@ Pipeline::Pipeline(Device& device, std::string name, VkPipelineBindPoint bind_po
       bind_point_(bind_point),
       bindings_(merge_bindings(stages, name_)) {
   for (const ShaderReflection* s : stages) {
+    for (const DescriptorBinding& b : s->unused_bindings) {
+      if (find_binding(b.name) == nullptr) unused_names_.push_back(b.name);
+    }
+  }
+  for (const ShaderReflection* s : stages) {
     if (s->push_constant_bytes > 0)
       push_constant_stages_ |= static_cast<VkShaderStageFlags>(s->stage);
     push_constant_bytes_ = std::max(push_constant_bytes_, s->push_constant_bytes);
@@ -131,6 +136,7 @@ Pipeline::Pipeline(Pipeline&& o) noexcept
       name_(std::move(o.name_)),
       bind_point_(o.bind_point_),
       bindings_(std::move(o.bindings_)),
+      unused_names_(std::move(o.unused_names_)),
       push_constant_bytes_(o.push_constant_bytes_),
       push_constant_stages_(o.push_constant_stages_),
       set_layout_(std::exchange(o.set_layout_, VK_NULL_HANDLE)),
@@ -151,6 +157,10 @@ VkShaderModule Pipeline::create_module(const ShaderCode& code) const {
   VkShaderModule module = VK_NULL_HANDLE;
   VK_CHECK(vkCreateShaderModule(device_->handle(), &info, nullptr, &module));
   return module;
+}
+
+bool Pipeline::declares_unused(std::string_view name) const {
+  return std::find(unused_names_.begin(), unused_names_.end(), name) != unused_names_.end();
 }
 
 const DescriptorBinding* Pipeline::find_binding(std::string_view name) const {

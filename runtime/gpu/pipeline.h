@@ -51,8 +51,11 @@ class Pipeline {
   VkPipelineLayout layout() const { return layout_; }
   VkPipelineBindPoint bind_point() const { return bind_point_; }
   const std::string& name() const { return name_; }
+  // The descriptors the shaders statically use (the layout; see spirv_reflect.h).
   std::span<const DescriptorBinding> bindings() const { return bindings_; }
   const DescriptorBinding* find_binding(std::string_view name) const;
+  // Whether `name` is declared by a stage but used by none (Bindings accepts and ignores it).
+  bool declares_unused(std::string_view name) const;
   std::uint32_t push_constant_bytes() const { return push_constant_bytes_; }
   Device& device() const { return *device_; }
 
@@ -79,6 +82,7 @@ class Pipeline {
   std::string name_;
   VkPipelineBindPoint bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
   std::vector<DescriptorBinding> bindings_;
+  std::vector<std::string> unused_names_;
   std::uint32_t push_constant_bytes_ = 0;
   VkShaderStageFlags push_constant_stages_ = 0;
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;

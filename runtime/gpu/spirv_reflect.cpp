@@ -97,6 +97,7 @@ class Parser {
     if (words_.size() < 5 || words_[0] != SpvMagicNumber)
       fail("not a SPIR-V module (bad magic number)");
     ids_.resize(words_[3]);  // id bound
+    referenced_.assign(words_[3], false);
     for (std::size_t at = 5; at < words_.size();) {
       const std::uint32_t count = words_[at] >> 16;
       if (count == 0 || at + count > words_.size())
@@ -117,8 +118,52 @@ class Parser {
     return ids_[i];
   }
 
-  void instruction(SpvOp op, std::span<const std::uint32_t> w) {
+  // Marks the pointer operands of instructions in function bodies: a variable is statically used
+  // when some instruction loads, stores, indexes, queries or atomically accesses it or passes it
+  // to a function.
+  void note_references(SpvOp op, std::span<const std::uint32_t> w) {
+    auto mark = [&](std::size_t i) {
+      if (i < w.size() && w[i] < referenced_.size()) referenced_[w[i]] = true;
+    };
     switch (op) {
+      case SpvOpLoad:
+      case SpvOpAccessChain:
+      case SpvOpInBoundsAccessChain:
+      case SpvOpPtrAccessChain:
+      case SpvOpArrayLength:
+      case SpvOpImageTexelPointer:
+      case SpvOpCopyObject:
+        mark(2);
+        break;
+      case SpvOpStore:
+      case SpvOpAtomicStore:
+        mark(0);
+        break;
+      case SpvOpCopyMemory:
+      case SpvOpCopyMemorySized:
+        mark(0);
+        mark(1);
+        break;
+      case SpvOpFunctionCall:
+        for (std::size_t i = 3; i < w.size(); ++i) mark(i);
+        break;
+      default:
+        if ((op >= SpvOpAtomicLoad && op <= SpvOpAtomicXor) || op == SpvOpAtomicFAddEXT ||
+            op == SpvOpAtomicFMinEXT || op == SpvOpAtomicFMaxEXT)
+          mark(2);
+        break;
+    }
+  }
+
+  void instruction(SpvOp op, std::span<const std::uint32_t> w) {
+    if (in_function_) note_references(op, w);
+    switch (op) {
+      case SpvOpFunction:
+        in_function_ = true;
+        break;
+      case SpvOpFunctionEnd:
+        in_function_ = false;
+        break;
       case SpvOpEntryPoint:
         out_.stage = stage_of(w[0]);
         out_.entry_point = read_string(w.subspan(2));
@@ -340,13 +385,15 @@ class Parser {
         fail(fmt::format("binding '{}' (set {}, binding {}) has an unsupported type", b.name, b.set,
                          b.binding));
     }
-    out_.bindings.push_back(std::move(b));
+    (referenced_[v] ? out_.bindings : out_.unused_bindings).push_back(std::move(b));
   }
 
   std::span<const std::uint32_t> words_;
   std::string_view what_;
   std::vector<Id> ids_;
   std::vector<std::uint32_t> variables_;
+  std::vector<bool> referenced_;  // per id: used by an instruction in a function body
+  bool in_function_ = false;
   std::vector<std::uint32_t> spec_constants_;
   std::optional<std::array<std::uint32_t, 3>> local_size_ids_;
   ShaderReflection out_;

@@ -1,6 +1,7 @@
 // A small SPIR-V reflection: reads the binary words (no external library) and derives what a
-// pipeline needs from the shader itself — descriptor bindings with their names, push-constant
-// size, specialisation constants and the compute local size — so callers bind by name.
+// pipeline needs from the shader itself — descriptor bindings with their names (those the entry
+// point statically uses: loads, stores, access chains, atomics, calls), push-constant size,
+// specialisation constants and the compute local size — so callers bind by name.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -33,7 +34,11 @@ struct SpecConstant {
 struct ShaderReflection {
   VkShaderStageFlagBits stage = VK_SHADER_STAGE_COMPUTE_BIT;
   std::string entry_point = "main";
-  std::vector<DescriptorBinding> bindings;  // sorted by (set, binding)
+  // Descriptors the entry point statically uses, sorted by (set, binding): the pipeline layout.
+  std::vector<DescriptorBinding> bindings;
+  // Declared but never used by the entry point (e.g. a shared include's buffers a pass does not
+  // read): left out of the layout, so a pass binds and declares only what its code reads.
+  std::vector<DescriptorBinding> unused_bindings;
   std::vector<SpecConstant> spec_constants;
   std::uint32_t push_constant_bytes = 0;
   std::array<std::uint32_t, 3> local_size{1, 1, 1};   // compute only; defaults if specialised

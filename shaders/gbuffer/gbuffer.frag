@@ -11,11 +11,8 @@
 #include "gbuffer/gbuffer_push.h"
 #include "shared/common_math.h"
 #include "shared/gbuffer.h"
-#include "shared/scene.h"
+#include "lib/scene_buffers.glsl"
 
-layout(std430, binding = 0) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
-layout(std430, binding = 3) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
-layout(std430, binding = 4) readonly buffer MaterialBuffer { GpuMaterial m[]; } scene_materials;
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_shading_normal;

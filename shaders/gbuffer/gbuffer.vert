@@ -9,12 +9,8 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "gbuffer/gbuffer_push.h"
-#include "shared/scene.h"
+#include "lib/scene_buffers.glsl"
 
-layout(std430, binding = 0) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
-layout(std430, binding = 1) readonly buffer VertexBuffer { GpuVertex v[]; } scene_vertices;
-layout(std430, binding = 2) readonly buffer IndexBuffer { uint i[]; } scene_indices;
-layout(std430, binding = 3) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
 
 layout(push_constant) uniform Push { GBufferPush push; };
 

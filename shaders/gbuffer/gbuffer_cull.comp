@@ -15,22 +15,14 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 
 #include "gbuffer/gbuffer_push.h"
-#include "shared/scene.h"
+#include "lib/scene_buffers.glsl"
 
 layout(local_size_x = 128) in;
 
-layout(std430, binding = 0) restrict readonly buffer FrameBuffer {
-  FrameConstants frame;
-} frame_constants;
-layout(std430, binding = 1) restrict readonly buffer VertexBuffer { GpuVertex v[]; } scene_vertices;
-layout(std430, binding = 2) restrict readonly buffer IndexBuffer { uint i[]; } scene_indices;
-layout(std430, binding = 3) restrict readonly buffer InstanceBuffer {
-  GpuInstance i[];
-} scene_instances;
-layout(std430, binding = 4) restrict readonly buffer ChunkBuffer { uint first[]; } gbuffer_chunks;
-layout(std430, binding = 5) writeonly buffer TriangleBuffer { uvec2 t[]; } gbuffer_triangles;
-layout(std430, binding = 6) writeonly buffer ClipBuffer { vec4 p[]; } gbuffer_clip;
-layout(std430, binding = 7) coherent buffer DrawBuffer { uint vertex_count; } gbuffer_draw;
+layout(std430, binding = PASS_BINDING(0)) restrict readonly buffer ChunkBuffer { uint first[]; } gbuffer_chunks;
+layout(std430, binding = PASS_BINDING(1)) writeonly buffer TriangleBuffer { uvec2 t[]; } gbuffer_triangles;
+layout(std430, binding = PASS_BINDING(2)) writeonly buffer ClipBuffer { vec4 p[]; } gbuffer_clip;
+layout(std430, binding = PASS_BINDING(3)) coherent buffer DrawBuffer { uint vertex_count; } gbuffer_draw;
 
 layout(push_constant) uniform Push { GBufferDrawsPush push; };
 

@@ -10,15 +10,14 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "gbuffer/gbuffer_push.h"
-#include "shared/scene.h"
+#include "lib/scene_buffers.glsl"
 
 layout(local_size_x = 256) in;
 layout(constant_id = 0) const bool kForward = false;
 
-layout(std430, binding = 0) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
-layout(std430, binding = 1) writeonly buffer ChunkBuffer { uint first[]; } gbuffer_chunks;
-layout(std430, binding = 2) writeonly buffer DispatchBuffer { uint words[]; } gbuffer_dispatch;
-layout(std430, binding = 3) writeonly buffer DrawBuffer { uvec4 commands[]; } gbuffer_draw;
+layout(std430, binding = PASS_BINDING(0)) writeonly buffer ChunkBuffer { uint first[]; } gbuffer_chunks;
+layout(std430, binding = PASS_BINDING(1)) writeonly buffer DispatchBuffer { uint words[]; } gbuffer_dispatch;
+layout(std430, binding = PASS_BINDING(2)) writeonly buffer DrawBuffer { uvec4 commands[]; } gbuffer_draw;
 
 layout(push_constant) uniform Push { GBufferDrawsPush push; };
 

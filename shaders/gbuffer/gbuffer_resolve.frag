@@ -6,21 +6,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-#include "shared/scene.h"
+#include "lib/scene_buffers.glsl"
 
-layout(std430, binding = 0) restrict readonly buffer FrameBuffer {
-  FrameConstants frame;
-} frame_constants;
-layout(std430, binding = 1) restrict readonly buffer VertexBuffer { GpuVertex v[]; } scene_vertices;
-layout(std430, binding = 2) restrict readonly buffer IndexBuffer { uint i[]; } scene_indices;
-layout(std430, binding = 3) restrict readonly buffer InstanceBuffer {
-  GpuInstance i[];
-} scene_instances;
-layout(std430, binding = 4) restrict readonly buffer MaterialBuffer {
-  GpuMaterial m[];
-} scene_materials;
-layout(std430, binding = 5) restrict readonly buffer TriangleBuffer { uvec2 t[]; } gbuffer_triangles;
-layout(binding = 6, r32ui) uniform restrict readonly uimage2D gbuffer_visibility;
+layout(std430, binding = PASS_BINDING(0)) restrict readonly buffer TriangleBuffer { uvec2 t[]; } gbuffer_triangles;
+layout(binding = PASS_BINDING(1), r32ui) uniform restrict readonly uimage2D gbuffer_visibility;
 
 #include "gbuffer/gbuffer_resolve.glsl"
 

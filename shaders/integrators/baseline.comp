@@ -1,11 +1,11 @@
 // integrators.baseline: direct lighting with one light sample per pixel. The primary hit comes
 // from the G-buffer (position, facing normals, material id, emission seen from the camera); one
 // light sample: the environment map with probability env.params.x (its luminance x solid-angle
-// distribution, shared/environment.h), else one emitter from the power alias table (solid-angle
-// pdf for triangles); one shadow ray, BRDF. Sky pixels show the environment along the camera ray
+// distribution, shared/environment.h), else one emitter from the power alias table, evaluated by
+// shared/light_eval.h (the light evaluation of ReSTIR and the reference); one shadow ray. Sky pixels show the environment along the camera ray
 // (lib/environment.glsl env_sky_radiance; the uniform sky colour without a map).
-// Reads: G-buffer images (shared/gbuffer.h), scene materials, lights, alias table, environment
-// (env_*), BVH through lib/visibility.glsl (texel views by default), frame constants.
+// Reads: G-buffer images (shared/gbuffer.h) and the scene (lib/scene_buffers.glsl: materials,
+// lights, alias table, environment, BVH through lib/visibility.glsl, frame constants).
 // Writes: radiance (rgba32f per pixel, row-major from the top-left; the host averages
 // frames). History: none.
 // Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride): lavapipe hands each CPU
@@ -14,14 +14,14 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-#include "lib/visibility.glsl"
-#include "lib/environment.glsl"
+#include "lib/scene_buffers.glsl"
 #include "integrators/baseline.h"
 #include "shared/alias_table.h"
 #include "shared/brdf.h"
 #include "shared/color.h"
 #include "shared/common_math.h"
 #include "shared/gbuffer.h"
+#include "shared/light_eval.h"
 #include "shared/lights.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
@@ -29,62 +29,26 @@
 
 layout(local_size_x = kBaselineTileSize, local_size_y = kBaselineTileSize) in;
 
-layout(std430, binding = 4) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
-layout(std430, binding = 7) readonly buffer MaterialBuffer { GpuMaterial m[]; } scene_materials;
-layout(std430, binding = 9) readonly buffer LightBuffer { GpuLight l[]; } scene_lights;
-layout(std430, binding = 10) readonly buffer AliasBuffer { AliasEntry e[]; } light_alias;
-layout(std430, binding = 11) writeonly buffer RadianceBuffer { vec4 pixels[]; } radiance;
-layout(binding = 12, rgba32f) uniform readonly image2D gbuffer_position;
-layout(binding = 13, rgba32f) uniform readonly image2D gbuffer_normal;
-layout(binding = 14, rgba32f) uniform readonly image2D gbuffer_emission_metallic;
-layout(binding = 15, rgba32ui) uniform readonly uimage2D gbuffer_ids;
+layout(std430, binding = PASS_BINDING(0)) writeonly buffer RadianceBuffer { vec4 pixels[]; } radiance;
+layout(binding = PASS_BINDING(1), rgba32f) uniform readonly image2D gbuffer_position;
+layout(binding = PASS_BINDING(2), rgba32f) uniform readonly image2D gbuffer_normal;
+layout(binding = PASS_BINDING(3), rgba32f) uniform readonly image2D gbuffer_emission_metallic;
+layout(binding = PASS_BINDING(4), rgba32ui) uniform readonly uimage2D gbuffer_ids;
 
 layout(push_constant) uniform Push { BaselinePush push; };
 
-// One light sample: returns the estimate f * L * cos / pdf (visibility included) towards light
-// `index`, drawn with probability select_pdf.
+// One light sample: returns the estimate c V / p towards light `index`, drawn with probability
+// select_pdf (c, p: shared/light_eval.h, the same evaluation as ReSTIR and the reference).
 vec3 sample_light(uint index, float select_pdf, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMaterial mat,
                   vec2 u) {
   GpuLight light = scene_lights.l[index];
-  uint kind = light_kind(light);
-  vec3 target;
-  vec3 incident;  // radiance (triangles) or irradiance at normal incidence (punctual)
-  float pdf;      // solid angle (triangles) or discrete (punctual)
-  if (kind == kLightTriangle) {
-    vec3 p0 = light.p0.xyz;
-    vec3 p1 = p0 + light.p1.xyz;
-    vec3 p2 = p0 + light.p2.xyz;
-    target = triangle_point(p0, p1, p2, triangle_sample_barycentrics(u));
-    vec3 to_light = target - x;
-    float dist2 = dot(to_light, to_light);
-    vec3 light_normal = normalize(cross(light.p1.xyz, light.p2.xyz));
-    float cos_light = -dot(light_normal, to_light) * inversesqrt(max(dist2, 1e-30));
-    pdf = select_pdf * triangle_solid_angle_pdf(triangle_area(p0, p1, p2), dist2, cos_light);
-    incident = light.radiance.rgb;
-  } else if (kind == kLightDirectional) {
-    vec3 l = directional_light_to_light(light.p1.xyz);
-    target = x + l * (4.0 * push.scene_radius);
-    pdf = select_pdf;
-    incident = light.radiance.rgb;
-  } else {
-    target = light.p0.xyz;
-    vec3 to_light = target - x;
-    float dist2 = dot(to_light, to_light);
-    float falloff = punctual_distance_falloff(dist2, light.p2.w);  // p2.w: range (0 = none)
-    if (kind == kLightSpot) {
-      float cos_theta = dot(normalize(light.p1.xyz), -to_light * inversesqrt(max(dist2, 1e-30)));
-      falloff *= spot_cone_falloff(cos_theta, light.p2.x, light.p2.y);
-    }
-    pdf = select_pdf;
-    incident = light.radiance.rgb * falloff;
-  }
+  float pdf = select_pdf * light_eval_point_pdf(light);
   if (!(pdf > 0.0)) return vec3(0.0);
-  vec3 l = normalize(target - x);
-  if (dot(ng, l) <= 0.0) return vec3(0.0);
-  vec3 f = brdf_eval(n, v, l, mat.base_color.rgb, mat.params.x, mat.params.y, mat.params.z);
-  if (f == vec3(0.0) || incident == vec3(0.0)) return vec3(0.0);
-  if (!vis_visible(x, target)) return vec3(0.0);
-  return f * incident / pdf;
+  vec3 c = light_eval_contribution(light, u, x, n, ng, v, mat.base_color.rgb, mat.params.x,
+                                   mat.params.y, mat.params.z, push.scene_radius);
+  if (c == vec3(0.0)) return vec3(0.0);
+  if (!vis_visible(x, light_eval_position(light, u, x, push.scene_radius))) return vec3(0.0);
+  return c / pdf;
 }
 
 // One environment sample (drawn with probability p_env): f * L * cos / pdf, visibility included.
@@ -92,12 +56,12 @@ vec3 sample_environment(float p_env, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMateria
   vec3 l;
   vec3 le;
   float pdf = p_env * env_sample(env_header.env, u, l, le);
-  if (!(pdf > 0.0) || dot(ng, l) <= 0.0) return vec3(0.0);
-  vec3 f = brdf_eval(n, v, l, mat.base_color.rgb, mat.params.x, mat.params.y, mat.params.z);
-  if (f == vec3(0.0) || le == vec3(0.0)) return vec3(0.0);
-  // Anything that blocks the direction lies inside the scene's bounding sphere (x is in it).
-  if (!vis_visible(x, x + l * (4.0 * push.scene_radius))) return vec3(0.0);
-  return f * le / pdf;
+  if (!(pdf > 0.0)) return vec3(0.0);
+  vec3 c = light_eval_incident(l, le, 1.0, n, ng, v, mat.base_color.rgb, mat.params.x,
+                               mat.params.y, mat.params.z);
+  if (c == vec3(0.0)) return vec3(0.0);
+  if (!vis_visible(x, x + l * (kDirectionalShadowRadii * push.scene_radius))) return vec3(0.0);
+  return c / pdf;
 }
 
 vec3 shade_pixel(uvec2 pixel) {

@@ -10,17 +10,16 @@
 //     miss adds the environment.
 // Both strategies' pdfs are evaluated for every direction that either can produce, so emissive
 // triangles and the environment are counted once. Direct lighting only (no bounces).
-// Reads: G-buffer images (shared/gbuffer.h), scene buffers (lighting/scene/gpu_scene.h), frame
-// constants, env_* (the scene's environment map through lib/environment.glsl; a black 1-texel
-// stand-in when the level has none), the BVH through lib/visibility.glsl (texel views).
+// Reads: G-buffer images (shared/gbuffer.h) and the scene (lib/scene_buffers.glsl: frame
+// constants, geometry, materials, lights, the environment map — a black 1-texel stand-in when the
+// level has none — and the BVH through lib/visibility.glsl).
 // Writes: radiance (rgba32f per pixel, the mean of this dispatch's samples). History: none (the
 // host averages frames). Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride),
 // as integrators.baseline.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-#include "lib/visibility.glsl"
-#include "lib/environment.glsl"
+#include "lib/scene_buffers.glsl"
 #include "integrators/reference.h"
 #include "shared/alias_table.h"
 #include "shared/brdf.h"
@@ -28,6 +27,7 @@
 #include "shared/common_math.h"
 #include "shared/environment.h"
 #include "shared/gbuffer.h"
+#include "shared/light_eval.h"
 #include "shared/lights.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
@@ -35,18 +35,11 @@
 
 layout(local_size_x = kReferenceTileSize, local_size_y = kReferenceTileSize) in;
 
-layout(std430, binding = 4) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
-layout(std430, binding = 5) readonly buffer VertexBuffer { GpuVertex v[]; } scene_vertices;
-layout(std430, binding = 6) readonly buffer IndexBuffer { uint i[]; } scene_indices;
-layout(std430, binding = 7) readonly buffer MaterialBuffer { GpuMaterial m[]; } scene_materials;
-layout(std430, binding = 8) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
-layout(std430, binding = 9) readonly buffer LightBuffer { GpuLight l[]; } scene_lights;
-layout(std430, binding = 10) readonly buffer AliasBuffer { AliasEntry e[]; } light_alias;
-layout(std430, binding = 11) writeonly buffer RadianceBuffer { vec4 pixels[]; } radiance;
-layout(binding = 16, rgba32f) uniform readonly image2D gbuffer_position;
-layout(binding = 17, rgba32f) uniform readonly image2D gbuffer_normal;
-layout(binding = 18, rgba32f) uniform readonly image2D gbuffer_emission_metallic;
-layout(binding = 19, rgba32ui) uniform readonly uimage2D gbuffer_ids;
+layout(std430, binding = PASS_BINDING(0)) writeonly buffer RadianceBuffer { vec4 pixels[]; } radiance;
+layout(binding = PASS_BINDING(1), rgba32f) uniform readonly image2D gbuffer_position;
+layout(binding = PASS_BINDING(2), rgba32f) uniform readonly image2D gbuffer_normal;
+layout(binding = PASS_BINDING(3), rgba32f) uniform readonly image2D gbuffer_emission_metallic;
+layout(binding = PASS_BINDING(4), rgba32ui) uniform readonly uimage2D gbuffer_ids;
 layout(push_constant) uniform Push { ReferencePush push; };
 
 struct SurfaceHit {
@@ -106,7 +99,6 @@ struct Shading {
   float metallic;
   float specular;
   float p_specular;  // probability that BSDF sampling picks the GGX lobe
-  float offset;      // secondary-ray start distance
 };
 
 float bsdf_pdf(Shading sh, vec3 l) {
@@ -122,17 +114,11 @@ vec3 brdf(Shading sh, vec3 l) {
 }
 
 // Probability that light sampling produces direction l towards a point on triangle light `index`
-// at distance t (both selection steps), as a solid-angle density.
-float triangle_light_pdf(uint index, float t, vec3 l) {
+// at squared distance dist2 (both selection steps), as a solid-angle density.
+float triangle_light_pdf(uint index, float dist2, vec3 l) {
   if (push.light_count == 0u) return 0.0;
-  GpuLight light = scene_lights.l[index];
-  vec3 e1 = light.p1.xyz;
-  vec3 e2 = light.p2.xyz;
-  vec3 c = cross(e1, e2);
-  float area = 0.5 * length(c);
-  float cos_light = -dot(normalize(c), l);
   float select = (1.0 - env_header.env.params.x) * light_alias.e[index].pdf;
-  return select * triangle_solid_angle_pdf(area, t * t, cos_light);
+  return select * light_eval_solid_angle_pdf(scene_lights.l[index], l, dist2);
 }
 
 // One light sample (environment or alias table), MIS-weighted against BSDF sampling.
@@ -145,11 +131,13 @@ vec3 sample_light(Shading sh, inout uint rng) {
     vec3 le;
     float pdf = p_env * env_sample(env_header.env, u, l, le);
     if (!(pdf > 0.0)) return vec3(0.0);
-    vec3 f = brdf(sh, l);
-    if (f == vec3(0.0) || le == vec3(0.0)) return vec3(0.0);
-    // Anything that blocks the direction lies inside the scene's bounding sphere (x is in it).
-    if (!vis_visible(sh.x, sh.x + l * (4.0 * push.scene_radius))) return vec3(0.0);
-    return f * le * (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
+    vec3 c = light_eval_incident(l, le, 1.0, sh.n, sh.ng, sh.v, sh.albedo, sh.roughness,
+                                 sh.metallic, sh.specular);
+    if (c == vec3(0.0)) return vec3(0.0);
+    if (!vis_visible(sh.x, sh.x + l * (kDirectionalShadowRadii * push.scene_radius))) {
+      return vec3(0.0);
+    }
+    return c * (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
   }
   if (push.light_count == 0u) return vec3(0.0);
   // Reuse u_select, rescaled to [0,1), for the alias slot.
@@ -160,47 +148,24 @@ vec3 sample_light(Shading sh, inout uint rng) {
   uint index = alias_select(u1, light_alias.e[slot], slot);
   float select = (1.0 - p_env) * light_alias.e[index].pdf;
   GpuLight light = scene_lights.l[index];
-  uint kind = light_kind(light);
-  if (kind == kLightTriangle) {
-    vec3 p0 = light.p0.xyz;
-    vec3 target = triangle_point(p0, p0 + light.p1.xyz, p0 + light.p2.xyz,
-                                 triangle_sample_barycentrics(u_point));
-    vec3 to_light = target - sh.x;
-    float dist2 = dot(to_light, to_light);
-    if (!(dist2 > 0.0)) return vec3(0.0);
-    vec3 l = to_light * inversesqrt(dist2);
-    vec3 c = cross(light.p1.xyz, light.p2.xyz);
-    float cos_light = -dot(normalize(c), l);
-    float pdf = select * triangle_solid_angle_pdf(0.5 * length(c), dist2, cos_light);
-    if (!(pdf > 0.0)) return vec3(0.0);
-    vec3 f = brdf(sh, l);
-    if (f == vec3(0.0) || light.radiance.rgb == vec3(0.0)) return vec3(0.0);
-    if (!vis_visible(sh.x, target)) return vec3(0.0);
-    return f * light.radiance.rgb * (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
-  }
-  // Punctual lights: a delta in direction, no BSDF sample can hit them (MIS weight 1).
-  vec3 target;
-  vec3 incident;
-  if (kind == kLightDirectional) {
-    target = sh.x + directional_light_to_light(light.p1.xyz) * (4.0 * push.scene_radius);
-    incident = light.radiance.rgb;
-  } else {
-    target = light.p0.xyz;
-    vec3 to_light = target - sh.x;
-    float dist2 = dot(to_light, to_light);
-    float falloff = punctual_distance_falloff(dist2, light.p2.w);  // p2.w: range (0 = none)
-    if (kind == kLightSpot) {
-      float cos_theta = dot(normalize(light.p1.xyz), -to_light * inversesqrt(max(dist2, 1e-30)));
-      falloff *= spot_cone_falloff(cos_theta, light.p2.x, light.p2.y);
-    }
-    incident = light.radiance.rgb * falloff;
-  }
-  if (!(select > 0.0) || incident == vec3(0.0)) return vec3(0.0);
-  vec3 l = normalize(target - sh.x);
-  vec3 f = brdf(sh, l);
-  if (f == vec3(0.0)) return vec3(0.0);
+  float pdf_point = select * light_eval_point_pdf(light);
+  if (!(pdf_point > 0.0)) return vec3(0.0);
+  vec3 c = light_eval_contribution(light, u_point, sh.x, sh.n, sh.ng, sh.v, sh.albedo,
+                                   sh.roughness, sh.metallic, sh.specular, push.scene_radius);
+  if (c == vec3(0.0)) return vec3(0.0);
+  vec3 target = light_eval_position(light, u_point, sh.x, push.scene_radius);
   if (!vis_visible(sh.x, target)) return vec3(0.0);
-  return f * incident / select;
+  // Punctual and directional lights are deltas no BSDF sample can hit (MIS weight 1); a triangle
+  // point is weighted against BSDF sampling of the same direction (solid-angle densities).
+  float weight = 1.0;
+  if (light_kind(light) == kLightTriangle) {
+    vec3 to_light = target - sh.x;
+    float dist2 = dot(to_light, to_light);
+    vec3 l = to_light * inversesqrt(dist2);
+    float pdf = select * light_eval_solid_angle_pdf(light, l, dist2);
+    weight = power_heuristic(pdf, bsdf_pdf(sh, l));
+  }
+  return c * (weight / pdf_point);
 }
 
 // One BSDF sample: the closest hit's front-facing emission, or the environment on a miss.
@@ -214,13 +179,13 @@ vec3 sample_bsdf(Shading sh, inout uint rng) {
   vec3 f = brdf(sh, l);
   if (f == vec3(0.0)) return vec3(0.0);
   VisHit hit;
-  // Start sh.offset along l (off the surface); t counts from there.
-  if (vis_trace_closest(sh.x + l * sh.offset, l, kVisInfinity, hit)) {
+  if (vis_trace_closest(bvh_ray_origin(sh.x, sh.ng), l, kVisInfinity, hit)) {
     SurfaceHit s = surface_at(hit);
     vec3 le = emitted(s, scene_materials.m[s.material], l);
     if (le == vec3(0.0)) return vec3(0.0);
+    vec3 to_hit = s.position - sh.x;
     float light_pdf =
-        s.light != kInvalidLight ? triangle_light_pdf(s.light, hit.t + sh.offset, l) : 0.0;
+        s.light != kInvalidLight ? triangle_light_pdf(s.light, dot(to_hit, to_hit), l) : 0.0;
     return f * le * (power_heuristic(pdf, light_pdf) / pdf);
   }
   if (env_header.env.size.z == 0u) return vec3(0.0);
@@ -257,8 +222,6 @@ vec3 shade_pixel(uvec2 pixel) {
                       ? clamp(w_specular / (w_diffuse + w_specular), 0.0, 1.0) : 0.0;
   // Keep both lobes reachable unless one is absent.
   if (sh.p_specular > 0.0 && sh.p_specular < 1.0) sh.p_specular = clamp(sh.p_specular, 0.1, 0.9);
-  vec3 magnitude = abs(sh.x);
-  sh.offset = kBvhShadowEpsilon * max(1.0, max(magnitude.x, max(magnitude.y, magnitude.z)));
 
   uint rng = rng_init(pixel, push.frame_index, fc.frame.w, kReferenceRngPass);
   vec3 sum = vec3(0.0);

@@ -2,9 +2,8 @@
 // mapping, decoding a RestirSurface into a shading point, and the target function p̂ evaluated
 // from that decoded point. Every pass evaluates p̂ through restir_contribution() on a packed
 // surface, so all domains use exactly the same target function (needed for unbiased MIS).
-// Before including: the pass declares nothing; bindings 8 (frame constants) and 9 (lights) are
-// taken here, 24..27 by the environment (lib/environment.glsl), 0..3 by lib/visibility.glsl where
-// included. A sample's light index is a light of the list or kEnvironmentLight (a direction of the
+// The scene (frame constants, lights, environment, BVH) comes from lib/scene_buffers.glsl; a pass
+// declares its own resources from PASS_BINDING(0) on. A sample's light index is a light of the list or kEnvironmentLight (a direction of the
 // environment map, solid-angle measure; shared/reservoir.h).
 #ifndef LANTERN_RESTIR_COMMON_GLSL
 #define LANTERN_RESTIR_COMMON_GLSL
@@ -20,15 +19,11 @@
 #include "shared/rng.h"
 #include "shared/scene.h"
 
-#define ENV_BINDING_BASE 24
-#include "lib/environment.glsl"
+#include "lib/scene_buffers.glsl"
 
 layout(local_size_x = kRestirTileSize, local_size_y = kRestirTileSize) in;
 
 layout(push_constant) uniform Push { RestirPush push; };
-
-layout(std430, binding = 8) readonly buffer FrameBuffer { FrameConstants frame; } frame_constants;
-layout(std430, binding = 9) readonly buffer LightBuffer { GpuLight l[]; } scene_lights;
 
 // Pixel of this invocation (shuffled 8x8 tiles); false outside the image.
 bool restir_pixel(out uvec2 pixel) {
@@ -75,10 +70,8 @@ float restir_env_probability() { return env_header.env.params.x; }
 vec3 restir_env_contribution(ShadingPoint p, vec2 uv) {
   if (env_header.env.params.z == 0.0) return vec3(0.0);
   vec3 l = env_uv_to_world_direction(env_header.env, uv);
-  if (dot(p.ng, l) <= 0.0) return vec3(0.0);
-  vec3 c = brdf_eval(p.n, p.v, l, p.albedo, p.roughness, p.metallic, p.specular) *
-           env_radiance(env_header.env, l);
-  return (is_finite(c.x) && is_finite(c.y) && is_finite(c.z)) ? max(c, vec3(0.0)) : vec3(0.0);
+  return light_eval_incident(l, env_radiance(env_header.env, l), 1.0, p.n, p.ng, p.v, p.albedo,
+                             p.roughness, p.metallic, p.specular);
 }
 
 // Unshadowed contribution of light sample (light, uv) at p (zero for a light index out of range).

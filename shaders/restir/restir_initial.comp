@@ -12,24 +12,20 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-// BVH through rgba32ui texel views (lib/visibility.glsl's default, bound by GpuScene::bind):
-// 1.24x faster restir.shade than storage buffers on night_market.
-#include "lib/visibility.glsl"
+// The scene (BVH through rgba32ui texel views: 1.24x faster restir.shade than storage buffers on
+// night_market) comes from lib/scene_buffers.glsl through restir_common.glsl.
 #include "restir/restir_common.glsl"
 #include "shared/alias_table.h"
 #include "shared/brdf.h"
 #include "shared/sampling.h"
 
-layout(binding = 10, rgba32f) readonly uniform image2D gbuffer_position;
-layout(binding = 11, rgba32f) readonly uniform image2D gbuffer_normal;
-layout(binding = 12, rgba16f) readonly uniform image2D gbuffer_albedo_roughness;
-layout(binding = 13, rgba32f) readonly uniform image2D gbuffer_emission_metallic;
-layout(binding = 14, rgba32ui) readonly uniform uimage2D gbuffer_ids;
-layout(std430, binding = 15) readonly buffer MaterialBuffer { GpuMaterial m[]; } scene_materials;
-layout(std430, binding = 16) readonly buffer InstanceBuffer { GpuInstance i[]; } scene_instances;
-layout(std430, binding = 17) readonly buffer AliasBuffer { AliasEntry e[]; } light_alias;
-layout(std430, binding = 18) writeonly buffer SurfaceOut { RestirSurface s[]; } restir_surfaces;
-layout(std430, binding = 19) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
+layout(binding = PASS_BINDING(0), rgba32f) readonly uniform image2D gbuffer_position;
+layout(binding = PASS_BINDING(1), rgba32f) readonly uniform image2D gbuffer_normal;
+layout(binding = PASS_BINDING(2), rgba16f) readonly uniform image2D gbuffer_albedo_roughness;
+layout(binding = PASS_BINDING(3), rgba32f) readonly uniform image2D gbuffer_emission_metallic;
+layout(binding = PASS_BINDING(4), rgba32ui) readonly uniform uimage2D gbuffer_ids;
+layout(std430, binding = PASS_BINDING(5)) writeonly buffer SurfaceOut { RestirSurface s[]; } restir_surfaces;
+layout(std430, binding = PASS_BINDING(6)) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
 
 // Probability of the GGX lobe in the BSDF sampling mixture (the rest is cosine-weighted).
 float specular_lobe_probability(ShadingPoint p) {
@@ -48,10 +44,8 @@ float bsdf_area_pdf(ShadingPoint p, GpuLight light, vec3 y) {
   float dist2 = dot(to_light, to_light);
   if (!(dist2 > 0.0)) return 0.0;
   vec3 l = to_light * inversesqrt(dist2);
-  vec3 light_normal = cross(light.p1.xyz, light.p2.xyz);
-  float len2 = dot(light_normal, light_normal);
-  float cos_light = len2 > 0.0 ? -dot(light_normal, l) * inversesqrt(len2) : 0.0;
-  return cos_light > 0.0 ? bsdf_direction_pdf(p, l) * safe_ratio(cos_light, dist2) : 0.0;
+  float geometry = light_eval_triangle_geometry(light, l, dist2);
+  return geometry > 0.0 ? bsdf_direction_pdf(p, l) * geometry : 0.0;
 }
 
 // Light strategy density of (light, uv): selection pdf * point density (the alias table's pdf
@@ -128,8 +122,7 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
     VisHit hit;
     uint index = kInvalidLight;
     vec2 uv = vec2(0.0);
-    vec3 m = abs(p.x);
-    vec3 origin = p.x + p.ng * (kBvhShadowEpsilon * max(1.0, max(m.x, max(m.y, m.z))));
+    vec3 origin = bvh_ray_origin(p.x, p.ng);
     float weight = 0.0;
     float target = 0.0;
     if (dot(l, p.ng) > 0.0) {

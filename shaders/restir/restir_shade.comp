@@ -9,17 +9,16 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-// BVH through rgba32ui texel views (lib/visibility.glsl's default, bound by GpuScene::bind):
-// 1.24x faster restir.shade than storage buffers on night_market.
-#include "lib/visibility.glsl"
+// The scene (BVH through rgba32ui texel views: 1.24x faster restir.shade than storage buffers on
+// night_market) comes from lib/scene_buffers.glsl through restir_common.glsl.
 #include "restir/restir_common.glsl"
 
-layout(binding = 10, rgba32f) readonly uniform image2D gbuffer_emission_metallic;
-layout(binding = 11, rgba32f) readonly uniform image2D gbuffer_motion;
-layout(std430, binding = 12) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
-layout(std430, binding = 13) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
-layout(std430, binding = 14) readonly buffer StatusIn { uint status[]; } temporal_status;
-layout(std430, binding = 15) writeonly buffer HdrOut { vec4 pixels[]; } hdr;
+layout(binding = PASS_BINDING(0), rgba32f) readonly uniform image2D gbuffer_emission_metallic;
+layout(binding = PASS_BINDING(1), rgba32f) readonly uniform image2D gbuffer_motion;
+layout(std430, binding = PASS_BINDING(2)) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
+layout(std430, binding = PASS_BINDING(3)) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
+layout(std430, binding = PASS_BINDING(4)) readonly buffer StatusIn { uint status[]; } temporal_status;
+layout(std430, binding = PASS_BINDING(5)) writeonly buffer HdrOut { vec4 pixels[]; } hdr;
 
 vec3 hash_colour(uint x) {
   uint h = pcg_hash(x);

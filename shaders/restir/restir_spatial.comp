@@ -12,9 +12,9 @@
 
 #include "restir/restir_reuse.glsl"
 
-layout(std430, binding = 10) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
-layout(std430, binding = 11) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
-layout(std430, binding = 12) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
+layout(std430, binding = PASS_BINDING(0)) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
+layout(std430, binding = PASS_BINDING(1)) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
+layout(std430, binding = PASS_BINDING(2)) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
 
 void main() {
   uvec2 pixel;

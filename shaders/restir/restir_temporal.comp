@@ -6,7 +6,7 @@
 // history sample (M kept, as for an empty history reservoir). History confidence M is capped
 // (push.reuse.y). MIS weights per push.sampling.z. Optional boiling filter over the tile.
 // Reads: restir_surfaces, surfaces_history, reservoirs_in, reservoirs_history, gbuffer_motion,
-// light_remap, frame constants, lights, environment (env_*).
+// light_previous_to_current, frame constants, lights, environment (env_*).
 // Writes: reservoirs_out, temporal_status.
 // History: "restir.surfaces" and "restir.reservoirs" of last frame; without
 // kRestirFlagHistoryValid the history bindings are stand-ins and are not read.
@@ -16,14 +16,13 @@
 
 #include "restir/restir_reuse.glsl"
 
-layout(binding = 10, rgba32f) readonly uniform image2D gbuffer_motion;
-layout(std430, binding = 11) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
-layout(std430, binding = 12) readonly buffer SurfaceHistory { RestirSurface s[]; } surfaces_history;
-layout(std430, binding = 13) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
-layout(std430, binding = 14) readonly buffer ReservoirHistory { PackedReservoir r[]; } reservoirs_history;
-layout(std430, binding = 15) readonly buffer RemapBuffer { uint index[]; } light_remap;
-layout(std430, binding = 16) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
-layout(std430, binding = 17) writeonly buffer StatusOut { uint status[]; } temporal_status;
+layout(binding = PASS_BINDING(0), rgba32f) readonly uniform image2D gbuffer_motion;
+layout(std430, binding = PASS_BINDING(1)) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
+layout(std430, binding = PASS_BINDING(2)) readonly buffer SurfaceHistory { RestirSurface s[]; } surfaces_history;
+layout(std430, binding = PASS_BINDING(3)) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
+layout(std430, binding = PASS_BINDING(4)) readonly buffer ReservoirHistory { PackedReservoir r[]; } reservoirs_history;
+layout(std430, binding = PASS_BINDING(5)) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
+layout(std430, binding = PASS_BINDING(6)) writeonly buffer StatusOut { uint status[]; } temporal_status;
 
 shared float s_weights[kRestirTileSize * kRestirTileSize];
 
@@ -71,7 +70,7 @@ void main() {
         // was empty: +7% on cornell_lights' lit surfaces, +18% with 1 candidate.)
         uint light = history.selected.light_index;
         if (light != kInvalidLight && light != kEnvironmentLight) {
-          light = light < push.lights.y ? light_remap.index[light] : kInvalidLight;
+          light = light < push.lights.y ? light_previous_to_current.index[light] : kInvalidLight;
           if (light >= push.lights.x) light = kInvalidLight;
         }
         reservoir_remap_light(history, light);

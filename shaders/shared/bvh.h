@@ -120,6 +120,14 @@ LANTERN_FUNC float bvh_position_epsilon(float magnitude) {
   return max(kBvhShadowEpsilon, kBvhShadowRelativeEpsilon * magnitude);
 }
 
+// Origin of a ray leaving surface point p on the side of its geometric normal ng (unit): p pushed
+// along ng by bvh_position_epsilon of p's largest coordinate, so the ray never hits the surface
+// it starts on (closest-hit rays; shadow rays pull both ends in by bvh_shadow_t_epsilon instead).
+LANTERN_FUNC vec3 bvh_ray_origin(vec3 p, vec3 ng) {
+  vec3 magnitude = abs(p);
+  return p + ng * bvh_position_epsilon(max(magnitude.x, max(magnitude.y, magnitude.z)));
+}
+
 // The shadow-ray segment between two points: origin + t * (target - origin) for t in
 // [t_eps, 1 - t_eps], where t_eps * |target - origin| = bvh_position_epsilon(largest coordinate
 // magnitude of either end), so neither the surface the ray leaves nor the one it reaches counts

@@ -7,7 +7,8 @@
 //   contribution c(x, y) = f(v, l) cos(n, l) * Le * G,  G = cos_light / d^2 (triangles),
 //                          falloff (point/spot), 1 (directional)
 //   an estimate of the direct light is c(x, y) V(x, y) / p(y); ReSTIR's target is luminance(c).
-// Matches integrators.baseline (which divides by the solid-angle pdf: the same ratio).
+// Every integrator (baseline, reference, the restir.* passes) evaluates lights through these
+// functions: one owner for range, cone, falloff and the directional shadow distance.
 #ifndef LANTERN_SHARED_LIGHT_EVAL_H
 #define LANTERN_SHARED_LIGHT_EVAL_H
 
@@ -20,7 +21,8 @@
 
 LANTERN_BEGIN_SHARED
 
-// Shadow rays to directional lights end this many scene radii away.
+// Shadow rays to directional lights and environment directions end this many scene radii away
+// (anything that can block them lies inside the scene's bounding sphere).
 LANTERN_CONST float kDirectionalShadowRadii = 4.0f;
 
 // The point the sample lights x from (for the shadow ray). uv in [0,1]^2.
@@ -47,48 +49,87 @@ LANTERN_FUNC float light_eval_point_pdf(GpuLight light) {
   return safe_ratio(1.0f, triangle_area(p0, p0 + vec3(light.p1), p0 + vec3(light.p2)));
 }
 
-// Unshadowed contribution c(x, y) (see the header). n: shading normal, ng: geometric normal, both
-// on the viewer's side; v: unit direction to the viewer. Zero below either normal, behind a
-// one-sided triangle, outside a spot cone, and for non-finite inputs.
+// Cosine at the light and squared distance of a triangle light point y seen from x: the factor
+// cos_light / d^2 that turns a solid-angle density into an area density. Zero behind the
+// one-sided triangle and for a degenerate one.
+LANTERN_FUNC float light_eval_triangle_geometry(GpuLight light, vec3 l, float dist2) {
+  vec3 light_normal = cross(vec3(light.p1), vec3(light.p2));
+  float len2 = dot(light_normal, light_normal);
+  float cos_light = len2 > 0.0f ? -dot(light_normal, l) * inversesqrt(len2) : 0.0f;
+  return cos_light > 0.0f ? safe_ratio(cos_light, dist2) : 0.0f;
+}
+
+// Solid-angle density at x of light sampling landing on triangle light point y in unit direction
+// l at squared distance dist2, given the light was chosen (multiply by the selection pdf):
+// point density / (cos_light / d^2). Zero for punctual and directional lights (deltas: no other
+// strategy reaches them) and behind the triangle.
+LANTERN_FUNC float light_eval_solid_angle_pdf(GpuLight light, vec3 l, float dist2) {
+  if (light_kind(light) != kLightTriangle) {
+    return 0.0f;
+  }
+  float geometry = light_eval_triangle_geometry(light, l, dist2);
+  return geometry > 0.0f ? safe_ratio(light_eval_point_pdf(light), geometry) : 0.0f;
+}
+
+// The geometry term of (light, uv) at x and the unit direction l towards it: cos_light / d^2 for
+// triangles; 1/d^2 with the KHR_lights_punctual range window (p2.w; 0 = none) for point lights,
+// times the cone for spots; 1 for directional lights. Zero when x coincides with the light.
+LANTERN_FUNC float light_eval_geometry(GpuLight light, vec2 uv, vec3 x, float scene_radius,
+                                       LANTERN_OUT(vec3) l) {
+  uint kind = light_kind(light);
+  if (kind == kLightDirectional) {
+    l = directional_light_to_light(vec3(light.p1));
+    return 1.0f;
+  }
+  vec3 to_light = light_eval_position(light, uv, x, scene_radius) - x;
+  float dist2 = dot(to_light, to_light);
+  if (!(dist2 > 0.0f)) {
+    l = vec3(0.0f, 0.0f, 1.0f);
+    return 0.0f;
+  }
+  l = to_light * inversesqrt(dist2);
+  if (kind == kLightTriangle) {
+    return light_eval_triangle_geometry(light, l, dist2);
+  }
+  float geometry = punctual_distance_falloff(dist2, light.p2.w);
+  if (kind == kLightSpot) {
+    vec3 axis = vec3(light.p1);
+    float axis_len2 = dot(axis, axis);
+    float cos_theta = axis_len2 > 0.0f ? dot(axis, -l) * inversesqrt(axis_len2) : -1.0f;
+    geometry *= spot_cone_falloff(cos_theta, light.p2.x, light.p2.y);
+  }
+  return geometry;
+}
+
+// Unshadowed contribution of radiance `radiance` arriving along unit direction l, times the
+// geometry term `geometry` (1 for a direction's radiance): f(v, l) cos(n, l) radiance geometry. n:
+// shading normal, ng: geometric normal, both on the viewer's side; v: unit direction to the
+// viewer. Zero below the geometric normal and for non-finite inputs. Every light kind ends here,
+// the environment map included.
+LANTERN_FUNC vec3 light_eval_incident(vec3 l, vec3 radiance, float geometry, vec3 n, vec3 ng,
+                                      vec3 v, vec3 albedo, float roughness, float metallic,
+                                      float specular) {
+  if (dot(ng, l) <= 0.0f) {
+    return vec3(0.0f);
+  }
+  vec3 c = brdf_eval(n, v, l, albedo, roughness, metallic, specular) * radiance * geometry;
+  bool finite = is_finite(c.x) && is_finite(c.y) && is_finite(c.z);
+  return finite ? max(c, vec3(0.0f)) : vec3(0.0f);
+}
+
+// Unshadowed contribution c(x, y) of light sample (light, uv) (see the header): zero below either
+// normal, behind a one-sided triangle, outside a spot cone or a punctual range, and for non-finite
+// inputs. Arguments as light_eval_incident.
 LANTERN_FUNC vec3 light_eval_contribution(GpuLight light, vec2 uv, vec3 x, vec3 n, vec3 ng, vec3 v,
                                           vec3 albedo, float roughness, float metallic,
                                           float specular, float scene_radius) {
-  uint kind = light_kind(light);
   vec3 l;
-  float geometry;  // G (triangles) or distance falloff x cone (point, spot) or 1
-  if (kind == kLightDirectional) {
-    l = directional_light_to_light(vec3(light.p1));
-    geometry = 1.0f;
-  } else {
-    vec3 target = light_eval_position(light, uv, x, scene_radius);
-    vec3 to_light = target - x;
-    float dist2 = dot(to_light, to_light);
-    if (!(dist2 > 0.0f)) {
-      return vec3(0.0f);
-    }
-    l = to_light * inversesqrt(dist2);
-    if (kind == kLightTriangle) {
-      vec3 light_normal = cross(vec3(light.p1), vec3(light.p2));
-      float len2 = dot(light_normal, light_normal);
-      float cos_light = len2 > 0.0f ? -dot(light_normal, l) * inversesqrt(len2) : 0.0f;
-      geometry = cos_light > 0.0f ? safe_ratio(cos_light, dist2) : 0.0f;
-    } else {
-      geometry = punctual_distance_falloff(dist2, 0.0f);
-      if (kind == kLightSpot) {
-        vec3 axis = vec3(light.p1);
-        float axis_len2 = dot(axis, axis);
-        float cos_theta = axis_len2 > 0.0f ? dot(axis, -l) * inversesqrt(axis_len2) : -1.0f;
-        geometry *= spot_cone_falloff(cos_theta, light.p2.x, light.p2.y);
-      }
-    }
-  }
-  if (!(geometry > 0.0f) || dot(ng, l) <= 0.0f) {
+  float geometry = light_eval_geometry(light, uv, x, scene_radius, l);
+  if (!(geometry > 0.0f)) {
     return vec3(0.0f);
   }
-  vec3 f = brdf_eval(n, v, l, albedo, roughness, metallic, specular);
-  vec3 c = f * vec3(light.radiance) * geometry;
-  bool finite = is_finite(c.x) && is_finite(c.y) && is_finite(c.z);
-  return finite ? max(c, vec3(0.0f)) : vec3(0.0f);
+  return light_eval_incident(l, vec3(light.radiance), geometry, n, ng, v, albedo, roughness,
+                             metallic, specular);
 }
 
 // ReSTIR's target function p̂(y) at x: luminance of the unshadowed contribution, guarded.

@@ -464,7 +464,7 @@ TEST_F(ExtremesTest, MCapOneAndTenThousand) {
 //   (play's UI layer is rgba16f too but holds only UI colours in [0, 1]; not on a lighting path.)
 // Each: baseline and restir finite and non-negative.
 //
-// Albedo: restir packs the half albedo into unorm8 clamped to [0, 1] (restir_surface_pack), so
+// Albedo: restir packs the half albedo into unorm16 clamped to [0, 1] (restir_surface_pack), so
 // 65520+ (Inf in half) reads as 1; baseline reads GpuMaterial.base_color unclamped (measured mean
 // 171 at 65504, 1.7e34 at 3e38): finite, but the two integrators disagree for any base colour > 1,
 // which the JSON loader accepts (it checks >= 0 only). Reported, not fixed here (lighting/scene).

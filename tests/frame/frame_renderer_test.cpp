@@ -77,7 +77,7 @@ TEST_F(FrameRendererTest, MovingInstanceCarriesLastFramesTransformAsPrevious) {
     harness.render(snapshot);
     const auto& scene = harness.renderer().scene();
     const std::vector<gpu::GpuInstance> gpu = runtime::read_buffer<gpu::GpuInstance>(
-        device, scene.device_buffer(lighting::GpuScene::kInstances));
+        device, scene.device_buffer(gpu::kSceneInstances));
     ASSERT_GT(gpu.size(), moving);
     EXPECT_EQ(gpu[moving].object_to_world, s->object_to_world) << "frame " << frame;
     if (frame > 0) {
@@ -141,7 +141,7 @@ TEST_F(FrameRendererTest, RemovedLightMapsToInvalidAndLeavesTheImage) {
   EXPECT_EQ(harness.renderer().last_inputs().previous_light_count, 2u);
   // The remap reached the device too.
   const std::vector<std::uint32_t> remap =
-      runtime::read_buffer<std::uint32_t>(device, scene.device_buffer(lighting::GpuScene::kRemap));
+      runtime::read_buffer<std::uint32_t>(device, scene.device_buffer(gpu::kSceneLightPreviousToCurrent));
   ASSERT_GE(remap.size(), 2u);
   EXPECT_EQ(remap[0], 0u);
   EXPECT_EQ(remap[1], gpu::kInvalidLight);
@@ -167,7 +167,7 @@ TEST_F(FrameRendererTest, LightBuffersGrowWhenLightsAppear) {
   const FrameSnapshot first = world.step();
   harness.render(first);
   const auto& scene = harness.renderer().scene();
-  const VkDeviceSize initial_bytes = scene.device_buffer(lighting::GpuScene::kLights).size();
+  const VkDeviceSize initial_bytes = scene.device_buffer(gpu::kSceneLights).size();
 
   // 300 more dim point lights (new stable ids) over the plane: the light buffers must grow.
   FrameSnapshot more = first;
@@ -184,11 +184,11 @@ TEST_F(FrameRendererTest, LightBuffersGrowWhenLightsAppear) {
     EXPECT_EQ(image.count_non_finite(), 0u);
   }
   EXPECT_EQ(scene.light_record_count(), 302u);
-  EXPECT_GE(scene.device_buffer(lighting::GpuScene::kLights).size(),
+  EXPECT_GE(scene.device_buffer(gpu::kSceneLights).size(),
             302u * sizeof(gpu::GpuLight));
-  EXPECT_GT(scene.device_buffer(lighting::GpuScene::kLights).size(), initial_bytes);
+  EXPECT_GT(scene.device_buffer(gpu::kSceneLights).size(), initial_bytes);
   const std::vector<gpu::GpuLight> lights = runtime::read_buffer<gpu::GpuLight>(
-      device, scene.device_buffer(lighting::GpuScene::kLights));
+      device, scene.device_buffer(gpu::kSceneLights));
   EXPECT_EQ(lights[301].p0.x, more.lights[301].position.x);
   // Back to two: the two survivors keep their ids, the 300 map to kInvalidLight.
   harness.render(first);

@@ -85,11 +85,11 @@ std::optional<GBufferImages> GBufferHarness::render(const gpu::FrameConstants& c
     return graph_.import_buffer(b.name(), b.handle(), {b.size()}, read_only);
   };
   lighting::SceneHandles scene;
-  scene.frame_constants = import(frame_constants_);
-  scene.vertices = import(vertices_);
-  scene.indices = import(indices_);
-  scene.materials = import(materials_);
-  scene.instances = import(instances_);
+  scene[gpu::kSceneFrameConstants] = import(frame_constants_);
+  scene[gpu::kSceneVertices] = import(vertices_);
+  scene[gpu::kSceneIndices] = import(indices_);
+  scene[gpu::kSceneMaterials] = import(materials_);
+  scene[gpu::kSceneInstances] = import(instances_);
   const lighting::GBufferHandles g = pass_.add_pass(
       graph_, scene, width, height, std::span<const gpu::GpuInstance>(instances_host_));
   const std::array<ImageHandle, 6> images = {g.position,          g.normal, g.albedo_roughness,

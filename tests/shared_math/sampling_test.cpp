@@ -96,6 +96,9 @@ TEST(Sampling, SpotConeFollowsKhrLightsPunctual) {
   // Halfway in cosine: the spec's linear ramp squared.
   EXPECT_NEAR(spot_cone_falloff(0.5f * (cos_outer + cos_inner), cos_outer, cos_inner), 0.25f,
               1e-5f);
+  // 30% of the way in cosine from the outer cone: 0.3^2.
+  EXPECT_NEAR(spot_cone_falloff(cos_outer + 0.3f * (cos_inner - cos_outer), cos_outer, cos_inner),
+              0.09f, 1e-5f);
   // Monotonic between the cones.
   float previous = 0.0f;
   for (int i = 0; i <= 100; ++i) {
@@ -112,8 +115,10 @@ TEST(Sampling, PunctualDistanceFalloff) {
   EXPECT_FLOAT_EQ(punctual_distance_falloff(4.0f, 0.0f), 0.25f);  // no range: inverse square
   EXPECT_EQ(punctual_distance_falloff(9.0f, 3.0f), 0.0f);         // at the range: zero
   EXPECT_EQ(punctual_distance_falloff(16.0f, 3.0f), 0.0f);
-  EXPECT_LT(punctual_distance_falloff(4.0f, 3.0f), 0.25f);
-  EXPECT_GT(punctual_distance_falloff(4.0f, 3.0f), 0.0f);
+  // d = 2, range 3: 1/d^2 (1 - (2/3)^4)^2 = 0.25 * (65/81)^2 = 0.160989...
+  EXPECT_NEAR(punctual_distance_falloff(4.0f, 3.0f), 0.25 * (65.0 / 81.0) * (65.0 / 81.0), 1e-7);
+  // d = 0.5, range 1: 4 * (1 - 1/16)^2 = 3.515625
+  EXPECT_NEAR(punctual_distance_falloff(0.25f, 1.0f), 3.515625, 1e-6);
   EXPECT_EQ(punctual_distance_falloff(0.0f, 0.0f), 0.0f);  // degenerate: no Inf
 }
 

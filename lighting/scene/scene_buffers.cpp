@@ -1,0 +1,107 @@
+// The scene buffer table and SceneHandles' read declarations and binding (scene_buffers.h).
+#include "lighting/scene/scene_buffers.h"
+
+#include <fmt/format.h>
+
+#include "engine/core/error.h"
+#include "lighting/scene/scene_data.h"
+#include "runtime/gpu/bindings.h"
+#include "runtime/gpu/pipeline.h"
+#include "runtime/graph/pass_context.h"
+#include "runtime/graph/render_graph.h"
+
+namespace lantern::lighting {
+namespace {
+
+template <class T>
+std::span<const std::byte> bytes_of(const std::vector<T>& v) {
+  return std::as_bytes(std::span<const T>(v));
+}
+template <class T>
+std::span<const std::byte> bytes_of_one(const T* value) {
+  return std::as_bytes(std::span<const T>(value, 1));
+}
+
+using Sources = SceneBufferSources;
+
+}  // namespace
+
+// clang-format off
+constexpr std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers = {{
+    {gpu::kSceneFrameConstants, "scene.frame_constants", "frame_constants", nullptr, false,
+     [](const Sources& s) { return bytes_of_one(s.frame_constants); }},
+    {gpu::kSceneVertices, "scene.vertices", "scene_vertices", nullptr, true,
+     [](const Sources& s) { return bytes_of(s.data->vertices); }},
+    {gpu::kSceneIndices, "scene.indices", "scene_indices", nullptr, true,
+     [](const Sources& s) { return bytes_of(s.data->indices); }},
+    {gpu::kSceneMaterials, "scene.materials", "scene_materials", nullptr, true,
+     [](const Sources& s) { return bytes_of(s.data->materials); }},
+    {gpu::kSceneInstances, "scene.instances", "scene_instances", nullptr, false,
+     [](const Sources& s) { return bytes_of(s.data->instances); }},
+    {gpu::kSceneLights, "scene.lights", "scene_lights", nullptr, false,
+     [](const Sources& s) { return bytes_of(s.data->lights.lights()); }},
+    {gpu::kSceneLightAlias, "scene.light_alias", "light_alias", nullptr, false,
+     [](const Sources& s) { return bytes_of(s.data->lights.alias_table().entries()); }},
+    {gpu::kSceneLightPreviousToCurrent, "scene.light_previous_to_current",
+     "light_previous_to_current", nullptr, false,
+     [](const Sources& s) { return bytes_of(*s.light_previous_to_current); }},
+    {gpu::kSceneBvhHeader, "scene.bvh_header", "BvhHeaderBuffer", nullptr, false,
+     [](const Sources& s) { return bytes_of_one(&s.data->bvh.header()); }},
+    {gpu::kSceneBvhNodes, "scene.bvh_nodes", "BvhNodeBuffer", "bvh_node_texels", false,
+     [](const Sources& s) { return bytes_of(s.data->bvh.nodes()); }},
+    {gpu::kSceneBvhTriangles, "scene.bvh_triangles", "BvhTriangleBuffer", "bvh_triangle_texels",
+     true, [](const Sources& s) { return bytes_of(s.data->bvh.triangles()); }},
+    {gpu::kSceneBvhInstances, "scene.bvh_instances", "BvhInstanceBuffer", "bvh_instance_texels",
+     false, [](const Sources& s) { return bytes_of(s.data->bvh.instances()); }},
+    {gpu::kSceneEnvHeader, "scene.env_header", "env_header", nullptr, false,
+     [](const Sources& s) { return bytes_of_one(s.env_header); }},
+    {gpu::kSceneEnvTexels, "scene.env_texels", "env_texels", nullptr, true,
+     [](const Sources& s) { return s.env_texels; }},
+    {gpu::kSceneEnvMarginal, "scene.env_marginal", "env_marginal", nullptr, true,
+     [](const Sources& s) { return s.env_marginal; }},
+    {gpu::kSceneEnvConditional, "scene.env_conditional", "env_conditional", nullptr, true,
+     [](const Sources& s) { return s.env_conditional; }},
+}};
+// clang-format on
+
+namespace {
+constexpr bool rows_in_slot_order() {
+  for (std::uint32_t i = 0; i < kSceneBuffers.size(); ++i) {
+    if (kSceneBuffers[i].slot != i) return false;
+  }
+  return true;
+}
+static_assert(rows_in_slot_order(), "kSceneBuffers: row i must describe slot i");
+}  // namespace
+
+void SceneHandles::declare_reads(runtime::graph::PassBuilder& builder,
+                                 const runtime::Pipeline& pipeline) const {
+  using runtime::graph::Access;
+  for (const SceneBufferRow& row : kSceneBuffers) {
+    const bool storage = pipeline.find_binding(row.shader_name) != nullptr;
+    const bool texel = row.texel_name != nullptr && pipeline.find_binding(row.texel_name) != nullptr;
+    if (!storage && !texel) continue;
+    const runtime::graph::BufferHandle h = buffers[row.slot];
+    if (!h.valid()) {
+      throw RuntimeError(fmt::format("pipeline '{}' reads scene buffer '{}', which this frame's "
+                                     "SceneHandles do not hold",
+                                     pipeline.name(), row.graph_name));
+    }
+    if (storage) builder.read(h, Access::StorageRead);
+    if (texel) builder.read(h, Access::UniformTexelRead);
+  }
+}
+
+void SceneHandles::bind(runtime::Bindings& bindings,
+                        const runtime::graph::PassContext& ctx) const {
+  for (const SceneBufferRow& row : kSceneBuffers) {
+    if (bindings.has(row.shader_name)) {
+      bindings.buffer(row.shader_name, ctx.buffer(buffers[row.slot]), 0, VK_WHOLE_SIZE);
+    }
+    if (row.texel_name != nullptr && bindings.has(row.texel_name)) {
+      bindings.texel_buffer(row.texel_name, texel_views[row.slot]);
+    }
+  }
+}
+
+}  // namespace lantern::lighting
