@@ -219,8 +219,12 @@ std::optional<ResourceBarrier> derive_barrier(SyncState& state, const AccessStat
     // available (write after write), earlier reads need only an execution dependency.
     if (transition || old.stages != 0 || old.access != 0)
       barrier = ResourceBarrier{kInvalidIndex, old, use, false};
+    // A read-only transition: the barrier made the earlier write available, so what later uses
+    // wait for is the transition (its stages), with no write access of its own. (Keeping the old
+    // write's access here paired it with the transition's stages: a second transition then
+    // waited for COLOR_ATTACHMENT_WRITE at COMPUTE_SHADER, VUID-VkImageMemoryBarrier2-03911.)
     state.write_stages = use.stages;
-    state.write_access = writes ? (use.access & kWriteAccess) : state.write_access;
+    state.write_access = writes ? (use.access & kWriteAccess) : 0;
     state.read_stages = writes ? 0 : use.stages;
     state.visible_stages = writes ? 0 : use.stages;
     state.visible_access = writes ? 0 : use.access;

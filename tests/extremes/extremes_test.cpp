@@ -347,7 +347,8 @@ TEST_F(ExtremesTest, SceneTranslatedTo1e5KeepsShadows) {
 // box's back faces, every shading point is shut in, the image is black; allowed: mean < 1e-3 of
 // the room seen from outside (leaks through the shadow epsilon at the box's edges). (b) The near
 // plane cutting through the floor (camera 1 cm above it, znear 5 cm, looking along it): finite,
-// mean within 5% of the reference. (c) The camera exactly in the floor plane: finite.
+// mean within 5% of the reference. (c) The camera exactly in the floor plane (the floor seen
+// edge-on): mean within 5% of the reference.
 TEST_F(ExtremesTest, CameraInsideGeometry) {
   const Level outside = lit_room(two_lights(), "outside");
   Level inside = outside;
@@ -382,7 +383,15 @@ TEST_F(ExtremesTest, CameraInsideGeometry) {
   in_plane.camera.position = glm::vec3(0.0f, 0.0f, 2.5f);
   in_plane.camera.orientation =
       look_at_orientation(in_plane.camera.position, glm::vec3(0.0f, 0.0f, 0.0f));
-  for (const IntegratorConfig& config : {baseline(), restir()}) mean_of(in_plane, config, 2);
+  const ImageRGBA32F in_plane_ref = reference_mean(device, shaders, in_plane);
+  ASSERT_GT(mean_rgb(in_plane_ref), 0.0);
+  for (const IntegratorConfig& config : {baseline(), restir()}) {
+    const ImageRGBA32F image = mean_of(in_plane, config, 8);
+    const double d = rel_diff(mean_rgb(image), mean_rgb(in_plane_ref));
+    std::printf("[extremes] camera in the floor plane %s: mean %.6g reference %.6g rel diff %.4f\n",
+                name_of(config), mean_rgb(image), mean_rgb(in_plane_ref), d);
+    EXPECT_LT(d, 0.05) << name_of(config);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -413,23 +422,91 @@ TEST_F(ExtremesTest, CameraCutEveryFrame) {
   }
 }
 
-// The same along a moving camera path with moving objects (cornell_lights' dolly): no history is
-// ever reused, every frame finite.
+// The same along a moving camera path with moving objects (cornell_lights' dolly), every frame:
+// no pixel reuses history (restir.temporal's status, read through the disocclusion debug view:
+// every surface pixel kRestirStatusNoHistory on each of the 10 frames), and the frames' radiance
+// is an unbiased estimate of their snapshots: 4 runs with distinct seeds, the sum over their 40
+// frames of the lit pixels within 5% of a 16-frame baseline mean of each snapshot. Lit pixels:
+// an independent baseline estimate (another seed) below 5, so the emitters (identical in both)
+// are left out; choosing them from the reference itself biased the comparison by +15% (a
+// baseline run against that mask read +15%). Noise: one frame's lit sum has sd ~8% here (44
+// emitters spanning 10^4), so the 40-frame sum ~1.3%, the reference ~0.6%: 5% is ~3.5 sd.
 TEST_F(ExtremesTest, CameraCutEveryFrameAlongAPath) {
   Level cornell = load_level_argument("cornell_lights");
   cornell.camera_path = "dolly";
   const auto level = std::make_shared<const Level>(std::move(cornell));
-  lighting::HeadlessSession session(device, shaders, level,
-                                    {.integrator = restir(), .width = 64, .height = 36});
-  session.warm_up();
-  for (int f = 0; f < 10; ++f) {
-    session.world().request_camera_cut();
-    const FrameSnapshot& snapshot = session.step_world();
-    ImageRGBA32F image;
-    session.render(snapshot, &image);
-    EXPECT_EQ(image.count_non_finite(), 0u) << "frame " << f;
-    EXPECT_GT(mean_rgb(image), 0.0) << "frame " << f;
+  constexpr int kFrames = 10;
+  constexpr int kRuns = 4;
+  std::vector<FrameSnapshot> snapshots;
+  {
+    lighting::HeadlessSession status_session(
+        device, shaders, level,
+        {.integrator = restir({{"debug_view", "disocclusion"}}), .width = 64, .height = 36});
+    status_session.warm_up();
+    for (int f = 0; f < kFrames; ++f) {
+      status_session.world().request_camera_cut();
+      snapshots.push_back(status_session.step_world());
+      ImageRGBA32F debug;
+      status_session.render(snapshots.back(), &debug);
+      std::size_t surface = 0, reused = 0;
+      for (std::size_t p = 0; p < debug.pixels.size() / 4; ++p) {
+        const float r = debug.pixels[4 * p], g = debug.pixels[4 * p + 1];
+        if (r == 0.0f && g == 0.0f) continue;  // sky
+        ++surface;
+        reused += r == 1.0f && g == 0.0f ? 0 : 1;
+      }
+      EXPECT_TRUE(snapshots.back().camera_cut);
+      EXPECT_GT(surface, 1000u) << "frame " << f;
+      EXPECT_EQ(reused, 0u) << "frame " << f << ": pixels reusing history after a cut";
+    }
   }
+  // Per frame: the lit mask and the reference.
+  std::vector<std::vector<std::uint8_t>> lit(kFrames);
+  std::vector<double> reference(kFrames, 0.0);
+  for (const std::uint32_t seed : {99u, 1u}) {
+    lighting::HeadlessSession base(device, shaders, level,
+                                   {.integrator = baseline(), .width = 64, .height = 36, .seed = seed});
+    base.warm_up();
+    for (int f = 0; f < kFrames; ++f) {
+      runtime::ImageAccumulator acc;
+      for (int k = 0; k < 16; ++k) {
+        ImageRGBA32F r;
+        base.render(snapshots[f], &r);
+        acc.add(r);
+      }
+      const ImageRGBA32F mean = acc.mean();
+      if (seed == 99u) {
+        lit[f].resize(mean.pixels.size());
+        for (std::size_t i = 0; i < mean.pixels.size(); ++i)
+          lit[f][i] = i % 4 != 3 && mean.pixels[i] < 5.0f ? 1 : 0;
+      } else {
+        for (std::size_t i = 0; i < mean.pixels.size(); ++i)
+          if (lit[f][i]) reference[f] += mean.pixels[i];
+      }
+    }
+  }
+  double sum = 0.0, reference_sum = 0.0;
+  for (int run = 0; run < kRuns; ++run) {
+    lighting::HeadlessSession session(
+        device, shaders, level,
+        {.integrator = restir(), .width = 64, .height = 36, .seed = 5u + std::uint32_t(run)});
+    session.warm_up();
+    for (int f = 0; f < kFrames; ++f) {
+      session.world().request_camera_cut();
+      const FrameSnapshot& snapshot = session.step_world();
+      ImageRGBA32F image;
+      session.render(snapshot, &image);
+      EXPECT_EQ(image.count_non_finite(), 0u) << "run " << run << " frame " << f;
+      for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        if (lit[f][i]) sum += image.pixels[i];
+      reference_sum += reference[f];
+    }
+  }
+  const double d = sum / reference_sum - 1.0;
+  std::printf("[extremes] cut every frame along the dolly: %d runs x %d frames, lit pixels "
+              "relative to baseline %+.4f\n",
+              kRuns, kFrames, d);
+  EXPECT_LT(std::abs(d), 0.05);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -462,45 +539,114 @@ TEST_F(ExtremesTest, MCapOneAndTenThousand) {
 //   3. PackedReservoir.m_target low 16 bits: M as an integer, saturating at 65535 (not a half, but
 //      the same kind of edge: an M cap of 128 x 1000 = 128000 candidates).
 //   (play's UI layer is rgba16f too but holds only UI colours in [0, 1]; not on a lighting path.)
-// Each: baseline and restir finite and non-negative.
+// Each: baseline and restir finite and non-negative, and equal to a closed form of an image at
+// an ordinary value (same seed, so the same random numbers):
+//   - restir packs albedo and roughness into its surface record clamped to [0, 1]
+//     (restir_surface_pack), and the BRDF clamps roughness: a restir image at any base colour or
+//     roughness >= 1 is the image at 1.
+//   - baseline reads GpuMaterial.base_color unclamped and its estimate is affine in the base
+//     colour (light sampling does not depend on it; brdf_eval is affine in albedo): the image at
+//     base colour v is b0 + v (b1 - b0) per pixel, b0 and b1 the images at 0 and 1, within 1e-3
+//     relative (float rounding of the products); a pixel whose estimate overflows float in the
+//     shading product is written black (the non-finite guard), allowed where the prediction
+//     exceeds 1e30. The roughness is clamped by the BRDF: the image at roughness >= 1 is the
+//     image at 1.
+// Albedo: the two integrators disagree for any base colour > 1, which the JSON loader accepts
+// (it checks >= 0 only): measured baseline mean 171 at 65504, 1.7e34 at 3e38. Reported, not fixed
+// here (lighting/scene).
 //
-// Albedo: restir packs the half albedo into unorm16 clamped to [0, 1] (restir_surface_pack), so
-// 65520+ (Inf in half) reads as 1; baseline reads GpuMaterial.base_color unclamped (measured mean
-// 171 at 65504, 1.7e34 at 3e38): finite, but the two integrators disagree for any base colour > 1,
-// which the JSON loader accepts (it checks >= 0 only). Reported, not fixed here (lighting/scene).
+// Per pixel: |image - expected| <= tolerance x |expected| (+ 1e-6 x the expected image's mean),
+// or the image black where the prediction exceeds `overflow` (0: never allowed).
+::testing::AssertionResult matches_per_pixel(const ImageRGBA32F& image, const ImageRGBA32F& expected,
+                                             double tolerance, double overflow = 0.0) {
+  const double floor = 1e-6 * mean_rgb(expected);
+  std::size_t bad = 0, black = 0, first = 0;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const double v = image.pixels[i], e = expected.pixels[i];
+    if (overflow > 0.0 && v == 0.0 && e > overflow) {
+      ++black;
+      continue;
+    }
+    if (std::abs(v - e) > tolerance * std::abs(e) + floor && bad++ == 0) first = i;
+  }
+  if (bad == 0) return ::testing::AssertionSuccess() << black << " overflowed to black";
+  return ::testing::AssertionFailure()
+         << bad << " channels differ; first: channel " << first << " is " << image.pixels[first]
+         << ", expected " << expected.pixels[first];
+}
+
+// b0 + v (b1 - b0) per channel, in double (may exceed float: then +Inf, which only the overflow
+// allowance accepts).
+ImageRGBA32F affine_prediction(const ImageRGBA32F& b0, const ImageRGBA32F& b1, double v) {
+  ImageRGBA32F out = b0;
+  for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    out.pixels[i] = static_cast<float>(double(b0.pixels[i]) +
+                                       v * (double(b1.pixels[i]) - double(b0.pixels[i])));
+  }
+  return out;
+}
+
 TEST_F(ExtremesTest, HalfPrecisionAlbedoAtOverflowEdge) {
-  for (const float value : {65504.0f, 65520.0f, 1e5f, 3e38f}) {
+  auto with_albedo = [](float value) {
     Level level = lit_room(two_lights(), "albedo_edge");
     level.materials[2].base_color = glm::vec4(value, value, value, 1.0f);  // the glossy box
-    for (const IntegratorConfig& config : {baseline(), restir()}) {
-      const ImageRGBA32F image = mean_of(level, config, 2);
-      std::printf("[extremes] albedo %g %s: mean %.6g max %.6g\n", value, name_of(config),
-                  mean_rgb(image), max_channel(image));
-    }
+    return level;
+  };
+  const ImageRGBA32F restir_at_1 = mean_of(with_albedo(1.0f), restir(), 1);
+  const ImageRGBA32F baseline_at_0 = mean_of(with_albedo(0.0f), baseline(), 1);
+  const ImageRGBA32F baseline_at_1 = mean_of(with_albedo(1.0f), baseline(), 1);
+  for (const float value : {65504.0f, 65520.0f, 1e5f, 3e38f}) {
+    const Level level = with_albedo(value);
+    const ImageRGBA32F r = mean_of(level, restir(), 1);
+    const ImageRGBA32F b = mean_of(level, baseline(), 1);
+    std::printf("[extremes] albedo %g: restir mean %.6g (at 1: %.6g), baseline mean %.6g max %.6g\n",
+                value, mean_rgb(r), mean_rgb(restir_at_1), mean_rgb(b), max_channel(b));
+    EXPECT_TRUE(matches_per_pixel(r, restir_at_1, 1e-6)) << "restir, albedo " << value;
+    EXPECT_TRUE(matches_per_pixel(b, affine_prediction(baseline_at_0, baseline_at_1, value), 1e-3,
+                                  1e30))
+        << "baseline, albedo " << value;
   }
 }
 
 // A base colour the JSON loader accepts (1e30) under a 1e8 emitter: albedo x radiance overflows
-// float in the shading product. No pixel may be Inf (house rule: shaders never write NaN/Inf).
+// float in the shading product. No pixel may be Inf (house rule: shaders never write NaN/Inf), and
+// the closed forms above hold: restir renders the floor (and back wall: the same material) at
+// albedo 1; baseline is the affine prediction wherever it does not overflow, black where it does.
 TEST_F(ExtremesTest, HugeAlbedoUnderHugeRadianceStaysFinite) {
-  Level level = lit_room(two_lights(1e8f), "albedo_overflow");
-  level.materials[0].base_color = glm::vec4(1e30f, 1e30f, 1e30f, 1.0f);  // the floor
-  for (const IntegratorConfig& config : {baseline(), restir()}) {
-    const ImageRGBA32F image = mean_of(level, config, 1);
-    std::printf("[extremes] albedo 1e30 x radiance 2e9 %s: mean %.6g max %.6g\n", name_of(config),
-                mean_rgb(image), max_channel(image));
-  }
+  auto with_floor_albedo = [](float value) {
+    Level level = lit_room(two_lights(1e8f), "albedo_overflow");
+    level.materials[0].base_color = glm::vec4(value, value, value, 1.0f);  // floor, back wall
+    return level;
+  };
+  const Level level = with_floor_albedo(1e30f);
+  const ImageRGBA32F r = mean_of(level, restir(), 1);
+  const ImageRGBA32F b = mean_of(level, baseline(), 1);
+  std::printf("[extremes] albedo 1e30 x radiance 2e9: restir mean %.6g, baseline mean %.6g max "
+              "%.6g\n",
+              mean_rgb(r), mean_rgb(b), max_channel(b));
+  EXPECT_TRUE(matches_per_pixel(r, mean_of(with_floor_albedo(1.0f), restir(), 1), 1e-6));
+  const ImageRGBA32F prediction =
+      affine_prediction(mean_of(with_floor_albedo(0.0f), baseline(), 1),
+                        mean_of(with_floor_albedo(1.0f), baseline(), 1), 1e30);
+  EXPECT_TRUE(matches_per_pixel(b, prediction, 1e-3, 1e30));
 }
 
 TEST_F(ExtremesTest, HalfPrecisionRoughnessAtOverflowEdge) {
-  for (const float value : {65504.0f, 65520.0f, 1e5f}) {
+  auto with_roughness = [](float value) {
     Level level = lit_room(two_lights(), "roughness_edge");
     level.materials[2].roughness = value;
     level.materials[2].metallic = 1.0f;
-    for (const IntegratorConfig& config : {baseline(), restir({{"bsdf_candidates", "1"}})}) {
-      const ImageRGBA32F image = mean_of(level, config, 2);
-      std::printf("[extremes] roughness %g %s: mean %.6g max %.6g\n", value, name_of(config),
-                  mean_rgb(image), max_channel(image));
+    return level;
+  };
+  for (const IntegratorConfig& config : {baseline(), restir({{"bsdf_candidates", "1"}})}) {
+    const ImageRGBA32F at_1 = mean_of(with_roughness(1.0f), config, 2);
+    for (const float value : {65504.0f, 65520.0f, 1e5f}) {
+      const ImageRGBA32F image = mean_of(with_roughness(value), config, 2);
+      std::printf("[extremes] roughness %g %s: mean %.6g (at 1: %.6g) max %.6g\n", value,
+                  name_of(config), mean_rgb(image), mean_rgb(at_1), max_channel(image));
+      EXPECT_TRUE(matches_per_pixel(image, at_1, 1e-6)) << name_of(config) << " roughness " << value;
     }
   }
 }

@@ -184,6 +184,50 @@ TEST(GraphBarriers, ImageLayoutsFollowEachUse) {
   EXPECT_EQ(c.after.barriers[0].dst.layout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
 }
 
+// Raster write, compute read (GENERAL), transfer read (TRANSFER_SRC_OPTIMAL): the second
+// transition waits for the compute reads with no access of its own; the first barrier already
+// made the colour write available. (It used to carry COLOR_ATTACHMENT_WRITE with the COMPUTE
+// stage: VUID-VkImageMemoryBarrier2-srcAccessMask-03911, seen reading back gbuffer.ids.)
+TEST(GraphBarriers, SecondTransitionAfterReadsCarriesNoEarlierWriteAccess) {
+  RenderGraph g;
+  const BufferHandle out = sink(g);
+  struct I {
+    ImageHandle v;
+  };
+  const I& drawn = g.add_pass<I>(
+      "test.draw", PassKind::Graphics,
+      [&](PassBuilder& b, I& d) {
+        d.v = b.write(g.create_image("ids", kImage), Access::ColorAttachment);
+      },
+      kNoExecute);
+  g.add_pass<Empty>(
+      "test.shade", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
+        b.read(drawn.v, Access::StorageRead);
+        (void)b.write(out, Access::StorageWrite);
+      },
+      kNoExecute);
+  g.add_pass<Empty>(
+      "test.copy", PassKind::Transfer,
+      [&](PassBuilder& b, Empty&) {
+        b.read(drawn.v, Access::TransferSrc);
+        b.side_effect();
+      },
+      kNoExecute);
+  g.bake();
+
+  const auto shade = barrier_before(g, "test.shade", drawn.v.index);
+  ASSERT_TRUE(shade) << g.dump();
+  EXPECT_EQ(shade->src.access, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  EXPECT_EQ(shade->dst.layout, VK_IMAGE_LAYOUT_GENERAL);
+  const auto copy = barrier_before(g, "test.copy", drawn.v.index);
+  ASSERT_TRUE(copy) << g.dump();
+  EXPECT_EQ(copy->src.layout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(copy->dst.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  EXPECT_NE(copy->src.stages & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0u);
+  EXPECT_EQ(copy->src.access, VK_ACCESS_2_NONE);
+}
+
 TEST(GraphBarriers, ReadbackBufferEndsWithAHostReadBarrier) {
   RenderGraph g;
   ImportInfo host;

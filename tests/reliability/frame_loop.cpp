@@ -1,6 +1,7 @@
 // FrameLoop: World + FrameRenderer + HeadlessTarget (see frame_loop.h).
 #include "tests/reliability/frame_loop.h"
 
+#include <malloc.h>
 #include <unistd.h>
 
 #include <fstream>
@@ -64,6 +65,11 @@ std::uint64_t resident_bytes() {
   std::uint64_t size = 0, resident = 0;
   statm >> size >> resident;
   return resident * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+}
+
+std::uint64_t heap_bytes() {
+  const struct mallinfo2 info = ::mallinfo2();
+  return static_cast<std::uint64_t>(info.uordblks) + static_cast<std::uint64_t>(info.hblkhd);
 }
 
 }  // namespace lantern::reliability

@@ -46,4 +46,9 @@ class FrameLoop {
 // Resident set size of this process in bytes (/proc/self/statm).
 std::uint64_t resident_bytes();
 
+// Bytes the process holds allocated through malloc (new, the driver's allocations included):
+// glibc's mallinfo2, in-use chunks of every arena plus mmapped chunks. Exact to the chunk, unlike
+// the resident set, which moves in pages and keeps freed memory.
+std::uint64_t heap_bytes();
+
 }  // namespace lantern::reliability

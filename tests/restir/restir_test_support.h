@@ -1,10 +1,12 @@
 // A small harness for ReSTIR GPU tests: a FrameRenderer with a chosen integrator rendering
 // caller-made snapshots (so a test can move an occluder, remove a light or cut the camera
 // exactly when it wants) through the render graph into a HeadlessTarget, read back as linear
-// radiance. Plus helpers for levels written inline and for region statistics.
+// radiance, optionally with the frame's G-buffer instance ids and motion vectors read back (to
+// judge reuse by geometry). Plus helpers for levels written inline and for region statistics.
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -16,6 +18,7 @@
 #include "lighting/frame/frame_renderer.h"
 #include "lighting/integrators/integrator_factory.h"
 #include "lighting/restir/restir_integrator.h"
+#include "runtime/gpu/buffer.h"
 #include "runtime/gpu/gpu_timer.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/graph/graph_executor.h"
@@ -25,25 +28,35 @@
 
 namespace lantern::test {
 
+// Host copies of one frame's gbuffer.ids and gbuffer.motion (shared/gbuffer.h), row-major from
+// the top-left.
+struct GBufferReadback {
+  std::vector<glm::uvec4> ids;    // x: instance (gpu::kNoInstance = sky)
+  std::vector<glm::vec4> motion;  // xy: previous pixel position minus current
+};
+
 class RenderHarness {
  public:
   RenderHarness(runtime::Device& device, runtime::ShaderLibrary& shaders,
                 std::shared_ptr<const Level> level,
                 std::unique_ptr<lighting::Integrator> integrator, std::uint32_t width,
                 std::uint32_t height, std::uint32_t seed = 1)
-      : renderer_(device, shaders, std::move(level), std::move(integrator), width, height, seed),
+      : device_(device),
+        renderer_(device, shaders, std::move(level), std::move(integrator), width, height, seed),
         target_(device, {.width = width, .height = height}),
         executor_(device),
         timer_(device, 64) {
     renderer_.warm_up();
   }
 
-  runtime::ImageRGBA32F render(const FrameSnapshot& snapshot) {
+  // One frame; with `gbuffer`, its ids and motion images come back too.
+  runtime::ImageRGBA32F render(const FrameSnapshot& snapshot, GBufferReadback* gbuffer = nullptr) {
     const auto frame = target_.begin_frame();
     if (!frame) throw RuntimeError("harness: the headless target gave no frame");
     timer_.reset(frame->cmd);
     graph_.begin_frame();
     const runtime::graph::BufferHandle hdr = renderer_.add_frame(graph_, snapshot);
+    if (gbuffer != nullptr) add_gbuffer_readback();
     const runtime::graph::ImageHandle output =
         renderer_.add_output_pass(graph_, hdr, target_.import_output(graph_, *frame), 0.0f);
     target_.add_delivery(graph_, *frame, output);
@@ -51,6 +64,13 @@ class RenderHarness {
     executor_.record(graph_, frame->cmd, &timer_);
     graph_.end_frame();
     target_.end_frame(*frame);
+    if (gbuffer != nullptr) {
+      const std::size_t n = std::size_t{renderer_.width()} * renderer_.height();
+      gbuffer->ids.resize(n);
+      gbuffer->motion.resize(n);
+      std::memcpy(gbuffer->ids.data(), readback_[0].mapped(), n * sizeof(glm::uvec4));
+      std::memcpy(gbuffer->motion.data(), readback_[1].mapped(), n * sizeof(glm::vec4));
+    }
     pass_ms_.clear();
     for (const runtime::GpuTimer::Result& r : timer_.resolve()) {
       if (r.depth == 0) pass_ms_.emplace_back(r.name, r.ms);
@@ -65,6 +85,54 @@ class RenderHarness {
   const std::vector<std::pair<std::string, double>>& pass_ms() const { return pass_ms_; }
 
  private:
+  // A Transfer pass copying gbuffer.ids and gbuffer.motion into host-visible buffers.
+  void add_gbuffer_readback() {
+    const std::size_t bytes = std::size_t{renderer_.width()} * renderer_.height() * 16;
+    if (readback_.empty()) {
+      for (const char* name : {"test.ids_readback", "test.motion_readback"}) {
+        readback_.emplace_back(device_, runtime::BufferDesc{
+                                            .size = bytes,
+                                            .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                            .memory = runtime::MemoryUsage::Readback,
+                                            .name = name});
+      }
+    }
+    const lighting::GBufferHandles& g = renderer_.last_inputs().gbuffer;
+    struct Copy {
+      runtime::graph::ImageHandle images[2];
+      runtime::graph::BufferHandle buffers[2];
+    };
+    const std::uint32_t width = renderer_.width(), height = renderer_.height();
+    graph_.add_pass<Copy>(
+        "test.gbuffer_readback", runtime::graph::PassKind::Transfer,
+        [&](runtime::graph::PassBuilder& b, Copy& d) {
+          runtime::graph::ImportInfo host_read;
+          host_read.final = runtime::graph::AccessState{
+              VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+          d.images[0] = g.ids;
+          d.images[1] = g.motion;
+          for (int i = 0; i < 2; ++i) {
+            b.read(d.images[i], runtime::graph::Access::TransferSrc);
+            d.buffers[i] = b.write(graph_.import_buffer(readback_[i].name(), readback_[i].handle(),
+                                                        {readback_[i].size()}, host_read),
+                                   runtime::graph::Access::TransferDst);
+          }
+          b.side_effect();
+        },
+        [width, height](runtime::graph::PassContext& ctx, const Copy& d) {
+          for (int i = 0; i < 2; ++i) {
+            VkBufferImageCopy region{};
+            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.imageExtent = {width, height, 1};
+            vkCmdCopyImageToBuffer(ctx.cmd(), ctx.image(d.images[i]),
+                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ctx.buffer(d.buffers[i]),
+                                   1, &region);
+          }
+        });
+  }
+
+  runtime::Device& device_;
+  std::vector<runtime::Buffer> readback_;
   lighting::FrameRenderer renderer_;
   runtime::HeadlessTarget target_;
   runtime::graph::RenderGraph graph_;

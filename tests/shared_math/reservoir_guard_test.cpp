@@ -1,7 +1,9 @@
 // NaN, Inf and negative inputs never produce a non-finite reservoir: a fuzz over update, merge,
-// finalize, M capping and pack/unpack with hostile values mixed into ordinary ones.
+// finalize, M capping and pack/unpack with hostile values mixed into ordinary ones, and raw stored
+// words (what a corrupted or uninitialised reservoir buffer holds) unpacked.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -105,6 +107,69 @@ TEST(ReservoirGuard, ZeroTargetAtTheSelectedSampleEmptiesTheReservoir) {
   reservoir_finalize(r);
   EXPECT_EQ(r.W, 0.0f);
   EXPECT_FALSE(reservoir_has_sample(r));
+}
+
+// Raw words with NaN/Inf/negative W (any light index, M and p̂) unpack to an empty reservoir:
+// no sample, W and weight_sum 0, everything finite.
+TEST(ReservoirGuard, RawNonFiniteWordsUnpackToEmpty) {
+  const float w_values[] = {std::numeric_limits<float>::quiet_NaN(),
+                            -std::numeric_limits<float>::quiet_NaN(),
+                            std::numeric_limits<float>::signaling_NaN(),
+                            std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity(),
+                            -1.0f,
+                            -std::numeric_limits<float>::denorm_min()};
+  const uint light_ages[] = {0u, 7u, (3u << 24u) | 12345u, kPackedNoLight, 0x7f800000u,
+                             0xffffffffu};
+  const uint m_targets[] = {0u, 1u | (0x3c00u << 16u), 0xffffu | (0x7c00u << 16u),
+                            5u | (0x7e00u << 16u), 0xffffffffu};
+  for (const float w : w_values)
+    for (const uint light_age : light_ages)
+      for (const uint m_target : m_targets) {
+        PackedReservoir p;
+        p.light_age = light_age;
+        p.uv = 0x8000ffffu;
+        p.W = w;
+        p.m_target = m_target;
+        const Reservoir r = reservoir_unpack(p);
+        ASSERT_FALSE(reservoir_has_sample(r)) << "W " << w << " light_age " << light_age;
+        ASSERT_EQ(r.W, 0.0f) << "W " << w;
+        ASSERT_EQ(r.weight_sum, 0.0f) << "W " << w;
+        ASSERT_TRUE(finite_state(r)) << "W " << w << " m_target " << m_target;
+        ASSERT_TRUE(is_finite(r.selected.u) && is_finite(r.selected.v));
+      }
+}
+
+// Every word all ones or all the bits of +Inf / NaN: empty and finite.
+TEST(ReservoirGuard, RawAllOnesAndInfWordsUnpackToEmpty) {
+  for (const uint word : {0xffffffffu, 0x7f800000u, 0x7fc00000u, 0xff800000u}) {
+    PackedReservoir p;
+    p.light_age = word;
+    p.uv = word;
+    std::memcpy(&p.W, &word, sizeof(float));
+    p.m_target = word;
+    const Reservoir r = reservoir_unpack(p);
+    EXPECT_FALSE(reservoir_has_sample(r)) << std::hex << word;
+    EXPECT_EQ(r.W, 0.0f) << std::hex << word;
+    EXPECT_EQ(r.weight_sum, 0.0f) << std::hex << word;
+    EXPECT_TRUE(finite_state(r)) << std::hex << word;
+  }
+}
+
+// A finite W with a NaN/Inf/negative half p̂ (bits no reservoir_pack writes): p̂ reads 0, so the
+// unpacked weight_sum is 0 and nothing non-finite enters a merge.
+TEST(ReservoirGuard, RawNonFiniteTargetPdfUnpacksToZero) {
+  for (const uint half : {0x7c00u, 0xfc00u, 0x7e00u, 0x7fffu, 0xffffu, 0xbc00u}) {
+    PackedReservoir p;
+    p.light_age = 7u;
+    p.uv = 0u;
+    p.W = 2.0f;
+    p.m_target = 4u | (half << 16u);
+    const Reservoir r = reservoir_unpack(p);
+    EXPECT_EQ(r.selected.target_pdf, 0.0f) << std::hex << half;
+    EXPECT_EQ(r.weight_sum, 0.0f) << std::hex << half;
+    EXPECT_TRUE(finite_state(r)) << std::hex << half;
+  }
 }
 
 }  // namespace
