@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "engine/world/frame_snapshot.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "runtime/image/image.h"
 
 namespace lantern {
