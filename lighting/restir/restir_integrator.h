@@ -37,11 +37,11 @@ class RestirIntegrator final : public Integrator {
                                                         runtime::graph::BufferHandle hdr) override;
 
   const RestirSettings& settings() const { return settings_; }
-  // Take effect next frame; a change of the chain's shape keeps history (Final is always kept).
-  void set_settings(const RestirSettings& settings) { settings_ = settings; }
   std::vector<std::pair<std::string, std::string>> describe_settings() const override {
     return describe(settings_);
   }
+  // Checked by apply_setting (restir_settings.h); takes effect next frame, and a change of the
+  // chain's shape keeps history (Final is always kept).
   void apply_settings(const std::vector<std::pair<std::string, std::string>>& changes) override;
 
   // The push constants a frame with these inputs gets (the pass index and flags aside).
