@@ -16,7 +16,7 @@
 
 #include "engine/world/frame_snapshot.h"
 #include "lighting/frame/frame_session.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "runtime/image/image.h"
 
 namespace lantern {

@@ -6,7 +6,7 @@
 
 #include "engine/world/frame_snapshot.h"
 #include "lighting/frame/frame_renderer.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/graph/graph_executor.h"
 #include "runtime/graph/render_graph.h"
@@ -20,7 +20,7 @@ class FrameHarness {
                std::shared_ptr<const Level> level, std::uint32_t width, std::uint32_t height)
       : renderer_(device, shaders, level,
                   lighting::make_integrator(device, shaders,
-                                            {.kind = lighting::IntegratorKind::Baseline}),
+                                            {.name = "baseline"}),
                   width, height, 1),
         target_(device, {.width = width, .height = height}),
         executor_(device) {

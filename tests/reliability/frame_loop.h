@@ -8,7 +8,7 @@
 #include <string>
 
 #include "engine/scene/level.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "runtime/image/image.h"
 
 namespace lantern::runtime {

@@ -298,7 +298,7 @@ TEST_P(LightClosedFormTest, PlaneMatchesClosedForm) {
   const Level level = make_level(c);
 
   OfflineRenderRequest request;
-  request.integrator.kind = lighting::parse_integrator(integrator.integrator);
+  request.integrator.name = integrator.integrator;
   request.integrator.settings = integrator.settings;
   if (integrator.integrator == "reference") request.integrator.spp = 16;
   request.width = kWidth;
@@ -400,7 +400,7 @@ TEST_F(LightClosedFormTest, SingleLightRestirEqualsBaselinePerPixel) {
   const Level level = make_level(LightCase::Point);
   auto render = [&](const std::string& integrator, const char* bias) {
     OfflineRenderRequest request;
-    request.integrator.kind = lighting::parse_integrator(integrator);
+    request.integrator.name = integrator;
     if (bias != nullptr) request.integrator.settings = {{"bias_correction", bias}};
     request.width = kWidth;
     request.height = kHeight;

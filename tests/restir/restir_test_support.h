@@ -16,7 +16,7 @@
 #include "engine/level/level_loader.h"
 #include "engine/world/world.h"
 #include "lighting/frame/frame_renderer.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "lighting/restir/restir_integrator.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/gpu/gpu_timer.h"
@@ -79,9 +79,8 @@ class RenderHarness {
   }
 
   lighting::FrameRenderer& renderer() { return renderer_; }
-  lighting::RestirIntegrator& restir() {
-    return dynamic_cast<lighting::RestirIntegrator&>(renderer_.integrator());
-  }
+  // The running integrator; its settings through describe_settings / apply_settings.
+  lighting::Integrator& integrator() { return renderer_.integrator(); }
   const std::vector<std::pair<std::string, double>>& pass_ms() const { return pass_ms_; }
 
  private:
@@ -144,13 +143,14 @@ class RenderHarness {
 inline std::unique_ptr<lighting::Integrator> make_restir(
     runtime::Device& device, runtime::ShaderLibrary& shaders,
     std::vector<std::pair<std::string, std::string>> settings, std::string preset = "balanced") {
-  return std::make_unique<lighting::RestirIntegrator>(
-      device, shaders, lighting::make_restir_settings(preset, settings));
+  return lighting::make_integrator(
+      device, shaders,
+      {.name = "restir", .preset = std::move(preset), .settings = std::move(settings)});
 }
 
 inline std::unique_ptr<lighting::Integrator> make_baseline(runtime::Device& device,
                                                            runtime::ShaderLibrary& shaders) {
-  return lighting::make_integrator(device, shaders, {.kind = lighting::IntegratorKind::Baseline});
+  return lighting::make_integrator(device, shaders, {.name = "baseline"});
 }
 
 // The same poses again: no motion since the previous frame, history kept.

@@ -14,6 +14,9 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <span>
+#include <string_view>
+#include <utility>
 
 #include "apps/lantern/play/play_lights.h"
 #include "apps/lantern/play/play_panel.h"
@@ -28,7 +31,6 @@
 #include "lighting/frame/frame_renderer.h"
 #include "lighting/integrators/auto_exposure.h"
 #include "lighting/integrators/offline_render.h"
-#include "lighting/restir/restir_integrator.h"
 #include "play/play_ui.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/bindings.h"
@@ -55,6 +57,7 @@ constexpr float kLookRadiansPerUnit = 0.004f;
 // The renderer and everything built from one ShaderLibrary: replaced as a whole on an integrator
 // switch or a shader reload (the library outlives what was built from it).
 struct RenderBundle {
+  const lighting::IntegratorEntry* integrator = nullptr;  // the registry row the renderer runs
   std::unique_ptr<runtime::ShaderLibrary> shaders;
   std::unique_ptr<lighting::FrameRenderer> renderer;
   std::unique_ptr<runtime::ComputePipeline> accumulate;
@@ -63,11 +66,11 @@ struct RenderBundle {
 lighting::IntegratorConfig config_for(const PanelState& panel,
                                       const lighting::IntegratorConfig& base) {
   lighting::IntegratorConfig c;
-  c.kind = panel.integrator;
+  c.name = panel.integrator;
   c.preset = panel.preset;
-  if (c.kind == lighting::IntegratorKind::Restir) {
+  if (c.name == lighting::RestirIntegrator::kName) {
     c.settings = lighting::describe(panel.restir);
-  } else if (c.kind == base.kind) {
+  } else if (c.name == base.name) {
     c.settings = base.settings;
     c.spp = base.spp;
   }
@@ -79,6 +82,7 @@ RenderBundle build_bundle(runtime::Device& device, const ShaderReloader& reloade
                           const lighting::IntegratorConfig& config, std::uint32_t width,
                           std::uint32_t height, std::uint32_t seed) {
   RenderBundle b;
+  b.integrator = &lighting::find_integrator(config.name);
   b.shaders = reloader.make_library();
   b.renderer = std::make_unique<lighting::FrameRenderer>(
       device, *b.shaders, level, lighting::make_integrator(device, *b.shaders, config), width,
@@ -177,9 +181,9 @@ PlayReport run_play(const PlayConfig& config) {
 
   PanelState panel;
   panel.level = config.level;
-  panel.integrator = config.integrator.kind;
+  panel.integrator = config.integrator.name;
   panel.preset = config.integrator.preset;
-  if (panel.integrator == lighting::IntegratorKind::Restir)
+  if (panel.integrator == lighting::RestirIntegrator::kName)
     panel.restir =
         lighting::make_restir_settings(config.integrator.preset, config.integrator.settings);
   else
@@ -213,7 +217,7 @@ PlayReport run_play(const PlayConfig& config) {
   bool drop_history = false;
   auto last_wall = Clock::now();
   log::info("play: {} at {}x{}, {} integrator, exposure {:.3g}; keys:\n{}", config.level, width,
-            height, lighting::integrator_name(panel.integrator), exposure, play_keys_help());
+            height, panel.integrator, exposure, play_keys_help());
 
   auto rebuild = [&](const lighting::IntegratorConfig& c, const char* why) {
     device.wait_idle();
@@ -221,7 +225,7 @@ PlayReport run_play(const PlayConfig& config) {
     drop_history = true;
     accumulated = 0;
     ++report.rebuilds;
-    log::info("play: {} ({} integrator)", why, lighting::integrator_name(c.kind));
+    log::info("play: {} ({} integrator)", why, c.name);
   };
 
   while (true) {
@@ -314,21 +318,17 @@ PlayReport run_play(const PlayConfig& config) {
     auto key_pressed = [&](int key) { return keys_free && pressed(input, before, key); };
 
     // Integrator and ReSTIR settings.
-    if (key_pressed(GLFW_KEY_1) && panel.integrator != lighting::IntegratorKind::Restir) {
-      panel.integrator = lighting::IntegratorKind::Restir;
-      panel.rebuild = true;
-    }
-    if (key_pressed(GLFW_KEY_2) && panel.integrator != lighting::IntegratorKind::Baseline) {
-      panel.integrator = lighting::IntegratorKind::Baseline;
-      panel.rebuild = true;
-    }
-    if (key_pressed(GLFW_KEY_3) && panel.integrator != lighting::IntegratorKind::Reference) {
-      panel.integrator = lighting::IntegratorKind::Reference;
-      panel.rebuild = true;
+    const std::span<const lighting::IntegratorEntry> entries = lighting::integrators();
+    for (std::size_t i = 0; i < entries.size() && i < kIntegratorKeys; ++i) {
+      if (key_pressed(GLFW_KEY_1 + static_cast<int>(i)) && panel.integrator != entries[i].name) {
+        panel.integrator = entries[i].name;
+        panel.rebuild = true;
+      }
     }
     if (key_pressed(GLFW_KEY_V)) {
-      panel.restir.debug_view = static_cast<lighting::RestirDebugView>(
-          (static_cast<std::uint32_t>(panel.restir.debug_view) + 1) % 7);
+      // The views' rows follow their kRestirDebug* constants (restir_settings.cpp checks).
+      const std::span<const lighting::RestirChoice> views = lighting::restir_debug_views();
+      panel.restir.debug_view = views[(panel.restir.debug_view + 1) % views.size()].value;
       panel.settings_changed = true;
     }
     if (panel.rebuild) {
@@ -341,11 +341,15 @@ PlayReport run_play(const PlayConfig& config) {
         panel.reload_error = error.what();
       }
     }
-    if (panel.settings_changed) {
-      panel.settings_changed = false;
-      if (auto* restir =
-              dynamic_cast<lighting::RestirIntegrator*>(&bundle.renderer->integrator())) {
-        restir->set_settings(panel.restir);
+    // The panel's ReSTIR knobs go to the running integrator when it is ReSTIR (otherwise they
+    // wait in the panel for the next switch to it).
+    if (std::exchange(panel.settings_changed, false) &&
+        bundle.integrator->name == std::string_view(lighting::RestirIntegrator::kName)) {
+      try {
+        bundle.renderer->integrator().apply_settings(lighting::describe(panel.restir));
+      } catch (const InputError& error) {
+        log::warn("play: settings refused: {}", error.what());
+        panel.reload_error = error.what();
       }
     }
 
@@ -403,7 +407,7 @@ PlayReport run_play(const PlayConfig& config) {
     timers[frame->slot]->reset(frame->cmd);
     timer_used[frame->slot] = true;
     graph::BufferHandle hdr = bundle.renderer->add_frame(render_graph, snapshot);
-    if (panel.integrator != lighting::IntegratorKind::Restir && panel.progressive) {
+    if (bundle.integrator->progressive && panel.progressive) {
       const auto& update = bundle.renderer->scene().last_update();
       const bool still = !snapshot.camera_cut && same_pose(snapshot.camera, snapshot.prev_camera) &&
                          update.moved_instances == 0 && !update.lights_changed;
@@ -450,7 +454,8 @@ PlayReport run_play(const PlayConfig& config) {
   device.wait_idle();
   report.spawned_lights = lights.spawned();
   report.flashlight = lights.flashlight_on();
-  report.integrator = lighting::integrator_name(panel.integrator);
+  report.integrator = bundle.integrator->name;
+  report.integrator_settings = bundle.renderer->integrator().describe_settings();
   report.validation_errors = device.validation_errors();
   const auto median = [](std::vector<double> v) {
     if (v.empty()) return 0.0;
