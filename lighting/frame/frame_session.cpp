@@ -34,9 +34,8 @@ bool is_delivery_pass(const std::string& name) {
 
 FrameSession::FrameSession(runtime::Device& device, runtime::RenderTarget& target,
                            FrameRenderer& renderer)
-    : device_(device),
-      target_(target),
-      renderer_(renderer),
+    : target_(target),
+      renderer_(&renderer),
       executor_(std::make_unique<runtime::graph::GraphExecutor>(device)) {
   for (std::uint32_t i = 0; i < target.frames_in_flight(); ++i) {
     timers_.push_back(std::make_unique<runtime::GpuTimer>(device, kTimerScopes));
@@ -49,36 +48,50 @@ FrameSession::~FrameSession() = default;
 bool FrameSession::render(const FrameSnapshot& snapshot, const FrameHooks& hooks,
                           FrameTiming* timing) {
   const auto start = Clock::now();
-  const std::optional<runtime::TargetFrame> frame = target_.begin_frame();
+  const std::optional<runtime::TargetFrame> frame = begin_frame(timing);
   if (!frame) return false;
-  last_frame_ = *frame;
-  runtime::GpuTimer& timer = *timers_.at(frame->slot);
-  // A window keeps frames in flight: the slot's previous frame has finished (its fence was waited
-  // for by begin_frame), so its timestamps are ready now.
-  const bool synchronous = target_.frames_in_flight() == 1;
-  if (timing != nullptr && !synchronous && timer_used_[frame->slot]) read_gpu_times(timer, *timing);
-
-  timer.reset(frame->cmd);
-  timer_used_[frame->slot] = true;
-  graph_.begin_frame();
-  if (hooks.drop_history) graph_.invalidate_history();
-  runtime::graph::BufferHandle hdr = renderer_.add_frame(graph_, snapshot);
-  if (hooks.hdr) hdr = hooks.hdr(graph_, hdr);
-  runtime::graph::ImageHandle output = renderer_.add_output_pass(
-      graph_, hdr, target_.import_output(graph_, *frame), hooks.exposure);
-  if (hooks.output) output = hooks.output(graph_, output, *frame);
-  target_.add_delivery(graph_, *frame, output);
-  graph_.bake(executor_->compile_options());
-  executor_->record(graph_, frame->cmd, &timer);
-  graph_.end_frame();
-  target_.end_frame(*frame);
-
+  render(*frame, snapshot, hooks, timing);
   if (timing != nullptr) {
-    timing->scene_update_ms = renderer_.scene().last_update().cpu_ms;
     timing->wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    if (synchronous) read_gpu_times(timer, *timing);
   }
   return true;
+}
+
+std::optional<runtime::TargetFrame> FrameSession::begin_frame(FrameTiming* finished) {
+  std::optional<runtime::TargetFrame> frame = target_.begin_frame();
+  if (!frame) return frame;
+  // A window keeps frames in flight: the slot's previous frame has finished (begin_frame waited
+  // for its fence), so its timestamps are ready now. A headless target's come in render().
+  if (finished != nullptr && target_.frames_in_flight() > 1 && timer_used_.at(frame->slot)) {
+    read_gpu_times(*timers_[frame->slot], *finished);
+  }
+  return frame;
+}
+
+void FrameSession::render(const runtime::TargetFrame& frame, const FrameSnapshot& snapshot,
+                          const FrameHooks& hooks, FrameTiming* timing) {
+  const auto start = Clock::now();
+  runtime::GpuTimer& timer = *timers_.at(frame.slot);
+  timer.reset(frame.cmd);
+  timer_used_[frame.slot] = true;
+  graph_.begin_frame();
+  if (hooks.drop_history) graph_.invalidate_history();
+  runtime::graph::BufferHandle hdr = renderer_->add_frame(graph_, snapshot);
+  if (hooks.hdr) hdr = hooks.hdr(graph_, hdr);
+  runtime::graph::ImageHandle output = renderer_->add_output_pass(
+      graph_, hdr, target_.import_output(graph_, frame), hooks.exposure);
+  if (hooks.output) output = hooks.output(graph_, output, frame);
+  target_.add_delivery(graph_, frame, output);
+  graph_.bake(executor_->compile_options());
+  executor_->record(graph_, frame.cmd, &timer);
+  graph_.end_frame();
+  target_.end_frame(frame);
+
+  if (timing != nullptr) {
+    timing->scene_update_ms = renderer_->scene().last_update().cpu_ms;
+    timing->wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (target_.frames_in_flight() == 1) read_gpu_times(timer, *timing);
+  }
 }
 
 }  // namespace lantern::lighting

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -81,20 +82,28 @@ class FrameSession {
   bool render(const FrameSnapshot& snapshot, const FrameHooks& hooks = {},
               FrameTiming* timing = nullptr);
 
-  // The target frame the last render() used (its slot and size).
-  const runtime::TargetFrame& last_frame() const { return last_frame_; }
+  // The same in two steps, for a loop that must see the frame (its size) before it steps the
+  // world: begin_frame() (nullopt: no frame now; `finished` gets the GPU times of the frame that
+  // last used the slot, when a window keeps frames in flight), then render(frame, ...).
+  std::optional<runtime::TargetFrame> begin_frame(FrameTiming* finished = nullptr);
+  void render(const runtime::TargetFrame& frame, const FrameSnapshot& snapshot,
+              const FrameHooks& hooks = {}, FrameTiming* timing = nullptr);
+
+  // Renders with another FrameRenderer from the next frame on (play: integrator switch, shader
+  // reload); pass drop_history in that frame's hooks.
+  void set_renderer(FrameRenderer& renderer) { renderer_ = &renderer; }
   runtime::RenderTarget& target() { return target_; }
-  FrameRenderer& renderer() { return renderer_; }
+  FrameRenderer& renderer() { return *renderer_; }
+  // The frame's graph, for hooks that add passes of their own (valid inside a hook).
+  runtime::graph::RenderGraph& graph() { return graph_; }
 
  private:
-  runtime::Device& device_;
   runtime::RenderTarget& target_;
-  FrameRenderer& renderer_;
+  FrameRenderer* renderer_;
   runtime::graph::RenderGraph graph_;
   std::unique_ptr<runtime::graph::GraphExecutor> executor_;
   std::vector<std::unique_ptr<runtime::GpuTimer>> timers_;  // one per frame slot
   std::vector<bool> timer_used_;
-  runtime::TargetFrame last_frame_{};
 };
 
 }  // namespace lantern::lighting

@@ -17,15 +17,6 @@ double median(const std::vector<double>& values) {
   return perf::percentile(std::span<const double>(values), 50.0);
 }
 
-// A frozen frame: the same poses again, no motion since the previous frame, history kept.
-FrameSnapshot frozen_copy(const FrameSnapshot& s) {
-  FrameSnapshot f = s;
-  f.camera_cut = false;
-  f.prev_camera = f.camera;
-  for (SnapshotInstance& i : f.instances) i.prev_object_to_world = i.object_to_world;
-  return f;
-}
-
 }  // namespace
 
 double OfflineRenderResult::median_frame_ms() const {
@@ -79,7 +70,7 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
     if (step) {
       snapshot = std::make_shared<const FrameSnapshot>(session.step_world());
     } else if (frame == 1) {
-      snapshot = std::make_shared<const FrameSnapshot>(frozen_copy(*snapshot));
+      snapshot = std::make_shared<const FrameSnapshot>(frozen(*snapshot));
     }
     FrameTiming timing = session.render(*snapshot, &image);
     result.scene_update_ms.push_back(timing.scene_update_ms);

@@ -77,7 +77,7 @@ TEST_F(IntegratorSettingsTest, LiveRestirChangeEqualsAFreshIntegrator) {
   live.integrator().apply_settings({{"debug_view", "w"}});
   EXPECT_EQ(value_of(live.integrator().describe_settings(), "debug_view"), "w");
 
-  s = test::frozen(s);
+  s = frozen(s);
   const ImageRGBA32F changed = live.render(s);
   const ImageRGBA32F expected = fresh.render(s);
   EXPECT_EQ(changed.pixels, expected.pixels) << "the live change differs from a fresh integrator";
