@@ -10,8 +10,9 @@ using runtime::graph::Access;
 using runtime::graph::BufferHandle;
 using namespace restir_detail;
 
-RestirInitialPass::RestirInitialPass(runtime::Device& device, runtime::ShaderLibrary& shaders)
-    : pipeline_(device, shaders.load("restir/restir_initial.comp"),
+RestirInitialPass::RestirInitialPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                                     VisibilityBackend visibility)
+    : pipeline_(device, shaders.load("restir/restir_initial.comp", visibility_variant(visibility)),
                 runtime::ComputePipelineDesc{.name = "restir.initial", .constants = {}}) {}
 
 RestirInitialPass::Output RestirInitialPass::add(runtime::graph::RenderGraph& graph,

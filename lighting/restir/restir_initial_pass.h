@@ -15,7 +15,8 @@ namespace lantern::lighting {
 
 class RestirInitialPass {
  public:
-  RestirInitialPass(runtime::Device& device, runtime::ShaderLibrary& shaders);
+  RestirInitialPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                    VisibilityBackend visibility = VisibilityBackend::Bvh);
   const runtime::ComputePipeline& pipeline() const { return pipeline_; }
 
   struct Output {

@@ -18,13 +18,14 @@ using runtime::graph::Access;
 using runtime::graph::BufferHandle;
 
 RestirIntegrator::RestirIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                                   const RestirSettings& settings)
+                                   const RestirSettings& settings, VisibilityBackend visibility)
     : device_(device),
       settings_(settings),
-      initial_(device, shaders),
+      visibility_(visibility),
+      initial_(device, shaders, visibility),
       temporal_(device, shaders),
       spatial_(device, shaders),
-      shade_(device, shaders) {}
+      shade_(device, shaders, visibility) {}
 
 void RestirIntegrator::warm_up() {
   const std::array<const runtime::ComputePipeline*, 4> pipelines{

@@ -10,8 +10,9 @@ using runtime::graph::Access;
 using runtime::graph::BufferHandle;
 using namespace restir_detail;
 
-RestirShadePass::RestirShadePass(runtime::Device& device, runtime::ShaderLibrary& shaders)
-    : pipeline_(device, shaders.load("restir/restir_shade.comp"),
+RestirShadePass::RestirShadePass(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                                 VisibilityBackend visibility)
+    : pipeline_(device, shaders.load("restir/restir_shade.comp", visibility_variant(visibility)),
                 runtime::ComputePipelineDesc{.name = "restir.shade", .constants = {}}) {}
 
 BufferHandle RestirShadePass::add(runtime::graph::RenderGraph& graph, const FrameInputs& inputs,

@@ -14,7 +14,8 @@ namespace lantern::lighting {
 
 class RestirShadePass {
  public:
-  RestirShadePass(runtime::Device& device, runtime::ShaderLibrary& shaders);
+  RestirShadePass(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                  VisibilityBackend visibility = VisibilityBackend::Bvh);
   const runtime::ComputePipeline& pipeline() const { return pipeline_; }
 
   runtime::graph::BufferHandle add(runtime::graph::RenderGraph& graph, const FrameInputs& inputs,

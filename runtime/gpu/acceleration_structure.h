@@ -73,6 +73,8 @@ class AccelerationStructure {
   VkAccelerationStructureKHR handle() const { return structure_; }
   VkDeviceAddress device_address() const { return address_; }
   VkDeviceSize size() const { return storage_.size(); }
+  // The buffer holding it: what a render graph imports to order builds and reads.
+  const Buffer& storage() const { return storage_; }
   explicit operator bool() const { return structure_ != VK_NULL_HANDLE; }
 
   // Records the build of this structure from `build` using scratch memory at `scratch` (at least
@@ -98,6 +100,7 @@ class ScratchBuffer {
   // have pending work that uses the old buffer).
   void reserve(VkDeviceSize bytes);
   VkDeviceAddress address() const;
+  const Buffer& buffer() const { return buffer_; }
 
  private:
   Device* device_;
