@@ -21,7 +21,6 @@
 namespace lantern {
 namespace {
 
-using lighting::IntegratorKind;
 using lighting::VisibilityBackend;
 using lighting::VisibilitySetting;
 
@@ -42,15 +41,15 @@ struct Frames {
 };
 
 class VisibilityFrameTest : public runtime::test::GpuTest,
-                            public ::testing::WithParamInterface<IntegratorKind> {
+                            public ::testing::WithParamInterface<std::string> {
  protected:
   VisibilityFrameTest() : GpuTest(sync_validated()) {}
 
   Frames render(VisibilitySetting visibility) {
     lighting::SessionOptions o;
-    o.integrator.kind = GetParam();
+    o.integrator.name = GetParam();
     o.integrator.visibility = visibility;
-    if (GetParam() == IntegratorKind::Reference) o.integrator.spp = 4;
+    if (GetParam() == "reference") o.integrator.spp = 4;
     o.width = kWidth;
     o.height = kHeight;
     o.seed = 3;
@@ -123,11 +122,8 @@ TEST_P(VisibilityFrameTest, RayQueryRendersTheBvhImage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, VisibilityFrameTest,
-                         ::testing::Values(IntegratorKind::Baseline, IntegratorKind::Reference,
-                                           IntegratorKind::Restir),
-                         [](const auto& param_info) {
-                           return std::string(lighting::integrator_name(param_info.param));
-                         });
+                         ::testing::Values("baseline", "reference", "restir"),
+                         [](const auto& param_info) { return param_info.param; });
 
 }  // namespace
 }  // namespace lantern
