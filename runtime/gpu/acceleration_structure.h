@@ -2,8 +2,9 @@
 // acceleration structure in its own buffer, triangle BLAS and instance TLAS build descriptions,
 // and recording of builds. Builds are recorded on a caller's command buffer; the barrier a build
 // needs before its result is read (by another build or a shader) is recorded with
-// record_acceleration_structure_barrier, for one-shot setup and per-frame rebuilds submitted
-// outside the render graph.
+// record_acceleration_structure_barrier, for one-shot setup outside the render graph (load-time
+// BLAS builds, benchmarks); a build inside a frame is a graph pass (Access::AccelerationStructure*)
+// whose barriers the graph derives.
 #pragma once
 
 #include <vulkan/vulkan.h>
