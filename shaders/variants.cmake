@@ -5,6 +5,10 @@
 # every pass that includes lib/visibility.glsl gets a "rayquery" variant (and the probe a
 # storage-buffer BVH one for the A/B benchmark). Add new passes to LANTERN_VISIBILITY_SHADERS.
 set(LANTERN_VISIBILITY_SHADERS
+  ${CMAKE_CURRENT_SOURCE_DIR}/integrators/baseline.comp
+  ${CMAKE_CURRENT_SOURCE_DIR}/integrators/reference.comp
+  ${CMAKE_CURRENT_SOURCE_DIR}/restir/restir_initial.comp
+  ${CMAKE_CURRENT_SOURCE_DIR}/restir/restir_shade.comp
   ${CMAKE_CURRENT_SOURCE_DIR}/tests/visibility_probe.comp)
 foreach(src IN LISTS LANTERN_VISIBILITY_SHADERS)
   lantern_compile_shader(${src} rayquery DEFINES LANTERN_VISIBILITY_RAY_QUERY)

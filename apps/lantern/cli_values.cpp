@@ -8,6 +8,7 @@
 #include "apps/lantern/commands.h"
 #include "engine/core/error.h"
 #include "engine/core/log.h"
+#include "runtime/core/device.h"
 
 namespace lantern::app {
 namespace {
@@ -47,6 +48,7 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
     if (eq == std::string::npos || eq == 0) {
       throw InputError(fmt::format("--set {}: expected KEY=VALUE", s));
     }
+    if (s.substr(0, eq) == "visibility") continue;  // the frame's: visibility_setting()
     const std::optional<std::string> key = key_for(s.substr(0, eq), name);
     if (!key) {
       log::warn("--set {}: not a {} setting, ignored", s, name);
@@ -55,6 +57,10 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
     config.settings.emplace_back(*key, s.substr(eq + 1));
   }
   lighting::validate_integrator_config(config);
+  config.visibility = visibility_setting(common);
+  // rayquery on a device without it: refused before any device is created.
+  if (config.visibility == lighting::VisibilitySetting::RayQuery)
+    (void)visibility_choice(common, config.visibility);
   return config;
 }
 
@@ -65,6 +71,21 @@ CLI::Option* add_integrator_option(CLI::App& cmd, std::string& integrator) {
   }
   cmd.footer(footer);
   return cmd.add_option("--integrator", integrator, lighting::integrator_names("|"));
+}
+
+lighting::VisibilitySetting visibility_setting(const CommonOptions& common) {
+  lighting::VisibilitySetting setting = lighting::VisibilitySetting::Auto;
+  for (const std::string& s : common.settings) {
+    if (s.rfind("visibility=", 0) == 0) setting = lighting::parse_visibility_setting(s.substr(11));
+  }
+  return setting;
+}
+
+lighting::VisibilityChoice visibility_choice(const CommonOptions& common,
+                                             lighting::VisibilitySetting setting) {
+  const std::vector<runtime::DeviceInfo> devices = runtime::Device::enumerate();
+  return lighting::choose_visibility(devices.at(runtime::select_device(devices, common.device)),
+                                     setting);
 }
 
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {

@@ -88,8 +88,12 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
       {.integrator = config, .width = width, .height = height, .seed = common.seed});
   session.warm_up();
   const std::string integrator = config.name;
-  log::info("bench {} {} {} at {}x{}: {} warm-up + {} frames on {}", level->name, integrator,
-            common.preset, width, height, o.warmup, frames, device.info().name);
+  const lighting::VisibilityChoice visibility =
+      lighting::choose_visibility(device.info(), config.visibility);
+  log::info("bench {} {} {} at {}x{}: {} warm-up + {} frames on {}, visibility {} ({})",
+            level->name, integrator, common.preset, width, height, o.warmup, frames,
+            device.info().name, lighting::visibility_backend_name(visibility.backend),
+            visibility.why);
 
   for (int k = 0; k < o.warmup; ++k) session.render(session.step_world());
 
@@ -173,9 +177,11 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
               m.frame.p99, m.frame.max);
   std::printf("%-24s %9.3f %9.3f %9.3f %9.3f\n", "frame (wall)", wall.median, wall.p95, wall.p99,
               wall.max);
-  std::printf("calibration %.3f ms (median of %zu); frame = %.2fx calibration\n",
-              m.calibration_ms, calibration_ms.size(), m.frame.median / m.calibration_ms);
-  std::printf("rays/s: primary %.3g (raster), shadow %.3g\n", primary_rps, shadow_rps);
+  std::printf("calibration %.3f ms (median of %zu); frame = %.2fx calibration\n", m.calibration_ms,
+              calibration_ms.size(), m.frame.median / m.calibration_ms);
+  std::printf("rays/s: primary %.3g (raster), shadow %.3g (visibility %s)\n", primary_rps,
+              shadow_rps,
+              std::string(lighting::visibility_backend_name(visibility.backend)).c_str());
 
   if (!o.json.empty()) {
     nlohmann::json passes = nlohmann::json::object();
@@ -191,6 +197,8 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"settings", config.settings},
         {"size", {width, height}},
         {"device", device.info().name},
+        {"visibility", lighting::visibility_backend_name(visibility.backend)},
+        {"visibility_why", visibility.why},
         {"frames", frames},
         {"warmup", o.warmup},
         {"seed", common.seed},

@@ -25,7 +25,15 @@ void run_info(const InfoOptions& o, const CommonOptions& common) {
   const Level level = load_level_argument(o.level);
   LevelSummary summary = summarize(level);
   const auto [width, height] = parse_size(common.size);
-  lighting::describe_requirements(level, width, height, summary);
+  // The backend the frame would pick on the --device (enumerated only; bvh when none is found).
+  lighting::VisibilityChoice visibility{lighting::VisibilityBackend::Bvh, "no Vulkan device"};
+  const lighting::VisibilitySetting setting = visibility_setting(common);
+  try {
+    visibility = visibility_choice(common, setting);
+  } catch (const RuntimeError&) {
+    if (setting == lighting::VisibilitySetting::RayQuery) throw;
+  }
+  lighting::describe_requirements(level, width, height, summary, visibility);
   std::fputs(to_text(summary).c_str(), stdout);
   if (!o.json.empty()) {
     std::ofstream out(o.json, std::ios::binary | std::ios::trunc);

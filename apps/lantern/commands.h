@@ -50,13 +50,20 @@ void add_trade_command(CLI::App& root, CommonOptions& options);
 // The integrator configuration a command runs: `integrator` by name, the --preset, the level's
 // settings block for that integrator ("restir.radius" in the level is "radius" for restir), then
 // every --set in order (a "restir." prefix is optional; settings for another integrator are
-// skipped with a warning). InputError for a malformed --set or an unknown integrator.
+// skipped with a warning); `visibility` (auto|bvh|rayquery) goes to config.visibility. InputError
+// for a malformed --set, an unknown visibility value or an unknown integrator.
 lighting::IntegratorConfig integrator_config(const std::string& integrator,
                                              const CommonOptions& common, const Level& level);
 
 // The --integrator option of a command: the registry's names in its help, and one line per
 // integrator (name and description) in the command's help footer.
 CLI::Option* add_integrator_option(CLI::App& cmd, std::string& integrator);
+// The last --set visibility=auto|bvh|rayquery (auto without one); InputError on another value.
+lighting::VisibilitySetting visibility_setting(const CommonOptions& common);
+// The visibility backend `setting` picks on the device --device selects (enumerated, not created);
+// InputError for rayquery on a device without it.
+lighting::VisibilityChoice visibility_choice(const CommonOptions& common,
+                                             lighting::VisibilitySetting setting);
 
 // "640x360" -> (640, 360); InputError naming the flag otherwise.
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size);

@@ -15,7 +15,10 @@ void add_common_flags(CLI::App& cmd, CommonOptions& o) {
   cmd.add_option("--preset", o.preset, "Quality preset")
       ->check(CLI::IsMember({"fast", "balanced", "quality"}))
       ->capture_default_str();
-  cmd.add_option("--set", o.settings, "Override a setting KEY=VALUE (repeatable)");
+  cmd.add_option(
+      "--set", o.settings,
+      "Override a setting KEY=VALUE (repeatable); visibility=auto|bvh|rayquery picks "
+      "the ray tracing backend (auto: ray query on GPUs, the compute BVH on CPU devices)");
   cmd.add_option("--device", o.device, "Vulkan device: auto|cpu|gpu|INDEX")->capture_default_str();
   cmd.add_option("--frames", o.frames, "Number of frames")->check(CLI::Range(1, 1000000));
   cmd.add_flag("--quiet", o.quiet, "Only print warnings and errors");

@@ -27,7 +27,7 @@ bool has_level_extension(const std::filesystem::path& p) {
 Camera framing_camera(const Level& level) {
   Aabb box;
   for (const Instance& inst : level.instances)
-    box.extend(level.meshes[inst.mesh].bounds.transformed(inst.world));
+    box.grow(level.meshes[inst.mesh].bounds.transformed(inst.world));
   Camera cam;
   if (box.empty()) {
     cam.position = glm::vec3(0.0f, 1.0f, 5.0f);
@@ -36,8 +36,8 @@ Camera framing_camera(const Level& level) {
   }
   const float radius = std::max(0.5f * glm::length(box.extent()), 1e-3f);
   const float distance = radius / std::tan(0.5f * cam.yfov) * 1.1f;
-  cam.position = box.center() + glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f)) * distance;
-  cam.orientation = look_at_orientation(cam.position, box.center());
+  cam.position = box.centroid() + glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f)) * distance;
+  cam.orientation = look_at_orientation(cam.position, box.centroid());
   cam.znear = std::max(distance * 1e-3f, 1e-3f);
   return cam;
 }

@@ -77,7 +77,7 @@ void finalize_mesh(Mesh& mesh, const std::string& where, LoadDiagnostics& diagno
   }
 
   mesh.bounds = Aabb{};
-  for (const glm::vec3& p : mesh.positions) mesh.bounds.extend(p);
+  for (const glm::vec3& p : mesh.positions) mesh.bounds.grow(p);
 }
 
 }  // namespace lantern

@@ -37,7 +37,7 @@ void orient_outwards(Mesh& m) {
 
 void finish_bounds(Mesh& m) {
   m.bounds = Aabb{};
-  for (const glm::vec3& p : m.positions) m.bounds.extend(p);
+  for (const glm::vec3& p : m.positions) m.bounds.grow(p);
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "lighting/bvh/aabb.h"
+#include "engine/scene/aabb.h"
 #include "shared/bvh.h"
 
 namespace lantern::lighting {

@@ -79,7 +79,7 @@ void SceneBvh::set_instances(std::span<const BvhInstanceDesc> instances) {
     instance_meshes_.push_back(desc.mesh);
     const MeshBvh& mesh = meshes_[desc.mesh];
     if (mesh.empty()) continue;
-    world_bounds.push_back(transform_aabb(desc.object_to_world, mesh.bounds()));
+    world_bounds.push_back(mesh.bounds().transformed(desc.object_to_world));
     placed.push_back(static_cast<std::uint32_t>(i));
   }
 

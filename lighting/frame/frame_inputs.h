@@ -11,6 +11,7 @@
 
 #include "engine/world/frame_snapshot.h"
 #include "lighting/scene/scene_buffers.h"
+#include "lighting/visibility/visibility_backend.h"
 #include "runtime/graph/render_graph.h"
 
 namespace lantern::lighting {
@@ -66,6 +67,9 @@ class Integrator {
   // Changes settings from the next frame on; lantern::InputError naming a bad key or value, and
   // then nothing changes. How play edits the running integrator without knowing its type.
   virtual void apply_settings(const std::vector<std::pair<std::string, std::string>>& changes) = 0;
+  // The visibility backend its tracing passes' shaders were loaded for: the FrameRenderer builds
+  // the scene to match (a TLAS for ray query).
+  virtual VisibilityBackend visibility() const { return VisibilityBackend::Bvh; }
   [[nodiscard]] virtual runtime::graph::BufferHandle add_passes(
       runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
       runtime::graph::BufferHandle hdr) = 0;

@@ -28,7 +28,7 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
         fmt::format("frame renderer: render size {}x{} must be positive", width, height));
   }
   if (!integrator_) throw InputError("frame renderer: no integrator");
-  scene_ = std::make_unique<GpuScene>(device, std::move(level));
+  scene_ = std::make_unique<GpuScene>(device, std::move(level), integrator_->visibility());
   gbuffer_ = std::make_unique<GBufferPass>(device, shaders);
   output_ = std::make_unique<runtime::ComputePipeline>(
       device, shaders.load("frame/frame_output.comp"),

@@ -14,8 +14,10 @@ namespace lantern::lighting {
 
 using runtime::graph::BufferHandle;
 
-BaselineIntegrator::BaselineIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders)
-    : pipeline_(device, shaders.load("integrators/baseline.comp"),
+BaselineIntegrator::BaselineIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                                       VisibilityBackend visibility)
+    : visibility_(visibility),
+      pipeline_(device, shaders.load("integrators/baseline.comp", visibility_variant(visibility)),
                 runtime::ComputePipelineDesc{.name = "integrators.baseline", .constants = {}}) {}
 
 void BaselineIntegrator::check_settings(

@@ -19,13 +19,15 @@ class BaselineIntegrator final : public Integrator {
  public:
   static constexpr const char* kName = "baseline";
 
-  BaselineIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders);
+  BaselineIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                     VisibilityBackend visibility = VisibilityBackend::Bvh);
 
   // It has none: InputError naming the first key of a non-empty `settings`.
   static void check_settings(const std::vector<std::pair<std::string, std::string>>& settings);
 
   const char* name() const override { return kName; }
   void warm_up() override { pipeline_.warm_up(); }
+  VisibilityBackend visibility() const override { return visibility_; }
   // One shadow ray per pixel (as restir.shade), so bench reports baseline's shadow rays/s too.
   std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const override {
     return {{"integrators.baseline", 1.0}};
@@ -42,6 +44,7 @@ class BaselineIntegrator final : public Integrator {
                                                         runtime::graph::BufferHandle hdr) override;
 
  private:
+  VisibilityBackend visibility_;
   runtime::ComputePipeline pipeline_;
 };
 

@@ -7,6 +7,7 @@
 #include "lighting/integrators/baseline_integrator.h"
 #include "lighting/integrators/reference_integrator.h"
 #include "lighting/restir/restir_integrator.h"
+#include "runtime/core/device.h"
 
 namespace lantern::lighting {
 namespace {
@@ -32,10 +33,10 @@ constexpr IntegratorEntry kIntegrators[] = {
            require_one_spp(c, "set light_candidates, spatial_passes and neighbours instead");
            (void)make_restir_settings(c.preset, c.settings);
          },
-     .make = [](Device& device, ShaderLibrary& shaders,
-                const IntegratorConfig& c) -> std::unique_ptr<Integrator> {
-       return std::make_unique<RestirIntegrator>(device, shaders,
-                                                 make_restir_settings(c.preset, c.settings));
+     .make = [](Device& device, ShaderLibrary& shaders, const IntegratorConfig& c,
+                VisibilityBackend visibility) -> std::unique_ptr<Integrator> {
+       return std::make_unique<RestirIntegrator>(
+           device, shaders, make_restir_settings(c.preset, c.settings), visibility);
      }},
     {.name = BaselineIntegrator::kName,
      .description = "one power-sampled light and shadow ray per pixel (unbiased, noisy)",
@@ -45,19 +46,19 @@ constexpr IntegratorEntry kIntegrators[] = {
            BaselineIntegrator::check_settings(c.settings);
            require_one_spp(c, "average frames with --frames N --average instead");
          },
-     .make = [](Device& device, ShaderLibrary& shaders,
-                const IntegratorConfig&) -> std::unique_ptr<Integrator> {
-       return std::make_unique<BaselineIntegrator>(device, shaders);
+     .make = [](Device& device, ShaderLibrary& shaders, const IntegratorConfig&,
+                VisibilityBackend visibility) -> std::unique_ptr<Integrator> {
+       return std::make_unique<BaselineIntegrator>(device, shaders, visibility);
      }},
     {.name = ReferenceIntegrator::kName,
      .description = "converged direct lighting, --spp MIS samples per pixel per frame",
      .progressive = true,
      .validate =
          [](const IntegratorConfig& c) { (void)parse_reference_settings(c.settings, c.spp); },
-     .make = [](Device& device, ShaderLibrary& shaders,
-                const IntegratorConfig& c) -> std::unique_ptr<Integrator> {
-       return std::make_unique<ReferenceIntegrator>(device, shaders,
-                                                    parse_reference_settings(c.settings, c.spp));
+     .make = [](Device& device, ShaderLibrary& shaders, const IntegratorConfig& c,
+                VisibilityBackend visibility) -> std::unique_ptr<Integrator> {
+       return std::make_unique<ReferenceIntegrator>(
+           device, shaders, parse_reference_settings(c.settings, c.spp), visibility);
      }},
 };
 
@@ -92,7 +93,8 @@ std::unique_ptr<Integrator> make_integrator(Device& device, ShaderLibrary& shade
                                             const IntegratorConfig& config) {
   const IntegratorEntry& entry = find_integrator(config.name);
   entry.validate(config);
-  return entry.make(device, shaders, config);
+  return entry.make(device, shaders, config,
+                    choose_visibility(device.info(), config.visibility).backend);
 }
 
 }  // namespace lantern::lighting

@@ -25,6 +25,9 @@ struct IntegratorConfig {
   std::string preset = "balanced";
   std::vector<std::pair<std::string, std::string>> settings;  // --set KEY=VALUE, in order
   std::uint32_t spp = 0;  // reference: samples per pixel per frame, 0 = its default
+  // --set visibility=auto|bvh|rayquery (lighting/visibility/visibility_backend.h): resolved
+  // against the device by make_integrator.
+  VisibilitySetting visibility = VisibilitySetting::Auto;
 };
 
 struct IntegratorEntry {
@@ -36,9 +39,11 @@ struct IntegratorEntry {
   // Checks `config` without a device (settings keys and values, spp): InputError naming the
   // problem, so a command refuses bad settings before creating a device or writing anything.
   void (*validate)(const IntegratorConfig& config);
-  // The integrator configured by `config` (already validated).
+  // The integrator configured by `config` (already validated), its tracing passes loaded for
+  // `visibility` (make_integrator resolves config.visibility on the device).
   std::unique_ptr<Integrator> (*make)(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                                      const IntegratorConfig& config);
+                                      const IntegratorConfig& config,
+                                      VisibilityBackend visibility);
 };
 
 // Every integrator, in the order help text and play's number keys list them.
@@ -54,7 +59,9 @@ std::string integrator_names(std::string_view separator);
 void validate_integrator_config(const IntegratorConfig& config);
 
 // The integrator `config` names, configured (validated first: InputError on an unknown name,
-// unknown settings keys and bad values).
+// unknown settings keys and bad values), with the visibility backend
+// choose_visibility(device.info(), config.visibility) picks (InputError for rayquery on a device
+// without it).
 std::unique_ptr<Integrator> make_integrator(runtime::Device& device,
                                             runtime::ShaderLibrary& shaders,
                                             const IntegratorConfig& config);

@@ -53,8 +53,10 @@ ReferenceSettings parse_reference_settings(
 }
 
 ReferenceIntegrator::ReferenceIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                                         const ReferenceSettings& settings)
-    : pipeline_(device, shaders.load("integrators/reference.comp"),
+                                         const ReferenceSettings& settings,
+                                         VisibilityBackend visibility)
+    : visibility_(visibility),
+      pipeline_(device, shaders.load("integrators/reference.comp", visibility_variant(visibility)),
                 runtime::ComputePipelineDesc{.name = "integrators.reference", .constants = {}}),
       settings_(settings) {
   if (settings_.spp == 0 || settings_.spp > kMaxSpp) {

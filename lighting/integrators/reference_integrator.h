@@ -44,7 +44,8 @@ ReferenceSettings parse_reference_settings(
 class ReferenceIntegrator final : public Integrator {
  public:
   ReferenceIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                      const ReferenceSettings& settings);
+                      const ReferenceSettings& settings,
+                      VisibilityBackend visibility = VisibilityBackend::Bvh);
   ~ReferenceIntegrator() override;
 
   static constexpr const char* kName = "reference";
@@ -53,6 +54,7 @@ class ReferenceIntegrator final : public Integrator {
   void warm_up() override { pipeline_.warm_up(); }
   std::vector<std::pair<std::string, std::string>> describe_settings() const override;
   void apply_settings(const std::vector<std::pair<std::string, std::string>>& changes) override;
+  VisibilityBackend visibility() const override { return visibility_; }
   // Writes every pixel of `hdr` (StorageWrite): the mean of this frame's spp samples.
   [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,
@@ -61,6 +63,7 @@ class ReferenceIntegrator final : public Integrator {
   const ReferenceSettings& settings() const { return settings_; }
 
  private:
+  VisibilityBackend visibility_;
   runtime::ComputePipeline pipeline_;
   ReferenceSettings settings_;
 };

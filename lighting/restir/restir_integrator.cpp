@@ -17,13 +17,14 @@ using runtime::graph::Access;
 using runtime::graph::BufferHandle;
 
 RestirIntegrator::RestirIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                                   const RestirSettings& settings)
+                                   const RestirSettings& settings, VisibilityBackend visibility)
     : device_(device),
       settings_(settings),
-      initial_(device, shaders, "initial"),
+      visibility_(visibility),
+      initial_(device, shaders, "initial", visibility),
       temporal_(device, shaders, "temporal"),
       spatial_(device, shaders, "spatial"),
-      shade_(device, shaders, "shade") {}
+      shade_(device, shaders, "shade", visibility) {}
 
 void RestirIntegrator::warm_up() {
   const std::array<const runtime::ComputePipeline*, 4> pipelines{

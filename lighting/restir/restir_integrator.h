@@ -23,12 +23,14 @@ class RestirIntegrator final : public Integrator {
   static constexpr const char* kName = "restir";
 
   RestirIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                   const RestirSettings& settings);
+                   const RestirSettings& settings,
+                   VisibilityBackend visibility = VisibilityBackend::Bvh);
 
   const char* name() const override { return kName; }
   void warm_up() override;
   // restir.shade traces one shadow ray per pixel; restir.initial one more with initial_visibility.
   std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const override;
+  VisibilityBackend visibility() const override { return visibility_; }
   [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,
                                                         runtime::graph::BufferHandle hdr) override;
@@ -47,6 +49,7 @@ class RestirIntegrator final : public Integrator {
  private:
   runtime::Device& device_;
   RestirSettings settings_;
+  VisibilityBackend visibility_;
   RestirPass initial_;
   RestirPass temporal_;
   RestirPass spatial_;

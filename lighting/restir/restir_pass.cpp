@@ -14,9 +14,10 @@ using runtime::graph::Access;
 using runtime::graph::BufferHandle;
 
 RestirPass::RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                       const std::string& stage)
+                       const std::string& stage, VisibilityBackend visibility)
     : name_("restir." + stage),
-      pipeline_(device, shaders.load("restir/restir_" + stage + ".comp"),
+      pipeline_(device,
+                shaders.load("restir/restir_" + stage + ".comp", visibility_variant(visibility)),
                 runtime::ComputePipelineDesc{.name = name_, .constants = {}}) {}
 
 std::vector<BufferHandle> RestirPass::add(runtime::graph::RenderGraph& graph,

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lighting/frame/frame_inputs.h"
+#include "lighting/visibility/visibility_backend.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/runtime_fwd.h"
 #include "shared/restir.h"
@@ -27,8 +28,10 @@ class RestirPass {
     enum Use { Read, Write } use = Read;  // Write: every pixel written, nothing read
   };
 
-  // `stage`: "initial", "temporal", "spatial" or "shade".
-  RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& stage);
+  // `stage`: "initial", "temporal", "spatial" or "shade"; `visibility` picks the shader variant of
+  // the passes that trace (initial, shade).
+  RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& stage,
+             VisibilityBackend visibility = VisibilityBackend::Bvh);
 
   // Adds the pass; returns the new version of each Write buffer, in `buffers` order. A handle may
   // be read under two names (a stand-in).

@@ -11,6 +11,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/log.h"
+#include "lighting/visibility/ray_query_scene.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/transfer.h"
 
@@ -37,9 +38,15 @@ std::uint32_t float_bits(float f) {
 
 }  // namespace
 
-GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level)
-    : device_(device), level_(std::move(level)) {
+GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
+                   VisibilityBackend visibility)
+    : device_(device), level_(std::move(level)), visibility_(visibility) {
   if (!level_) throw InputError("GpuScene: no level");
+  if (visibility_ == VisibilityBackend::RayQuery && !device_.caps().ray_query) {
+    throw InputError(
+        fmt::format("ray-query visibility needs VK_KHR_ray_query, which device '{}' lacks; use bvh",
+                    device_.info().name));
+  }
   data_ = build_scene_data(*level_);
   scene_radius_ = data_.scene_radius();
   for (gpu::GpuInstance& g : data_.instances) g.bvh.z = float_bits(1.0f);
@@ -93,6 +100,7 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level)
   }
 
   for (std::uint32_t s = 0; s < gpu::kSceneBufferCount; ++s) {
+    if (kSceneBuffers[s].kind != SceneResourceKind::Buffer) continue;
     ensure_capacity(s);
     // Everything starts uploaded (blocking, setup time); per-frame changes go through the graph.
     std::vector<std::byte> bytes(arrays_[s].buffer.size());  // zero-filled past the array
@@ -101,11 +109,15 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level)
     runtime::upload_buffer(device_, arrays_[s].buffer, std::span<const std::byte>(bytes));
     arrays_[s].dirty.clear();
   }
+  // BLASes and the TLAS of the level's placement (blocking, setup time).
+  if (visibility_ == VisibilityBackend::RayQuery)
+    ray_query_ = std::make_unique<RayQueryScene>(device_, data_.bvh);
 }
 
 GpuScene::~GpuScene() = default;
 
 std::span<const std::byte> GpuScene::cpu_bytes(std::uint32_t slot) const {
+  if (kSceneBuffers[slot].bytes == nullptr) return {};  // built on the device (the TLAS)
   SceneBufferSources sources;
   sources.frame_constants = &constants_;
   sources.data = &data_;
@@ -129,6 +141,7 @@ void GpuScene::mark_all_dirty(std::uint32_t slot) {
 }
 
 void GpuScene::ensure_capacity(std::uint32_t slot) {
+  if (kSceneBuffers[slot].kind != SceneResourceKind::Buffer) return;
   DeviceArray& a = arrays_[slot];
   // Never empty: Vulkan has no zero-sized buffers (an empty array reads as one zeroed element).
   const VkDeviceSize needed = std::max<VkDeviceSize>(cpu_bytes(slot).size(), 16);
@@ -214,6 +227,7 @@ void GpuScene::update_instances(const FrameSnapshot& snapshot) {
   if (moved) {
     data_.bvh.set_instances(bvh_descs_);
     stats_.tlas_rebuilt = true;
+    tlas_dirty_ = ray_query_ != nullptr;
     ensure_capacity(gpu::kSceneBvhNodes);
     const gpu::BvhSceneHeader& h = data_.bvh.header();
     mark_dirty(gpu::kSceneBvhNodes, std::uint64_t{h.tlas_node_offset} * sizeof(gpu::BvhNode),
@@ -313,6 +327,14 @@ void GpuScene::set_frame_constants(const gpu::FrameConstants& constants) {
 SceneHandles GpuScene::import(runtime::graph::RenderGraph& graph) const {
   SceneHandles h;
   for (const SceneBufferRow& row : kSceneBuffers) {
+    if (row.kind == SceneResourceKind::AccelerationStructure) {
+      if (!ray_query_) continue;  // BVH scene: no TLAS (a rayquery pipeline is refused)
+      const runtime::Buffer& storage = ray_query_->tlas_structure().storage();
+      h[row.slot] = graph.import_buffer(row.graph_name, storage.handle(), {storage.size()},
+                                        {.read_only = false, .initial = kAnyPriorUse});
+      h.tlas = ray_query_->tlas();
+      continue;
+    }
     const DeviceArray& a = arrays_[row.slot];
     h[row.slot] = graph.import_buffer(row.graph_name, a.buffer.handle(), {a.buffer.size()},
                                       {.read_only = row.read_only, .initial = kAnyPriorUse});
@@ -329,10 +351,6 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
   }
 
   // Merge each buffer's dirty ranges (sorted, gaps under 4 KiB joined, clamped to the array).
-  struct Copy {
-    std::uint32_t slot;
-    std::vector<VkBufferCopy> regions;
-  };
   std::vector<Copy> copies;
   std::uint64_t total = 0;
   for (std::uint32_t s = 0; s < gpu::kSceneBufferCount; ++s) {
@@ -358,13 +376,13 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
   }
 
   // Stage them into the ring slot no frame in flight uses.
-  runtime::Buffer& staging = staging_[uploads_ % kStagingSlots];
+  const std::uint32_t ring_slot = static_cast<std::uint32_t>(uploads_ % kStagingSlots);
+  runtime::Buffer& staging = staging_[ring_slot];
   if (total > 0 && (!staging || staging.size() < total)) {
-    staging = runtime::Buffer(device_,
-                              {.size = std::max<VkDeviceSize>(total + total / 4, 4096),
-                               .usage = 0,
-                               .memory = runtime::MemoryUsage::Upload,
-                               .name = fmt::format("scene.staging.{}", uploads_ % kStagingSlots)});
+    staging = runtime::Buffer(device_, {.size = std::max<VkDeviceSize>(total + total / 4, 4096),
+                                        .usage = 0,
+                                        .memory = runtime::MemoryUsage::Upload,
+                                        .name = fmt::format("scene.staging.{}", ring_slot)});
   }
   std::uint64_t offset = 0;
   for (Copy& c : copies) {
@@ -379,7 +397,13 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
   ++uploads_;
 
   SceneHandles out = imported;
-  if (copies.empty()) return out;
+  if (!copies.empty()) add_copy_pass(graph, staging, copies, out);
+  if (tlas_dirty_) add_tlas_build_pass(graph, ring_slot, out);
+  return out;
+}
+
+void GpuScene::add_copy_pass(runtime::graph::RenderGraph& graph, const runtime::Buffer& staging,
+                             const std::vector<Copy>& copies, SceneHandles& out) {
   const runtime::graph::BufferHandle source =
       graph.import_buffer("scene.staging", staging.handle(), {staging.size()},
                           {.read_only = true,
@@ -407,7 +431,42 @@ SceneHandles GpuScene::add_upload_pass(runtime::graph::RenderGraph& graph,
                           regions.data());
         }
       });
-  return out;
+}
+
+void GpuScene::add_tlas_build_pass(runtime::graph::RenderGraph& graph, std::uint32_t ring_slot,
+                                   SceneHandles& out) {
+  static_assert(kStagingSlots == RayQueryScene::kInstanceSlots);
+  tlas_dirty_ = false;
+  // The records of this upload's ring slot, which no frame in flight reads (kStagingSlots ==
+  // RayQueryScene::kInstanceSlots).
+  ray_query_->write_instances(data_.bvh, ring_slot);
+  const runtime::Buffer& records = ray_query_->instance_records(ring_slot);
+  const runtime::Buffer& scratch = ray_query_->scratch().buffer();
+  const runtime::graph::BufferHandle records_h =
+      graph.import_buffer("scene.tlas_instances", records.handle(), {records.size()},
+                          {.read_only = true,
+                           .initial = {VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT,
+                                       VK_IMAGE_LAYOUT_UNDEFINED}});
+  const runtime::graph::BufferHandle scratch_h =
+      graph.import_buffer("scene.tlas_scratch", scratch.handle(), {scratch.size()},
+                          {.read_only = false, .initial = kAnyPriorUse});
+  struct Data {
+    runtime::graph::BufferHandle scratch;
+    runtime::graph::BufferHandle tlas;
+  };
+  graph.add_pass<Data>(
+      "scene.tlas_build", runtime::graph::PassKind::Compute,
+      [&](runtime::graph::PassBuilder& b, Data& d) {
+        using runtime::graph::Access;
+        b.read(records_h, Access::AccelerationStructureBuildInput);
+        d.scratch = b.write(scratch_h, Access::AccelerationStructureBuild);
+        runtime::graph::BufferHandle& tlas = out[gpu::kSceneTlas];
+        tlas = b.write(tlas, Access::AccelerationStructureBuild);
+        d.tlas = tlas;
+      },
+      [scene = ray_query_.get(), ring_slot](runtime::graph::PassContext& ctx, const Data&) {
+        scene->record_tlas_build(ctx.cmd(), ring_slot);
+      });
 }
 
 std::uint32_t GpuScene::light_count() const {

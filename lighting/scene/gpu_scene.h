@@ -14,6 +14,11 @@
 // add_upload_pass() return.
 // Never-empty buffers: an empty array is uploaded as one zeroed element.
 //
+// Ray-query visibility (constructed with VisibilityBackend::RayQuery): a RayQueryScene builds a
+// BLAS per mesh and the TLAS at load; when an instance moves, the next add_upload_pass also adds
+// `scene.tlas_build` (a graph pass after scene.upload: host-written instance records of this
+// upload's ring slot -> TLAS), and the handles it returns carry the TLAS at kSceneTlas.
+//
 // Environment: the level's map (if any) is loaded once (EnvironmentDistribution) and its tables
 // uploaded with the static data; without one a black 1-texel stand-in (size.z = 0, params.z = 0)
 // is bound. The probability that a light sample picks the environment (env header params.x,
@@ -34,12 +39,15 @@
 #include "lighting/frame/frame_inputs.h"
 #include "lighting/lights/environment_map.h"
 #include "lighting/scene/scene_data.h"
+#include "lighting/visibility/visibility_backend.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/gpu/buffer_view.h"
 #include "runtime/graph/render_graph.h"
 #include "runtime/runtime_fwd.h"
 
 namespace lantern::lighting {
+
+class RayQueryScene;
 
 // What the last update() did and cost (CPU).
 struct SceneUpdateStats {
@@ -59,7 +67,10 @@ class GpuScene {
  public:
   // Builds the scene records of `level` and uploads them (blocking: setup time). Throws
   // lantern::InputError on bad level data.
-  GpuScene(runtime::Device& device, std::shared_ptr<const Level> level);
+  // `visibility` RayQuery also builds the ray-query BLASes and TLAS (the device must have ray
+  // query: lantern::InputError otherwise).
+  GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
+           VisibilityBackend visibility = VisibilityBackend::Bvh);
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
@@ -73,8 +84,9 @@ class GpuScene {
   // Imports every scene buffer into `graph` (version 0: the contents before scene.upload; static
   // buffers read-only).
   [[nodiscard]] SceneHandles import(runtime::graph::RenderGraph& graph) const;
-  // scene.upload: copies what changed since the last upload; returns the handles after it (what
-  // integrators read). Call once per graph frame, after update() / set_frame_constants().
+  // scene.upload: copies what changed since the last upload (and, for ray query, scene.tlas_build
+  // rebuilds the TLAS when instances moved); returns the handles after them (what integrators
+  // read). Call once per graph frame, after update() / set_frame_constants().
   [[nodiscard]] SceneHandles add_upload_pass(runtime::graph::RenderGraph& graph,
                                              const SceneHandles& imported);
 
@@ -97,6 +109,7 @@ class GpuScene {
   const EnvironmentDistribution* environment_map() const { return env_ ? &*env_ : nullptr; }
   std::uint64_t bytes() const;
 
+  VisibilityBackend visibility() const { return visibility_; }
   const Level& level() const { return *level_; }
   const SceneData& data() const { return data_; }
   const std::vector<std::uint32_t>& light_previous_to_current() const { return remap_; }
@@ -125,7 +138,16 @@ class GpuScene {
     glm::vec3 radiance{0.0f};  // material emission at scale 1
   };
 
+  struct Copy {
+    std::uint32_t slot;
+    std::vector<VkBufferCopy> regions;
+  };
   std::span<const std::byte> cpu_bytes(std::uint32_t slot) const;
+  // scene.upload's copies from `staging`, and scene.tlas_build (both write the handles in `out`).
+  void add_copy_pass(runtime::graph::RenderGraph& graph, const runtime::Buffer& staging,
+                     const std::vector<Copy>& copies, SceneHandles& out);
+  void add_tlas_build_pass(runtime::graph::RenderGraph& graph, std::uint32_t ring_slot,
+                           SceneHandles& out);
   void mark_dirty(std::uint32_t slot, std::uint64_t begin, std::uint64_t end);
   void mark_all_dirty(std::uint32_t slot);
   // Grows the device buffer of `slot` to hold its CPU array (retiring the old one).
@@ -162,6 +184,9 @@ class GpuScene {
   std::vector<gpu::vec4> env_dummy_texels_;
   std::vector<gpu::AliasEntry> env_dummy_alias_;
   std::uint64_t uploads_ = 0;  // scene.upload passes added so far
+  VisibilityBackend visibility_ = VisibilityBackend::Bvh;
+  std::unique_ptr<RayQueryScene> ray_query_;  // RayQuery only
+  bool tlas_dirty_ = false;                   // an instance moved since the last TLAS build
   SceneUpdateStats stats_;
 };
 

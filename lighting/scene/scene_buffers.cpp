@@ -23,44 +23,47 @@ std::span<const std::byte> bytes_of_one(const T* value) {
 }
 
 using Sources = SceneBufferSources;
+constexpr SceneResourceKind kBuffer = SceneResourceKind::Buffer;
 
 }  // namespace
 
 // clang-format off
 constexpr std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers = {{
     {gpu::kSceneFrameConstants, "scene.frame_constants", "frame_constants", nullptr, false,
-     [](const Sources& s) { return bytes_of_one(s.frame_constants); }},
+     [](const Sources& s) { return bytes_of_one(s.frame_constants); }, kBuffer},
     {gpu::kSceneVertices, "scene.vertices", "scene_vertices", nullptr, true,
-     [](const Sources& s) { return bytes_of(s.data->vertices); }},
+     [](const Sources& s) { return bytes_of(s.data->vertices); }, kBuffer},
     {gpu::kSceneIndices, "scene.indices", "scene_indices", nullptr, true,
-     [](const Sources& s) { return bytes_of(s.data->indices); }},
+     [](const Sources& s) { return bytes_of(s.data->indices); }, kBuffer},
     {gpu::kSceneMaterials, "scene.materials", "scene_materials", nullptr, true,
-     [](const Sources& s) { return bytes_of(s.data->materials); }},
+     [](const Sources& s) { return bytes_of(s.data->materials); }, kBuffer},
     {gpu::kSceneInstances, "scene.instances", "scene_instances", nullptr, false,
-     [](const Sources& s) { return bytes_of(s.data->instances); }},
+     [](const Sources& s) { return bytes_of(s.data->instances); }, kBuffer},
     {gpu::kSceneLights, "scene.lights", "scene_lights", nullptr, false,
-     [](const Sources& s) { return bytes_of(s.data->lights.lights()); }},
+     [](const Sources& s) { return bytes_of(s.data->lights.lights()); }, kBuffer},
     {gpu::kSceneLightAlias, "scene.light_alias", "light_alias", nullptr, false,
-     [](const Sources& s) { return bytes_of(s.data->lights.alias_table().entries()); }},
+     [](const Sources& s) { return bytes_of(s.data->lights.alias_table().entries()); }, kBuffer},
     {gpu::kSceneLightPreviousToCurrent, "scene.light_previous_to_current",
      "light_previous_to_current", nullptr, false,
-     [](const Sources& s) { return bytes_of(*s.light_previous_to_current); }},
+     [](const Sources& s) { return bytes_of(*s.light_previous_to_current); }, kBuffer},
     {gpu::kSceneBvhHeader, "scene.bvh_header", "BvhHeaderBuffer", nullptr, false,
-     [](const Sources& s) { return bytes_of_one(&s.data->bvh.header()); }},
+     [](const Sources& s) { return bytes_of_one(&s.data->bvh.header()); }, kBuffer},
     {gpu::kSceneBvhNodes, "scene.bvh_nodes", "BvhNodeBuffer", "bvh_node_texels", false,
-     [](const Sources& s) { return bytes_of(s.data->bvh.nodes()); }},
+     [](const Sources& s) { return bytes_of(s.data->bvh.nodes()); }, kBuffer},
     {gpu::kSceneBvhTriangles, "scene.bvh_triangles", "BvhTriangleBuffer", "bvh_triangle_texels",
-     true, [](const Sources& s) { return bytes_of(s.data->bvh.triangles()); }},
+     true, [](const Sources& s) { return bytes_of(s.data->bvh.triangles()); }, kBuffer},
     {gpu::kSceneBvhInstances, "scene.bvh_instances", "BvhInstanceBuffer", "bvh_instance_texels",
-     false, [](const Sources& s) { return bytes_of(s.data->bvh.instances()); }},
+     false, [](const Sources& s) { return bytes_of(s.data->bvh.instances()); }, kBuffer},
     {gpu::kSceneEnvHeader, "scene.env_header", "env_header", nullptr, false,
-     [](const Sources& s) { return bytes_of_one(s.env_header); }},
+     [](const Sources& s) { return bytes_of_one(s.env_header); }, kBuffer},
     {gpu::kSceneEnvTexels, "scene.env_texels", "env_texels", nullptr, true,
-     [](const Sources& s) { return s.env_texels; }},
+     [](const Sources& s) { return s.env_texels; }, kBuffer},
     {gpu::kSceneEnvMarginal, "scene.env_marginal", "env_marginal", nullptr, true,
-     [](const Sources& s) { return s.env_marginal; }},
+     [](const Sources& s) { return s.env_marginal; }, kBuffer},
     {gpu::kSceneEnvConditional, "scene.env_conditional", "env_conditional", nullptr, true,
-     [](const Sources& s) { return s.env_conditional; }},
+     [](const Sources& s) { return s.env_conditional; }, kBuffer},
+    {gpu::kSceneTlas, "scene.tlas", "scene_tlas", nullptr, false, nullptr,
+     SceneResourceKind::AccelerationStructure},
 }};
 // clang-format on
 
@@ -72,6 +75,15 @@ constexpr bool rows_in_slot_order() {
   return true;
 }
 static_assert(rows_in_slot_order(), "kSceneBuffers: row i must describe slot i");
+constexpr bool device_built_rows_have_no_bytes() {
+  for (const SceneBufferRow& row : kSceneBuffers) {
+    if ((row.bytes == nullptr) != (row.kind == SceneResourceKind::AccelerationStructure))
+      return false;
+  }
+  return true;
+}
+static_assert(device_built_rows_have_no_bytes(),
+              "kSceneBuffers: exactly the acceleration-structure rows have no CPU bytes");
 }  // namespace
 
 void SceneHandles::declare_reads(runtime::graph::PassBuilder& builder,
@@ -83,9 +95,14 @@ void SceneHandles::declare_reads(runtime::graph::PassBuilder& builder,
     if (!storage && !texel) continue;
     const runtime::graph::BufferHandle h = buffers[row.slot];
     if (!h.valid()) {
-      throw RuntimeError(fmt::format("pipeline '{}' reads scene buffer '{}', which this frame's "
-                                     "SceneHandles do not hold",
-                                     pipeline.name(), row.graph_name));
+      throw RuntimeError(
+          fmt::format("pipeline '{}' reads scene buffer '{}', which this frame's "
+                      "SceneHandles do not hold",
+                      pipeline.name(), row.graph_name));
+    }
+    if (row.kind == SceneResourceKind::AccelerationStructure) {
+      builder.read(h, Access::AccelerationStructureRead);
+      continue;
     }
     if (storage) builder.read(h, Access::StorageRead);
     if (texel) builder.read(h, Access::UniformTexelRead);
@@ -95,6 +112,10 @@ void SceneHandles::declare_reads(runtime::graph::PassBuilder& builder,
 void SceneHandles::bind(runtime::Bindings& bindings,
                         const runtime::graph::PassContext& ctx) const {
   for (const SceneBufferRow& row : kSceneBuffers) {
+    if (row.kind == SceneResourceKind::AccelerationStructure) {
+      if (bindings.has(row.shader_name)) bindings.acceleration_structure(row.shader_name, tlas);
+      continue;
+    }
     if (bindings.has(row.shader_name)) {
       bindings.buffer(row.shader_name, ctx.buffer(buffers[row.slot]), 0, VK_WHOLE_SIZE);
     }

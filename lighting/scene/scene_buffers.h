@@ -4,6 +4,9 @@
 // declares the reads of, and binds by name, exactly the scene buffers a pipeline's shaders use
 // (shaders/lib/scene_buffers.glsl declares them all once). A new technique's scene buffer is a
 // slot, a row here (with its source in SceneBufferSources) and a block in scene_buffers.glsl.
+// One row is not a CPU-filled buffer: kSceneTlas, the ray-query backend's TLAS (an acceleration
+// structure in its own buffer), which GpuScene builds on the device in scene.tlas_build; its
+// handle is valid only when the scene was made for ray-query visibility.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -36,13 +39,19 @@ struct SceneBufferSources {
   std::span<const std::byte> env_conditional;
 };
 
+enum class SceneResourceKind : std::uint8_t {
+  Buffer,                 // storage buffer filled from the CPU by scene.upload
+  AccelerationStructure,  // built on the device (no CPU bytes); bound as accelerationStructureEXT
+};
+
 struct SceneBufferRow {
-  std::uint32_t slot;        // = its binding (shared/scene_bindings.h)
-  const char* graph_name;    // render-graph resource and debug name ("scene.lights")
-  const char* shader_name;   // storage-buffer name in GLSL (instance name, else block name)
-  const char* texel_name;    // name of its rgba32ui uniform texel view in GLSL, or nullptr
-  bool read_only;            // uploaded once at load; scene.upload never writes it
-  std::span<const std::byte> (*bytes)(const SceneBufferSources&);
+  std::uint32_t slot;       // = its binding (shared/scene_bindings.h)
+  const char* graph_name;   // render-graph resource and debug name ("scene.lights")
+  const char* shader_name;  // storage-buffer name in GLSL (instance name, else block name)
+  const char* texel_name;   // name of its rgba32ui uniform texel view in GLSL, or nullptr
+  bool read_only;           // uploaded once at load; scene.upload never writes it
+  std::span<const std::byte> (*bytes)(const SceneBufferSources&);  // nullptr: device-built
+  SceneResourceKind kind;
 };
 
 // Row i describes slot i.
@@ -53,13 +62,15 @@ extern const std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers;
 struct SceneHandles {
   std::array<runtime::graph::BufferHandle, gpu::kSceneBufferCount> buffers{};
   std::array<VkBufferView, gpu::kSceneBufferCount> texel_views{};
+  VkAccelerationStructureKHR tlas = VK_NULL_HANDLE;  // behind buffers[kSceneTlas], when built
 
   runtime::graph::BufferHandle& operator[](std::uint32_t slot) { return buffers[slot]; }
   runtime::graph::BufferHandle operator[](std::uint32_t slot) const { return buffers[slot]; }
 
   // Declares a read of every scene buffer `pipeline`'s shaders use: StorageRead for a storage
-  // binding, UniformTexelRead for a texel view. lantern::RuntimeError naming the buffer when the
-  // pipeline uses one whose handle is not valid here.
+  // binding, UniformTexelRead for a texel view, AccelerationStructureRead for scene_tlas.
+  // lantern::RuntimeError naming the buffer when the pipeline uses one whose handle is not valid
+  // here (e.g. a rayquery shader variant on a scene built for the BVH).
   void declare_reads(runtime::graph::PassBuilder& builder, const runtime::Pipeline& pipeline) const;
   // Binds every scene buffer (and texel view) the pipeline's shaders use, by name.
   void bind(runtime::Bindings& bindings, const runtime::graph::PassContext& ctx) const;

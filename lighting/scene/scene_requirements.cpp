@@ -27,7 +27,7 @@ std::string mib(std::uint64_t bytes) {
 }  // namespace
 
 void describe_requirements(const Level& level, std::uint32_t width, std::uint32_t height,
-                           LevelSummary& summary) {
+                           LevelSummary& summary, const VisibilityChoice& visibility) {
   const SceneData scene = build_scene_data(level);
   const std::size_t lights = scene.lights.lights().size();
   const std::size_t analytic = lights - scene.emissive_triangles;
@@ -68,7 +68,8 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
         {"bytes", 0}};
   }
 
-  // Visibility: the two-level BVH (compute traversal; ray query where the device has it).
+  // Visibility: the two-level BVH (compute traversal), and with ray query also a BLAS per mesh and
+  // a TLAS over the instances (the driver's; its size is known only on the device).
   const SceneBvh& bvh = scene.bvh;
   const std::uint64_t bvh_bytes = array_bytes<gpu::BvhNode>(bvh.nodes().size()) +
                                   array_bytes<gpu::BvhTriangle>(bvh.triangles().size()) +
@@ -76,7 +77,12 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
                                   sizeof(gpu::BvhSceneHeader);
   summary.enabled["visibility"] = {
       {"structure", "two-level SAH BVH: per-mesh BLAS, TLAS over instances rebuilt when they move"},
-      {"backend", "compute-shader BVH, nodes in texel buffers (VK_KHR_ray_query by option)"},
+      {"backend", std::string(visibility_backend_name(visibility.backend))},
+      {"backend_why", visibility.why.empty() ? "default" : visibility.why},
+      {"traversal", visibility.backend == VisibilityBackend::RayQuery
+                        ? "VK_KHR_ray_query against a BLAS per mesh and a TLAS rebuilt by "
+                          "scene.tlas_build when instances move (the BVH stays uploaded)"
+                        : "compute-shader BVH, nodes in texel buffers"},
       {"nodes", bvh.nodes().size()},
       {"triangles", bvh.triangles().size()},
       {"bytes", bvh_bytes},
@@ -106,7 +112,9 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
                                            "`lantern bench --json` reports them"}};
 
   nlohmann::json variants = nlohmann::json::array();
-  variants.push_back("visibility: bvh (texel nodes)");
+  variants.push_back(visibility.backend == VisibilityBackend::RayQuery
+                         ? "visibility: rayquery (LANTERN_VISIBILITY_RAY_QUERY)"
+                         : "visibility: bvh (texel nodes)");
   if (level.environment) variants.push_back("environment sampling: on");
   summary.enabled["shader_variants"] = variants;
 }

@@ -10,12 +10,14 @@
 
 #include "engine/scene/level.h"
 #include "engine/scene/level_summary.h"
+#include "lighting/visibility/visibility_backend.h"
 
 namespace lantern::lighting {
 
 // Adds the sections "light_sampling", "environment", "visibility", "geometry", "per_frame" and
-// "shader_variants" to summary.enabled. Throws InputError on bad level data.
+// "shader_variants" to summary.enabled; `visibility` is the backend chosen for the device (named
+// with its reason; ray query adds its BLAS/TLAS estimate). Throws InputError on bad level data.
 void describe_requirements(const Level& level, std::uint32_t width, std::uint32_t height,
-                           LevelSummary& summary);
+                           LevelSummary& summary, const VisibilityChoice& visibility = {});
 
 }  // namespace lantern::lighting

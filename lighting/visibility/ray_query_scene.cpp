@@ -89,24 +89,26 @@ void RayQueryScene::record_blas_builds(VkCommandBuffer cmd) const {
 void RayQueryScene::ensure_tlas_capacity(std::uint32_t count) {
   if (count <= instance_capacity_ && tlas_) return;
   const std::uint32_t capacity = std::max<std::uint32_t>({count, 2 * instance_capacity_, 1u});
-  instance_records_ = runtime::Buffer(
-      *device_, {.size = capacity * sizeof(VkAccelerationStructureInstanceKHR),
-                 .usage = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-                          VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                 .memory = runtime::MemoryUsage::Upload,
-                 .name = "visibility.tlas_instances"});
+  for (std::uint32_t slot = 0; slot < kInstanceSlots; ++slot) {
+    instance_records_[slot] = runtime::Buffer(
+        *device_, {.size = capacity * sizeof(VkAccelerationStructureInstanceKHR),
+                   .usage = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+                            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                   .memory = runtime::MemoryUsage::Upload,
+                   .name = fmt::format("scene.tlas_instances.{}", slot)});
+  }
   const runtime::AccelerationStructureBuild build =
-      runtime::instance_tlas_build(instance_records_.device_address(), capacity);
+      runtime::instance_tlas_build(instance_records_[0].device_address(), capacity);
   const auto sizes = runtime::acceleration_structure_build_sizes(*device_, build);
   tlas_ = runtime::AccelerationStructure(*device_, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
-                                         sizes.accelerationStructureSize, "visibility.tlas");
+                                         sizes.accelerationStructureSize, "scene.tlas");
   // The TLAS scratch follows the BLAS ranges, so a TLAS rebuild never overlaps a BLAS build's.
   tlas_scratch_offset_ = blas_scratch_end_;
   scratch_.reserve(blas_scratch_end_ + align_up(sizes.buildScratchSize, kScratchAlignment));
   instance_capacity_ = capacity;
 }
 
-void RayQueryScene::write_instances(const SceneBvh& bvh) {
+void RayQueryScene::write_instances(const SceneBvh& bvh, std::uint32_t slot) {
   std::vector<VkAccelerationStructureInstanceKHR> records;
   const auto& instances = bvh.instances();
   for (std::size_t i = 0; i < instances.size(); ++i) {
@@ -120,14 +122,14 @@ void RayQueryScene::write_instances(const SceneBvh& bvh) {
   }
   ensure_tlas_capacity(static_cast<std::uint32_t>(records.size()));
   if (!records.empty())
-    std::memcpy(instance_records_.mapped(), records.data(),
+    std::memcpy(instance_records_.at(slot).mapped(), records.data(),
                 records.size() * sizeof(VkAccelerationStructureInstanceKHR));
   instance_count_ = static_cast<std::uint32_t>(records.size());
 }
 
-void RayQueryScene::record_tlas_build(VkCommandBuffer cmd) const {
+void RayQueryScene::record_tlas_build(VkCommandBuffer cmd, std::uint32_t slot) const {
   const runtime::AccelerationStructureBuild build =
-      runtime::instance_tlas_build(instance_records_.device_address(), instance_count_);
+      runtime::instance_tlas_build(instance_records_.at(slot).device_address(), instance_count_);
   tlas_.record_build(cmd, build, scratch_.address() + tlas_scratch_offset_);
 }
 

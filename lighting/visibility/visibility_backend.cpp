@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.h"
-#include "runtime/core/device_features.h"
+#include "runtime/core/device_info.h"
 
 namespace lantern::lighting {
 
@@ -12,13 +12,50 @@ std::string_view visibility_backend_name(VisibilityBackend backend) {
   return backend == VisibilityBackend::RayQuery ? "rayquery" : "bvh";
 }
 
-VisibilityBackend choose_visibility_backend(const runtime::DeviceCaps& caps, bool want_ray_query) {
-  if (!want_ray_query) return VisibilityBackend::Bvh;
-  if (!caps.ray_query)
-    throw InputError(
-        "visibility backend 'rayquery' needs VK_KHR_ray_query and VK_KHR_acceleration_structure, "
-        "which this device lacks (see `lantern devices`); use 'bvh'");
-  return VisibilityBackend::RayQuery;
+VisibilitySetting parse_visibility_setting(std::string_view value) {
+  if (value == "auto") return VisibilitySetting::Auto;
+  if (value == "bvh") return VisibilitySetting::Bvh;
+  if (value == "rayquery") return VisibilitySetting::RayQuery;
+  throw InputError(fmt::format("--set visibility={}: expected auto, bvh or rayquery", value));
+}
+
+std::string_view visibility_setting_name(VisibilitySetting setting) {
+  switch (setting) {
+    case VisibilitySetting::Auto:
+      return "auto";
+    case VisibilitySetting::Bvh:
+      return "bvh";
+    case VisibilitySetting::RayQuery:
+      return "rayquery";
+  }
+  return "?";
+}
+
+VisibilityChoice choose_visibility(const runtime::DeviceInfo& device, VisibilitySetting setting) {
+  switch (setting) {
+    case VisibilitySetting::Bvh:
+      return {VisibilityBackend::Bvh, "visibility=bvh"};
+    case VisibilitySetting::RayQuery:
+      if (!device.ray_query) {
+        throw InputError(
+            fmt::format("--set visibility=rayquery: device '{}' lacks VK_KHR_ray_query / "
+                        "VK_KHR_acceleration_structure (see `lantern devices`); use bvh or auto",
+                        device.name));
+      }
+      return {VisibilityBackend::RayQuery, "visibility=rayquery"};
+    case VisibilitySetting::Auto:
+      break;
+  }
+  const bool hardware = device.type == "discrete" || device.type == "integrated";
+  if (hardware && device.ray_query) {
+    return {VisibilityBackend::RayQuery,
+            fmt::format("auto: {} GPU with ray query (hardware traversal)", device.type)};
+  }
+  if (hardware) {
+    return {VisibilityBackend::Bvh, fmt::format("auto: {} GPU without ray query", device.type)};
+  }
+  return {VisibilityBackend::Bvh,
+          fmt::format("auto: {} device, where the compute BVH outruns ray query", device.type)};
 }
 
 }  // namespace lantern::lighting

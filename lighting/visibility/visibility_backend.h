@@ -1,20 +1,25 @@
 // Which visibility backend a pass's shader runs (shaders/lib/visibility.glsl): the compute-shader
 // BVH (any Vulkan 1.2 device; the fast path on lavapipe, shared/PLATFORM.md) or VK_KHR_ray_query
-// (the fast path on real GPUs; a cross-check here). A pass loads its shader through
-// visibility_variant() so it stays backend-agnostic:
-//   shaders.load("restir/restir_initial.comp", visibility_variant(scene.backend()))
-// and binds the scene's visibility data with VisibilityScene::bind (visibility_scene.h).
+// (the fast path on real GPUs, whose traversal is in hardware). The frame picks one from the
+// `visibility` setting (`--set visibility=auto|bvh|rayquery`) and the device, once:
+// make_integrator loads each tracing pass's shader through visibility_variant(backend), and
+// GpuScene builds the TLAS that variant traces (bound through SceneHandles as scene_tlas).
+//   shaders.load("restir/restir_initial.comp", visibility_variant(backend))
 #pragma once
 
+#include <string>
 #include <string_view>
 
 namespace lantern::runtime {
-struct DeviceCaps;
+struct DeviceInfo;
 }
 
 namespace lantern::lighting {
 
 enum class VisibilityBackend { Bvh, RayQuery };
+
+// The `visibility` setting: a backend, or auto (pick by device).
+enum class VisibilitySetting { Auto, Bvh, RayQuery };
 
 // The shader variant compiled for the backend (shaders/variants.cmake): "" for the BVH (the
 // default build of every shader), "rayquery" with LANTERN_VISIBILITY_RAY_QUERY defined.
@@ -22,11 +27,23 @@ constexpr std::string_view visibility_variant(VisibilityBackend backend) {
   return backend == VisibilityBackend::RayQuery ? "rayquery" : "";
 }
 
-// "bvh" / "rayquery" (for logs, benchmark output and the --set visibility=... value).
+// "bvh" / "rayquery" (for logs, `lantern info`, benchmark output and the setting's values).
 std::string_view visibility_backend_name(VisibilityBackend backend);
 
-// The backend to use on a device: the BVH unless ray query is requested. Requesting ray query on a
-// device without it throws lantern::InputError naming the device capability.
-VisibilityBackend choose_visibility_backend(const runtime::DeviceCaps& caps, bool want_ray_query);
+// "auto" | "bvh" | "rayquery"; lantern::InputError naming the value otherwise (checked before any
+// device work).
+VisibilitySetting parse_visibility_setting(std::string_view value);
+std::string_view visibility_setting_name(VisibilitySetting setting);
+
+struct VisibilityChoice {
+  VisibilityBackend backend = VisibilityBackend::Bvh;
+  std::string why;  // one line: the setting and, for auto, the device fact that decided
+};
+
+// The backend for `setting` on `device` (pure: tests pass a hand-made DeviceInfo). auto: ray query
+// on a discrete or integrated GPU that has it (hardware traversal), else the BVH (lavapipe is a
+// CPU device: its ray query runs 0.5x the BVH's speed). rayquery on a device without
+// VK_KHR_ray_query: lantern::InputError naming the device.
+VisibilityChoice choose_visibility(const runtime::DeviceInfo& device, VisibilitySetting setting);
 
 }  // namespace lantern::lighting

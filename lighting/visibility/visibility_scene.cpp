@@ -42,8 +42,12 @@ void upload_array(runtime::Device& device, const std::vector<T>& values, const s
 
 VisibilityScene::VisibilityScene(runtime::Device& device, const SceneBvh& bvh,
                                  VisibilityBackend backend)
-    : device_(&device),
-      backend_(choose_visibility_backend(device.caps(), backend == VisibilityBackend::RayQuery)) {
+    : device_(&device), backend_(backend) {
+  if (backend_ == VisibilityBackend::RayQuery && !device.caps().ray_query)
+    throw InputError(fmt::format(
+        "visibility backend 'rayquery' needs VK_KHR_ray_query and VK_KHR_acceleration_structure, "
+        "which device '{}' lacks (see `lantern devices`); use 'bvh'",
+        device.info().name));
   upload_bvh(bvh);
   if (backend_ == VisibilityBackend::RayQuery)
     ray_query_ = std::make_unique<RayQueryScene>(device, bvh);

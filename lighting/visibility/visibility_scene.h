@@ -5,7 +5,9 @@
 //   shaders.load(path, visibility_variant(vis.backend()))  // pick the compiled variant
 //   vis.bind(bindings);                                    // binds what that variant declares
 // Per frame, after SceneBvh::set_instances: vis.update(bvh) (TLAS nodes + instances re-uploaded;
-// the ray-query TLAS rebuilt). Both are blocking one-shot submits for now (see update()).
+// the ray-query TLAS rebuilt). Both are blocking one-shot submits: this is the standalone form the
+// visibility probe tests and visibility_bench use; the frame's scene (GpuScene) holds the same
+// arrays as scene buffers and rebuilds the TLAS in its graph pass scene.tlas_build.
 #pragma once
 
 #include <cstdint>
@@ -37,8 +39,7 @@ class VisibilityScene {
 
   // Re-uploads what set_instances changed (header, nodes, instances; BLAS nodes/triangles too if
   // a mesh was refit) and rebuilds the ray-query TLAS. Blocking: call between frames, while no
-  // submitted work reads these buffers. (Graph-recorded updates: left to the frame's
-  // scene.upload pass, see RayQueryScene::record_tlas_build.)
+  // submitted work reads these buffers.
   void update(const SceneBvh& bvh);
 
   // Binds the visibility resources the pipeline's shader declares (lib/visibility.glsl):

@@ -129,6 +129,28 @@ Device::Device(const DeviceOptions& options)
     if (fn_.cmd_push_descriptor_set == nullptr || fn_.cmd_pipeline_barrier2 == nullptr)
       throw RuntimeError(
           "Vulkan driver did not return vkCmdPushDescriptorSetKHR / vkCmdPipelineBarrier2");
+    if (caps_.ray_query) {
+      fn_.create_acceleration_structure =
+          load<PFN_vkCreateAccelerationStructureKHR>(device_, "vkCreateAccelerationStructureKHR");
+      fn_.destroy_acceleration_structure =
+          load<PFN_vkDestroyAccelerationStructureKHR>(device_, "vkDestroyAccelerationStructureKHR");
+      fn_.get_acceleration_structure_build_sizes =
+          load<PFN_vkGetAccelerationStructureBuildSizesKHR>(
+              device_, "vkGetAccelerationStructureBuildSizesKHR");
+      fn_.get_acceleration_structure_device_address =
+          load<PFN_vkGetAccelerationStructureDeviceAddressKHR>(
+              device_, "vkGetAccelerationStructureDeviceAddressKHR");
+      fn_.cmd_build_acceleration_structures = load<PFN_vkCmdBuildAccelerationStructuresKHR>(
+          device_, "vkCmdBuildAccelerationStructuresKHR");
+      if (fn_.create_acceleration_structure == nullptr ||
+          fn_.destroy_acceleration_structure == nullptr ||
+          fn_.get_acceleration_structure_build_sizes == nullptr ||
+          fn_.get_acceleration_structure_device_address == nullptr ||
+          fn_.cmd_build_acceleration_structures == nullptr)
+        throw RuntimeError(
+            "Vulkan driver reports VK_KHR_acceleration_structure but did not return its entry "
+            "points");
+    }
 
     VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pool_info.flags =

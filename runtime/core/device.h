@@ -83,6 +83,13 @@ struct DeviceFunctions {
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name = nullptr;  // null without debug utils
   PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label = nullptr;
   PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label = nullptr;
+  // VK_KHR_acceleration_structure (ray query): null unless DeviceCaps::ray_query.
+  PFN_vkCreateAccelerationStructureKHR create_acceleration_structure = nullptr;
+  PFN_vkDestroyAccelerationStructureKHR destroy_acceleration_structure = nullptr;
+  PFN_vkGetAccelerationStructureBuildSizesKHR get_acceleration_structure_build_sizes = nullptr;
+  PFN_vkGetAccelerationStructureDeviceAddressKHR get_acceleration_structure_device_address =
+      nullptr;
+  PFN_vkCmdBuildAccelerationStructuresKHR cmd_build_acceleration_structures = nullptr;
 };
 
 class Device {

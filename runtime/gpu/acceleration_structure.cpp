@@ -1,5 +1,5 @@
-// Acceleration structures (acceleration_structure.h). Entry points are extension functions,
-// looked up per device through vkGetDeviceProcAddr.
+// Acceleration structures (acceleration_structure.h). The extension's entry points come from
+// the device's DeviceFunctions (loaded once when the device is created).
 #include "runtime/gpu/acceleration_structure.h"
 
 #include <fmt/format.h>
@@ -15,45 +15,14 @@
 namespace lantern::runtime {
 namespace {
 
-struct AsFunctions {
-  PFN_vkCreateAccelerationStructureKHR create = nullptr;
-  PFN_vkDestroyAccelerationStructureKHR destroy = nullptr;
-  PFN_vkGetAccelerationStructureBuildSizesKHR build_sizes = nullptr;
-  PFN_vkGetAccelerationStructureDeviceAddressKHR address = nullptr;
-  PFN_vkCmdBuildAccelerationStructuresKHR cmd_build = nullptr;
-};
-
-template <class F>
-F load(VkDevice device, const char* name) {
-  auto f = reinterpret_cast<F>(vkGetDeviceProcAddr(device, name));
-  if (f == nullptr)
-    throw RuntimeError(
-        fmt::format("{} unavailable: the device has no acceleration structures", name));
-  return f;
-}
-
-const AsFunctions& functions(const Device& device) {
-  if (!device.caps().ray_query)
+// The entry points, loaded once with the device (DeviceFunctions); a device without ray query
+// has none.
+const DeviceFunctions& functions(const Device& device) {
+  if (!device.caps().ray_query || device.fn().create_acceleration_structure == nullptr)
     throw RuntimeError(
         "acceleration structures need VK_KHR_acceleration_structure + VK_KHR_ray_query, which this "
         "device lacks");
-  // One table per thread and device: cheap to refresh when the device changes (tests).
-  thread_local VkDevice cached = VK_NULL_HANDLE;
-  thread_local AsFunctions fn;
-  if (cached != device.handle()) {
-    VkDevice d = device.handle();
-    fn.create = load<PFN_vkCreateAccelerationStructureKHR>(d, "vkCreateAccelerationStructureKHR");
-    fn.destroy =
-        load<PFN_vkDestroyAccelerationStructureKHR>(d, "vkDestroyAccelerationStructureKHR");
-    fn.build_sizes = load<PFN_vkGetAccelerationStructureBuildSizesKHR>(
-        d, "vkGetAccelerationStructureBuildSizesKHR");
-    fn.address = load<PFN_vkGetAccelerationStructureDeviceAddressKHR>(
-        d, "vkGetAccelerationStructureDeviceAddressKHR");
-    fn.cmd_build =
-        load<PFN_vkCmdBuildAccelerationStructuresKHR>(d, "vkCmdBuildAccelerationStructuresKHR");
-    cached = d;
-  }
-  return fn;
+  return device.fn();
 }
 
 std::vector<std::uint32_t> primitive_counts(const AccelerationStructureBuild& build) {
@@ -114,13 +83,14 @@ AccelerationStructureBuild instance_tlas_build(VkDeviceAddress instances, std::u
 
 VkAccelerationStructureBuildSizesInfoKHR acceleration_structure_build_sizes(
     const Device& device, const AccelerationStructureBuild& build) {
-  const AsFunctions& fn = functions(device);
+  const DeviceFunctions& fn = functions(device);
   VkAccelerationStructureBuildGeometryInfoKHR info = build.info();
   const std::vector<std::uint32_t> counts = primitive_counts(build);
   VkAccelerationStructureBuildSizesInfoKHR sizes{
       VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-  fn.build_sizes(device.handle(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info,
-                 counts.data(), &sizes);
+  fn.get_acceleration_structure_build_sizes(device.handle(),
+                                            VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info,
+                                            counts.data(), &sizes);
   return sizes;
 }
 
@@ -132,18 +102,18 @@ AccelerationStructure::AccelerationStructure(Device& device, VkAccelerationStruc
                                  VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
                         .memory = MemoryUsage::DeviceLocal,
                         .name = name + ".storage"}) {
-  const AsFunctions& fn = functions(device);
+  const DeviceFunctions& fn = functions(device);
   VkAccelerationStructureCreateInfoKHR info{
       VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR};
   info.buffer = storage_.handle();
   info.offset = 0;
   info.size = size;
   info.type = type;
-  VK_CHECK(fn.create(device.handle(), &info, nullptr, &structure_));
+  VK_CHECK(fn.create_acceleration_structure(device.handle(), &info, nullptr, &structure_));
   VkAccelerationStructureDeviceAddressInfoKHR address{
       VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR};
   address.accelerationStructure = structure_;
-  address_ = fn.address(device.handle(), &address);
+  address_ = fn.get_acceleration_structure_device_address(device.handle(), &address);
   device.set_name(structure_, name);
 }
 
@@ -168,19 +138,19 @@ AccelerationStructure& AccelerationStructure::operator=(AccelerationStructure&& 
 
 void AccelerationStructure::release() {
   if (structure_ == VK_NULL_HANDLE) return;
-  functions(*device_).destroy(device_->handle(), structure_, nullptr);
+  functions(*device_).destroy_acceleration_structure(device_->handle(), structure_, nullptr);
   structure_ = VK_NULL_HANDLE;
 }
 
 void AccelerationStructure::record_build(VkCommandBuffer cmd,
                                          const AccelerationStructureBuild& build,
                                          VkDeviceAddress scratch) const {
-  const AsFunctions& fn = functions(*device_);
+  const DeviceFunctions& fn = functions(*device_);
   VkAccelerationStructureBuildGeometryInfoKHR info = build.info();
   info.dstAccelerationStructure = structure_;
   info.scratchData.deviceAddress = scratch;
   const VkAccelerationStructureBuildRangeInfoKHR* ranges = build.ranges.data();
-  fn.cmd_build(cmd, 1, &info, &ranges);
+  fn.cmd_build_acceleration_structures(cmd, 1, &info, &ranges);
 }
 
 ScratchBuffer::ScratchBuffer(Device& device, std::string name)

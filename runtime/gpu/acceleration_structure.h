@@ -2,8 +2,9 @@
 // acceleration structure in its own buffer, triangle BLAS and instance TLAS build descriptions,
 // and recording of builds. Builds are recorded on a caller's command buffer; the barrier a build
 // needs before its result is read (by another build or a shader) is recorded with
-// record_acceleration_structure_barrier, for one-shot setup and per-frame rebuilds submitted
-// outside the render graph.
+// record_acceleration_structure_barrier, for one-shot setup outside the render graph (load-time
+// BLAS builds, benchmarks); a build inside a frame is a graph pass (Access::AccelerationStructure*)
+// whose barriers the graph derives.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -73,6 +74,8 @@ class AccelerationStructure {
   VkAccelerationStructureKHR handle() const { return structure_; }
   VkDeviceAddress device_address() const { return address_; }
   VkDeviceSize size() const { return storage_.size(); }
+  // The buffer holding it: what a render graph imports to order builds and reads.
+  const Buffer& storage() const { return storage_; }
   explicit operator bool() const { return structure_ != VK_NULL_HANDLE; }
 
   // Records the build of this structure from `build` using scratch memory at `scratch` (at least
@@ -98,6 +101,7 @@ class ScratchBuffer {
   // have pending work that uses the old buffer).
   void reserve(VkDeviceSize bytes);
   VkDeviceAddress address() const;
+  const Buffer& buffer() const { return buffer_; }
 
  private:
   Device* device_;

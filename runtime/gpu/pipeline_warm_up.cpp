@@ -3,13 +3,16 @@
 // so the compile cost moves out of the first timed frame without running the shader on junk data.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <deque>
+#include <memory>
 #include <vector>
 
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "runtime/core/device.h"
 #include "runtime/core/vk_check.h"
+#include "runtime/gpu/acceleration_structure.h"
 #include "runtime/gpu/bindings.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/gpu/buffer_view.h"
@@ -28,6 +31,32 @@ void warm_up(Device& device, std::span<const ComputePipeline* const> pipelines) 
   images.reserve(64);
   VkSampler sampler = VK_NULL_HANDLE;
   VkSamplerCreateInfo sampler_info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  // Ray-query shaders get one empty TLAS (built in the warm-up submit before the dispatches).
+  struct EmptyTlas {
+    Buffer instances;
+    AccelerationStructureBuild build;
+    AccelerationStructure tlas;
+    std::unique_ptr<ScratchBuffer> scratch;
+  };
+  std::unique_ptr<EmptyTlas> empty_tlas;
+  auto get_empty_tlas = [&]() -> VkAccelerationStructureKHR {
+    if (empty_tlas) return empty_tlas->tlas.handle();
+    empty_tlas = std::make_unique<EmptyTlas>();
+    EmptyTlas& e = *empty_tlas;
+    e.instances = Buffer(
+        device,
+        BufferDesc{.size = sizeof(VkAccelerationStructureInstanceKHR),
+                   .usage = VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                            VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR,
+                   .name = "warm_up.tlas_instances"});
+    e.build = instance_tlas_build(e.instances.device_address(), 0);
+    const auto sizes = acceleration_structure_build_sizes(device, e.build);
+    e.tlas = AccelerationStructure(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
+                                   sizes.accelerationStructureSize, "warm_up.tlas");
+    e.scratch = std::make_unique<ScratchBuffer>(device, "warm_up.tlas_scratch");
+    e.scratch->reserve(std::max<VkDeviceSize>(sizes.buildScratchSize, 256));
+    return e.tlas.handle();
+  };
 
   for (const ComputePipeline* p : pipelines) {
     Bindings& b = bindings.emplace_back(*p);
@@ -85,6 +114,9 @@ void warm_up(Device& device, std::span<const ComputePipeline* const> pipelines) 
                              .handle());
           break;
         }
+        case VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR:
+          b.acceleration_structure(binding.name, get_empty_tlas());
+          break;
         default:
           throw RuntimeError(
               fmt::format("warm_up: pipeline '{}' binding '{}' ({}) has no dummy resource",
@@ -95,6 +127,10 @@ void warm_up(Device& device, std::span<const ComputePipeline* const> pipelines) 
 
   std::vector<std::byte> zeros(device.caps().max_push_constant_bytes);
   device.submit_and_wait([&](VkCommandBuffer cmd) {
+    if (empty_tlas) {
+      empty_tlas->tlas.record_build(cmd, empty_tlas->build, empty_tlas->scratch->address());
+      record_acceleration_structure_barrier(device, cmd);
+    }
     for (const Image& image : images)
       transition_image(device, cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     for (std::size_t i = 0; i < pipelines.size(); ++i) {

@@ -24,6 +24,7 @@ struct Id {
   std::optional<std::uint32_t> set, binding, spec_id, builtin, array_stride;
   bool block = false, buffer_block = false;
   std::unordered_map<std::uint32_t, std::uint32_t> member_offsets;
+  std::unordered_map<std::uint32_t, std::string> member_names;
 };
 
 std::string read_string(std::span<const std::uint32_t> words) {
@@ -183,6 +184,9 @@ class Parser {
       case SpvOpMemberDecorate:
         if (w[2] == SpvDecorationOffset) id(w[0]).member_offsets[w[1]] = w[3];
         break;
+      case SpvOpMemberName:
+        id(w[0]).member_names[w[1]] = read_string(w.subspan(2));
+        break;
       case SpvOpTypeVoid:
       case SpvOpTypeBool:
       case SpvOpTypeInt:
@@ -322,6 +326,38 @@ class Parser {
     std::sort(out_.bindings.begin(), out_.bindings.end(), [](const auto& a, const auto& b) {
       return std::tie(a.set, a.binding) < std::tie(b.set, b.binding);
     });
+    resolve_structs();
+  }
+
+  void resolve_structs() {
+    for (std::uint32_t i = 0; i < ids_.size(); ++i) {
+      const Id& t = ids_[i];
+      if (t.op != SpvOpTypeStruct || t.name.empty()) continue;
+      StructLayout s;
+      s.name = t.name;
+      const std::size_t n = t.operands.size();
+      s.member_names.assign(n, "");
+      s.member_offsets.assign(n, -1);
+      for (const auto& [m, name] : t.member_names)
+        if (m < n) s.member_names[m] = name;
+      for (const auto& [m, offset] : t.member_offsets)
+        if (m < n) s.member_offsets[m] = offset;
+      for (const Id& a : ids_) {
+        if ((a.op == SpvOpTypeArray || a.op == SpvOpTypeRuntimeArray) && !a.operands.empty() &&
+            a.operands[0] == i && a.array_stride)
+          s.array_stride = *a.array_stride;
+      }
+      auto same = std::find_if(out_.structs.begin(), out_.structs.end(),
+                               [&](const StructLayout& o) { return o.name == s.name; });
+      const auto decorated = [](const StructLayout& l) {
+        return std::any_of(l.member_offsets.begin(), l.member_offsets.end(),
+                           [](std::int64_t o) { return o >= 0; });
+      };
+      if (same == out_.structs.end())
+        out_.structs.push_back(std::move(s));
+      else if (decorated(s) && !decorated(*same))
+        *same = std::move(s);
+    }
   }
 
   void variable(std::uint32_t v) {
@@ -409,6 +445,12 @@ const DescriptorBinding* ShaderReflection::find_binding(std::string_view name) c
 
 const SpecConstant* ShaderReflection::find_spec_constant(std::string_view name) const {
   for (const auto& s : spec_constants)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+const StructLayout* ShaderReflection::find_struct(std::string_view name) const {
+  for (const auto& s : structs)
     if (s.name == name) return &s;
   return nullptr;
 }

@@ -1,7 +1,9 @@
 // A small SPIR-V reflection: reads the binary words (no external library) and derives what a
 // pipeline needs from the shader itself — descriptor bindings with their names (those the entry
 // point statically uses: loads, stores, access chains, atomics, calls), push-constant size,
-// specialisation constants and the compute local size — so callers bind by name.
+// specialisation constants and the compute local size — so callers bind by name; and the layout
+// of every named struct (member names, Offset and ArrayStride decorations), which tests/layout
+// compares with the C++ side of each shared struct. The project's one SPIR-V reader.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -31,6 +33,14 @@ struct SpecConstant {
   std::uint32_t default_value = 0;  // raw 32 bits (bools are 0/1)
 };
 
+// A named struct type as the module lays it out.
+struct StructLayout {
+  std::string name;
+  std::vector<std::string> member_names;     // by member index ("" when unnamed)
+  std::vector<std::int64_t> member_offsets;  // by member index (-1 when undecorated)
+  std::int64_t array_stride = -1;            // stride of an array of this struct (-1: none)
+};
+
 struct ShaderReflection {
   VkShaderStageFlagBits stage = VK_SHADER_STAGE_COMPUTE_BIT;
   std::string entry_point = "main";
@@ -43,9 +53,13 @@ struct ShaderReflection {
   std::uint32_t push_constant_bytes = 0;
   std::array<std::uint32_t, 3> local_size{1, 1, 1};   // compute only; defaults if specialised
   std::array<int, 3> local_size_spec_id{-1, -1, -1};  // spec id that overrides each axis, or -1
+  // Every named struct type, by name; where glslang emits one name for several struct ids (a
+  // block and a plain copy), the copy with Offset decorations.
+  std::vector<StructLayout> structs;
 
   const DescriptorBinding* find_binding(std::string_view name) const;
   const SpecConstant* find_spec_constant(std::string_view name) const;
+  const StructLayout* find_struct(std::string_view name) const;
 };
 
 // Parses a SPIR-V module. `what` names it in error messages. Throws lantern::RuntimeError on

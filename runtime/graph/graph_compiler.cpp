@@ -1,13 +1,13 @@
 // The render-graph compiler. Each step is a small function; compile_graph() runs them in order.
 #include "runtime/graph/graph_compiler.h"
 
-#include "runtime/gpu/image.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <queue>
 #include <set>
+
+#include "runtime/gpu/image.h"
 
 namespace lantern::runtime::graph {
 
@@ -16,7 +16,8 @@ namespace {
 constexpr VkAccessFlags2 kWriteAccess =
     VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-    VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_HOST_WRITE_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_HOST_WRITE_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT |
+    VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
 
 // One pass's combined use of one resource (a pass may declare several accesses to it).
 struct MergedUse {

@@ -12,6 +12,7 @@ bool is_write(Access a) {
     case Access::ColorAttachment:
     case Access::DepthAttachment:
     case Access::TransferDst:
+    case Access::AccelerationStructureBuild:
       return true;
     default:
       return false;
@@ -41,6 +42,9 @@ bool allowed_on_image(Access a) {
     case Access::VertexBuffer:
     case Access::IndexBuffer:
     case Access::IndirectBuffer:
+    case Access::AccelerationStructureBuildInput:
+    case Access::AccelerationStructureBuild:
+    case Access::AccelerationStructureRead:
       return false;
     default:
       return true;
@@ -77,6 +81,12 @@ const char* access_name(Access a) {
       return "index-buffer";
     case Access::IndirectBuffer:
       return "indirect-buffer";
+    case Access::AccelerationStructureBuildInput:
+      return "acceleration-structure-build-input";
+    case Access::AccelerationStructureBuild:
+      return "acceleration-structure-build";
+    case Access::AccelerationStructureRead:
+      return "acceleration-structure-read";
   }
   return "?";
 }
@@ -161,6 +171,18 @@ AccessState access_state(Access a, PassKind kind, bool is_image) {
     case Access::IndirectBuffer:
       return {VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
               VK_IMAGE_LAYOUT_UNDEFINED};
+    // Build inputs are read with SHADER_READ in the build stage (Vulkan spec, "Acceleration
+    // Structure" synchronisation); a build reads and writes its destination and scratch.
+    case Access::AccelerationStructureBuildInput:
+      return {VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, VK_ACCESS_2_SHADER_READ_BIT,
+              VK_IMAGE_LAYOUT_UNDEFINED};
+    case Access::AccelerationStructureBuild:
+      return {VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+              VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR |
+                  VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+              VK_IMAGE_LAYOUT_UNDEFINED};
+    case Access::AccelerationStructureRead:
+      return {shaders, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED};
   }
   return {};
 }
@@ -185,6 +207,11 @@ VkBufferUsageFlags buffer_usage(Access a) {
       return VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
     case Access::IndirectBuffer:
       return VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+    case Access::AccelerationStructureBuildInput:
+      return VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+    case Access::AccelerationStructureBuild:
+    case Access::AccelerationStructureRead:
+      return VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR;
     default:
       return 0;
   }
@@ -244,6 +271,7 @@ std::string stage_names(VkPipelineStageFlags2 stages) {
       {VK_PIPELINE_STAGE_2_COPY_BIT, "COPY"},
       {VK_PIPELINE_STAGE_2_CLEAR_BIT, "CLEAR"},
       {VK_PIPELINE_STAGE_2_HOST_BIT, "HOST"},
+      {VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, "ACCELERATION_STRUCTURE_BUILD"},
       {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, "ALL_COMMANDS"},
       {VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, "BOTTOM_OF_PIPE"},
   };
@@ -269,6 +297,9 @@ std::string access_names(VkAccessFlags2 access) {
       {VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, "SHADER_SAMPLED_READ"},
       {VK_ACCESS_2_SHADER_STORAGE_READ_BIT, "SHADER_STORAGE_READ"},
       {VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, "SHADER_STORAGE_WRITE"},
+      {VK_ACCESS_2_SHADER_READ_BIT, "SHADER_READ"},
+      {VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, "ACCELERATION_STRUCTURE_READ"},
+      {VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR, "ACCELERATION_STRUCTURE_WRITE"},
   };
   return join_flags(access, kNames);
 }

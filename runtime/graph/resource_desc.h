@@ -43,6 +43,11 @@ enum class Access : uint8_t {
   VertexBuffer,      // buffer
   IndexBuffer,       // buffer
   IndirectBuffer,    // buffer, indirect dispatch/draw arguments
+  // VK_KHR_acceleration_structure (buffers backing a structure, its build inputs and scratch):
+  AccelerationStructureBuildInput,  // buffer read by a build (instance records, vertices)
+  AccelerationStructureBuild,       // buffer written by a build: the structure's storage or the
+                                    // scratch (previous contents discarded)
+  AccelerationStructureRead,        // buffer of a structure traced in shaders (ray query)
 };
 
 // Where a pass runs; decides the shader stages its shader accesses happen in.

@@ -4,7 +4,8 @@
 //   frame_constants.frame (FrameConstants), scene_vertices.v[], scene_indices.i[],
 //   scene_materials.m[], scene_instances.i[], scene_lights.l[], light_alias.e[],
 //   light_previous_to_current.index[] (uint per last frame's light: its current index or
-//   kInvalidLight), the BVH (lib/bvh_traverse.glsl: bvh_header, bvh_*_texels) and the
+//   kInvalidLight), the BVH (lib/bvh_traverse.glsl: bvh_header, bvh_*_texels; in the rayquery
+//   variant instead the TLAS scene_tlas at kSceneTlas) and the
 //   environment (lib/environment.glsl: env_header, env_texels, env_marginal, env_conditional).
 // Then lib/visibility.glsl's vis_trace_closest / vis_visible are available. A pass declares its
 // own resources from binding kPassBindingBase on: layout(binding = PASS_BINDING(0)) ...
@@ -46,6 +47,7 @@ layout(std430, binding = kSceneLightPreviousToCurrent) restrict readonly buffer 
 } light_previous_to_current;
 
 #define VIS_BINDING_BASE kSceneBvhHeader
+#define VIS_TLAS_BINDING kSceneTlas
 #include "lib/visibility.glsl"
 #define ENV_BINDING_BASE kSceneEnvHeader
 #include "lib/environment.glsl"

@@ -19,7 +19,8 @@
 //                                  VIS_BVH_STORAGE_BUFFERS, for A/B measurements).
 //   LANTERN_VISIBILITY_RAY_QUERY   GL_EXT_ray_query against the TLAS bound as "scene_tlas".
 // Bindings: set VIS_DESCRIPTOR_SET (default 0), bindings VIS_BINDING_BASE .. + 3 (default 0..3):
-// the BVH uses four (header, nodes, triangles, instances), ray query one (scene_tlas at the base).
+// the BVH uses four (header, nodes, triangles, instances), ray query one (scene_tlas at
+// VIS_TLAS_BINDING, default the base; the scene's at kSceneTlas, shared/scene_bindings.h).
 // Bind them with lighting::VisibilityScene::bind (lighting/visibility/visibility_scene.h).
 #ifndef LANTERN_LIB_VISIBILITY_GLSL
 #define LANTERN_LIB_VISIBILITY_GLSL
@@ -31,6 +32,9 @@
 #endif
 #ifndef VIS_BINDING_BASE
 #define VIS_BINDING_BASE 0
+#endif
+#ifndef VIS_TLAS_BINDING
+#define VIS_TLAS_BINDING VIS_BINDING_BASE
 #endif
 
 // An unbounded ray's tmax.
@@ -48,7 +52,7 @@ struct VisHit {
 
 #extension GL_EXT_ray_query : require
 
-layout(set = VIS_DESCRIPTOR_SET, binding = VIS_BINDING_BASE) uniform accelerationStructureEXT
+layout(set = VIS_DESCRIPTOR_SET, binding = VIS_TLAS_BINDING) uniform accelerationStructureEXT
     scene_tlas;
 
 bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {

@@ -4,7 +4,8 @@
 // describes them once (lighting/scene/scene_buffers.h: graph name, shader name, access, texel
 // view) and binds them by name through SceneHandles. A pass's own resources start at
 // kPassBindingBase. Adding a scene buffer: a slot here, a row in scene_buffers.h, a block in
-// scene_buffers.glsl.
+// scene_buffers.glsl. kSceneTlas is the one slot that is not a storage buffer: the ray-query
+// backend's TLAS (scene.tlas_build builds it; only the rayquery shader variants declare it).
 #ifndef LANTERN_SHARED_SCENE_BINDINGS_H
 #define LANTERN_SHARED_SCENE_BINDINGS_H
 
@@ -28,7 +29,8 @@ LANTERN_CONST uint kSceneEnvHeader = 12u;              // GpuEnvironment
 LANTERN_CONST uint kSceneEnvTexels = 13u;              // vec4[] radiance texels
 LANTERN_CONST uint kSceneEnvMarginal = 14u;            // AliasEntry[] over rows
 LANTERN_CONST uint kSceneEnvConditional = 15u;         // AliasEntry[] per row over columns
-LANTERN_CONST uint kSceneBufferCount = 16u;
+LANTERN_CONST uint kSceneTlas = 16u;  // accelerationStructureEXT (ray-query visibility only)
+LANTERN_CONST uint kSceneBufferCount = 17u;
 
 // First binding of a pass's own resources (set 0).
 LANTERN_CONST uint kPassBindingBase = kSceneBufferCount;

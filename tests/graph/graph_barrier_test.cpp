@@ -48,6 +48,49 @@ TEST(GraphBarriers, ReadAfterWriteMakesComputeWritesVisibleToReaders) {
   EXPECT_FALSE(b->aliasing);
 }
 
+// scene.tlas_build's shape: a TLAS build (reading host-written instance records) followed by a
+// compute pass that traces it: the build's write reaches the shader's acceleration-structure read.
+TEST(GraphBarriers, AccelerationStructureBuildIsVisibleToRayQueries) {
+  RenderGraph g;
+  const BufferHandle out = sink(g);
+  const BufferHandle records =
+      g.import_buffer("tlas_instances", VK_NULL_HANDLE, {64},
+                      {.read_only = true,
+                       .initial = {VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT,
+                                   VK_IMAGE_LAYOUT_UNDEFINED}});
+  const BufferHandle tlas = g.import_buffer("tlas", VK_NULL_HANDLE, {4096});
+  struct W {
+    BufferHandle tlas;
+  };
+  const W& w = g.add_pass<W>(
+      "test.tlas_build", PassKind::Compute,
+      [&](PassBuilder& b, W& d) {
+        b.read(records, Access::AccelerationStructureBuildInput);
+        d.tlas = b.write(tlas, Access::AccelerationStructureBuild);
+      },
+      kNoExecute);
+  g.add_pass<Empty>(
+      "test.trace", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
+        b.read(w.tlas, Access::AccelerationStructureRead);
+        (void)b.write(out, Access::StorageWrite);
+      },
+      kNoExecute);
+  g.bake();
+
+  const auto input = barrier_before(g, "test.tlas_build", records.index);
+  ASSERT_TRUE(input) << g.dump();
+  EXPECT_EQ(input->src.access, VK_ACCESS_2_HOST_WRITE_BIT);
+  EXPECT_EQ(input->dst.stages, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR);
+  EXPECT_EQ(input->dst.access, VK_ACCESS_2_SHADER_READ_BIT);
+  const auto b = barrier_before(g, "test.trace", tlas.index);
+  ASSERT_TRUE(b) << g.dump();
+  EXPECT_EQ(b->src.stages, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR);
+  EXPECT_EQ(b->src.access, VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR);
+  EXPECT_EQ(b->dst.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  EXPECT_EQ(b->dst.access, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR);
+}
+
 TEST(GraphBarriers, WriteAfterReadNeedsOnlyAnExecutionDependency) {
   RenderGraph g;
   // Imported with nothing pending: the only hazard is the graphics read before the copy.

@@ -21,7 +21,8 @@
 #include "shared/reservoir_pack.h"
 #include "shared/restir.h"
 #include "shared/scene.h"
-#include "spirv_layout.h"
+#include "runtime/gpu/shader_library.h"
+#include "runtime/gpu/spirv_reflect.h"
 
 namespace lantern::test {
 namespace {
@@ -139,29 +140,31 @@ const std::vector<StructLayout>& cpp_layouts() {
 
 #undef LANTERN_MEMBER
 
-const SpirvStructs& probe() {
-  static const SpirvStructs structs =
-      parse_spirv_structs(read_spirv_file(LANTERN_LAYOUT_PROBE_SPV));
-  return structs;
+// The probe's struct layouts, read by the runtime's SPIR-V reflection (the one SPIR-V reader).
+const runtime::ShaderReflection& probe() {
+  static const runtime::ShaderReflection reflection = runtime::reflect_spirv(
+      runtime::read_spirv_file(LANTERN_LAYOUT_PROBE_SPV), LANTERN_LAYOUT_PROBE_SPV);
+  return reflection;
 }
 
 TEST(Layout, ProbeDeclaresStructsWithOffsets) {
-  ASSERT_FALSE(probe().empty()) << LANTERN_LAYOUT_PROBE_SPV;
-  // The parser must see real decorations, not just names: AliasEntry.alias sits at byte 4.
-  auto alias = probe().find("AliasEntry");
-  ASSERT_NE(alias, probe().end());
-  ASSERT_EQ(alias->second.member_offsets.size(), 4u);
-  EXPECT_EQ(alias->second.member_offsets[1], 4);
-  EXPECT_EQ(alias->second.array_stride, 16);
+  ASSERT_FALSE(probe().structs.empty()) << LANTERN_LAYOUT_PROBE_SPV;
+  // The reader must see real decorations, not just names: AliasEntry.alias sits at byte 4.
+  const runtime::StructLayout* alias = probe().find_struct("AliasEntry");
+  ASSERT_NE(alias, nullptr);
+  ASSERT_EQ(alias->member_offsets.size(), 4u);
+  EXPECT_EQ(alias->member_names[1], "alias");
+  EXPECT_EQ(alias->member_offsets[1], 4);
+  EXPECT_EQ(alias->array_stride, 16);
 }
 
 TEST(Layout, CppMatchesSpirvForEverySharedStruct) {
   for (const StructLayout& cpp : cpp_layouts()) {
     SCOPED_TRACE(cpp.name);
-    auto found = probe().find(cpp.name);
-    ASSERT_NE(found, probe().end())
+    const runtime::StructLayout* found = probe().find_struct(cpp.name);
+    ASSERT_NE(found, nullptr)
         << cpp.name << " is not in layout_probe.comp: declare a std430 buffer of it there";
-    const SpirvStruct& spirv = found->second;
+    const runtime::StructLayout& spirv = *found;
     ASSERT_EQ(spirv.member_offsets.size(), cpp.members.size())
         << cpp.name << ": member count differs between GLSL and the table in layout_test.cpp";
     for (std::size_t i = 0; i < cpp.members.size(); ++i) {

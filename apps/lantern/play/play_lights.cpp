@@ -27,13 +27,7 @@ struct SavedEmission {
 float level_radius(const Level& level) {
   Aabb box;
   for (const Instance& inst : level.instances) {
-    const Aabb& b = level.meshes.at(inst.mesh).bounds;
-    if (b.empty()) continue;
-    for (int i = 0; i < 8; ++i) {
-      const glm::vec3 c((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
-                        (i & 4) ? b.max.z : b.min.z);
-      box.extend(glm::vec3(inst.world * glm::vec4(c, 1.0f)));
-    }
+    box.grow(level.meshes.at(inst.mesh).bounds.transformed(inst.world));
   }
   const float r = box.empty() ? 1.0f : 0.5f * glm::length(box.extent());
   return std::isfinite(r) ? std::max(r, 0.1f) : 1.0f;

@@ -69,6 +69,7 @@ lighting::IntegratorConfig config_for(const PanelState& panel,
   lighting::IntegratorConfig c;
   c.name = panel.integrator;
   c.preset = panel.preset;
+  c.visibility = base.visibility;  // the backend stays across switches and reloads
   if (c.name == lighting::RestirIntegrator::kName) {
     c.settings = lighting::describe(panel.restir);
   } else if (c.name == base.name) {
