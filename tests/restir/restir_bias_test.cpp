@@ -140,9 +140,15 @@ const Mode kModes[] = {
     {"balance", {{"bias_correction", "balance"}}, true, true},
     {"pairwise", {{"bias_correction", "pairwise"}}, true, true},
     {"none", {{"bias_correction", "none"}}, false, true},
-    // Temporal reuse only, one candidate: the longest-lived histories (the empty-history bug
-    // read +18% here on the CPU chains).
+    // Study only (named in LANTERN_BIAS_MODES): each stage alone. Temporal reuse only, one
+    // candidate: the longest-lived histories (the empty-history bug read +18% there on the CPU
+    // chains); M cap 1; spatial only; no reuse (plain RIS: checks the reference itself).
     {"t-M1", {{"spatial_passes", "0"}, {"light_candidates", "1"}}, true, false},
+    {"t-cap1", {{"spatial_passes", "0"}, {"m_cap", "1"}}, true, false},
+    {"temporal", {{"spatial_passes", "0"}}, true, false},
+    {"spatial", {{"temporal", "off"}, {"bias_correction", "pairwise"}}, true, false},
+    {"spatial-b", {{"temporal", "off"}, {"bias_correction", "balance"}}, true, false},
+    {"ris", {{"temporal", "off"}, {"spatial_passes", "0"}}, true, false},
 };
 
 // LANTERN_BIAS_MODES=balance,none,t-M1 selects modes (default: those marked ci).
