@@ -228,7 +228,7 @@ class RestirBiasTest : public runtime::test::GpuTest {
     }
     const std::size_t lit = test::count(mask);
     ASSERT_GT(lit, pixels / 4) << scene << ": most pixels must be lit non-emitters";
-    ASSERT_GT(emitters + dark, 0u) << scene << ": the mask must exclude something";
+    ASSERT_GT(emitters, 0u) << scene << ": the scene's emitters must be seen and left out";
     double ref = 0.0, ref2 = 0.0;
     for (const ImageRGBA32F& img : ref_images) {
       const double v = lit_sum(img, mask);
@@ -263,7 +263,8 @@ class RestirBiasTest : public runtime::test::GpuTest {
           double sum = 0.0;
           for (std::uint32_t f = 0; f < p.frames; ++f) {
             const ImageRGBA32F img = h.render(s);
-            ASSERT_TRUE(test::all_finite(img)) << scene << " " << modes[m]->name << " seed " << seed;
+            ASSERT_TRUE(test::all_finite(img))
+                << scene << " " << modes[m]->name << " seed " << seed;
             const double v = lit_sum(img, mask);
             sum += v;
             if (trace) std::printf(" %+.2f", 100.0 * (v / ref - 1.0));
@@ -291,7 +292,7 @@ class RestirBiasTest : public runtime::test::GpuTest {
         EXPECT_LT(3.0 * sigma, p.tolerance)
             << scene << " " << mode.name << ": this run cannot resolve a bias of "
             << 100.0 * p.tolerance << "%: 3 sigma = " << 300.0 * sigma
-            << "% (more LANTERN_BIAS_SEEDS or LANTERN_BIAS_FRAMES)";
+            << "% (more LANTERN_BIAS_RUNS or LANTERN_BIAS_SEEDS)";
         EXPECT_LE(std::abs(bias), 3.0 * sigma)
             << scene << " " << mode.name << ": biased by " << 100.0 * bias << "% (3 sigma "
             << 300.0 * sigma << "%, tolerance " << 100.0 * p.tolerance << "%)";

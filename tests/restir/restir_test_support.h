@@ -2,7 +2,8 @@
 // caller-made snapshots (so a test can move an occluder, remove a light or cut the camera
 // exactly when it wants) through the render graph into a HeadlessTarget, read back as linear
 // radiance, optionally with the frame's G-buffer instance ids, motion vectors and emission read
-// back (to judge reuse by geometry, and to tell emitters from lit surfaces). Plus helpers for levels written inline and for region statistics.
+// back (to judge reuse by geometry, and to tell emitters from lit surfaces). Plus helpers for
+// levels written inline and for region statistics.
 #pragma once
 
 #include <cmath>
