@@ -24,8 +24,8 @@ std::uint32_t parse_dimension(std::string_view text, std::string_view size) {
 std::optional<std::string> key_for(const std::string& key, const std::string& integrator) {
   const std::string prefix = integrator + ".";
   if (key.rfind(prefix, 0) == 0) return key.substr(prefix.size());
-  for (const char* other : {"restir", "baseline", "reference"}) {
-    if (key.rfind(std::string(other) + ".", 0) == 0) return std::nullopt;
+  for (const lighting::IntegratorEntry& other : lighting::integrators()) {
+    if (key.rfind(std::string(other.name) + ".", 0) == 0) return std::nullopt;
   }
   return key;
 }
@@ -35,9 +35,9 @@ std::optional<std::string> key_for(const std::string& key, const std::string& in
 lighting::IntegratorConfig integrator_config(const std::string& integrator,
                                              const CommonOptions& common, const Level& level) {
   lighting::IntegratorConfig config;
-  config.kind = lighting::parse_integrator(integrator);
+  config.name = lighting::find_integrator(integrator).name;
   config.preset = common.preset;
-  const std::string name = lighting::integrator_name(config.kind);
+  const std::string& name = config.name;
   for (const auto& [key, value] : level.settings) {
     const std::string prefix = name + ".";
     if (key.rfind(prefix, 0) == 0) config.settings.emplace_back(key.substr(prefix.size()), value);
@@ -56,6 +56,15 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
   }
   lighting::validate_integrator_config(config);
   return config;
+}
+
+CLI::Option* add_integrator_option(CLI::App& cmd, std::string& integrator) {
+  std::string footer = "Integrators:";
+  for (const lighting::IntegratorEntry& entry : lighting::integrators()) {
+    footer += fmt::format("\n  {:<10} {}", entry.name, entry.description);
+  }
+  cmd.footer(footer);
+  return cmd.add_option("--integrator", integrator, lighting::integrator_names("|"));
 }
 
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {

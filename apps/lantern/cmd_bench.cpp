@@ -87,7 +87,7 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
       device, shaders, level,
       {.integrator = config, .width = width, .height = height, .seed = common.seed});
   session.warm_up();
-  const std::string integrator = lighting::integrator_name(config.kind);
+  const std::string integrator = config.name;
   log::info("bench {} {} {} at {}x{}: {} warm-up + {} frames on {}", level->name, integrator,
             common.preset, width, height, o.warmup, frames, device.info().name);
 
@@ -233,8 +233,7 @@ void add_bench_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("LEVEL", opts->level,
                   "Level: a .json/.gltf/.glb file or a name under content/levels/")
       ->required();
-  cmd->add_option("--integrator", opts->integrator, "restir|baseline|reference")
-      ->capture_default_str();
+  add_integrator_option(*cmd, opts->integrator)->capture_default_str();
   cmd->add_option("--warmup", opts->warmup, "Frames rendered before timing")
       ->capture_default_str();
   cmd->add_option("--json", opts->json, "Write the statistics as JSON to FILE");

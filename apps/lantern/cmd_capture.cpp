@@ -157,7 +157,7 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
       {"level", level->name},
       {"level_file", level->source.string()},
       {"camera_path", o.path.empty() ? level->camera_path : o.path},
-      {"integrator", lighting::integrator_name(config.kind)},
+      {"integrator", config.name},
       {"preset", settings_preset},
       {"settings", settings},
       {"size", {width, height}},
@@ -204,8 +204,7 @@ void add_capture_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("LEVEL", opts->level,
                   "Level: a .json/.gltf/.glb file or a name under content/levels/")
       ->required();
-  cmd->add_option("--integrator", opts->integrator, "restir|baseline|reference")
-      ->capture_default_str();
+  add_integrator_option(*cmd, opts->integrator)->capture_default_str();
   cmd->add_option("--path", opts->path, "Camera path to follow (default: the level's)");
   cmd->add_option("--out", opts->out, "Output directory")->required();
   cmd->add_option("--format", opts->format, "exr (linear) or png (tonemapped)")

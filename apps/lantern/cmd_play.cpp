@@ -44,8 +44,7 @@ void add_play_command(CLI::App& root, CommonOptions& options) {
   auto* cmd = root.add_subcommand("play", "Show a level running in a window (F1: panel)");
   cmd->add_option("level", play_options->level, "Level: a .json/.gltf/.glb path or a name")
       ->capture_default_str();
-  cmd->add_option("--integrator", play_options->integrator, "restir, baseline or reference")
-      ->capture_default_str();
+  add_integrator_option(*cmd, play_options->integrator)->capture_default_str();
   cmd->add_option("--script", play_options->script,
                   "Timed input events, e.g. 'frame 2 key W down' (see play_input.h)");
   cmd->add_flag("--panel", play_options->panel, "Start with the F1 panel open");

@@ -1,4 +1,4 @@
-// `lantern render LEVEL --integrator restir|baseline|reference [--frame K] [--frames N]
+// `lantern render LEVEL --integrator NAME (integrator_registry.h) [--frame K] [--frames N]
 // [--spp N] [--average] [--static] --out PATH` (CLI.md): steps the level's world K frames, then
 // renders N frames headless (objects, lights and camera animate unless --static) and writes them:
 // one .exr/.png file when one image results, else a directory of frame_NNNN.exr. --preset and
@@ -89,7 +89,7 @@ void write_images(const std::filesystem::path& out,
 
 void run_render(const RenderOptions& o, const CommonOptions& common) {
   lighting::OfflineRenderRequest request;
-  request.integrator.kind = lighting::parse_integrator(o.integrator);
+  (void)lighting::find_integrator(o.integrator);  // an unknown name is refused first
   request.first_frame = o.first_frame;
   request.animate = !o.still;
   const auto [width, height] = parse_size(common.size);
@@ -112,7 +112,7 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
       lighting::render_offline(device, shaders, level, request);
   write_images(o.out, result.images, o.exposure);
   log::info("{} {} frame(s) from frame {} at {}x{}: median {:.2f} ms/frame (GPU); wrote {}",
-            lighting::integrator_name(request.integrator.kind), request.frames, request.first_frame,
+            request.integrator.name, request.frames, request.first_frame,
             width, height, result.median_frame_ms(), o.out);
   // Median GPU ms per pass, in the order of the first frame.
   if (!result.pass_ms.empty()) {
@@ -152,7 +152,7 @@ void add_render_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("LEVEL", opts->level,
                   "Level: a .json/.gltf/.glb file or a name under content/levels/")
       ->required();
-  cmd->add_option("--integrator", opts->integrator, "restir|baseline|reference")->required();
+  add_integrator_option(*cmd, opts->integrator)->required();
   cmd->add_flag("--average", opts->average, "Write the mean of the frames as one image");
   cmd->add_option("--frame", opts->first_frame,
                   "Step the world K frames before the first rendered frame");

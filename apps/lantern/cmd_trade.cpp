@@ -51,6 +51,7 @@ struct TradeOptions {
 struct Config {
   std::string name;
   lighting::IntegratorConfig integrator;
+  bool baseline = false;  // the baseline row (the others are ReSTIR presets and variants)
 };
 
 struct Row {
@@ -105,7 +106,8 @@ std::vector<Config> configs(const TradeOptions& o, const CommonOptions& common,
     for (const std::string& kv : split(v.substr(colon + 1), ';')) c.settings.push_back(kv);
     out.push_back({v.substr(0, colon), integrator_config("restir", c, level)});
   }
-  if (!o.no_baseline) out.push_back({"baseline", integrator_config("baseline", common, level)});
+  if (!o.no_baseline)
+    out.push_back({"baseline", integrator_config("baseline", common, level), true});
   if (out.empty()) throw InputError("trade: nothing to compare (no presets, variants or baseline)");
   return out;
 }
@@ -178,12 +180,12 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   // Baseline at equal time: for each ReSTIR row, ceil-free round(restir ms / baseline ms) baseline
   // frames of the same instant averaged (what the baseline buys with the same GPU time).
   const auto baseline = std::find_if(rows.begin(), rows.end(), [](const Row& r) {
-    return r.config.integrator.kind == lighting::IntegratorKind::Baseline;
+    return r.config.baseline;
   });
   nlohmann::json equal_time = nlohmann::json::array();
   if (baseline != rows.end() && baseline->frame_ms > 0.0) {
     for (const Row& r : rows) {
-      if (r.config.integrator.kind != lighting::IntegratorKind::Restir) continue;
+      if (r.config.baseline) continue;
       const auto spp = static_cast<std::uint32_t>(
           std::clamp(std::lround(r.frame_ms / baseline->frame_ms), 1l, 256l));
       double sum = 0.0;
@@ -223,7 +225,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   std::string csv = "name,integrator,frame_ms,frame_wall_ms,relmse,pareto,settings\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
-    const char* integrator = lighting::integrator_name(r.config.integrator.kind);
+    const std::string& integrator = r.config.integrator.name;
     jrows.push_back({{"name", r.config.name},
                      {"integrator", integrator},
                      {"preset", r.config.integrator.preset},
@@ -270,7 +272,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   std::printf("%-14s %-9s %10s %12s %s\n", "config", "integr.", "frame ms", "relMSE", "pareto");
   for (std::size_t i = 0; i < rows.size(); ++i) {
     std::printf("%-14s %-9s %10.2f %12.4g %s\n", rows[i].config.name.c_str(),
-                lighting::integrator_name(rows[i].config.integrator.kind), rows[i].frame_ms,
+                rows[i].config.integrator.name.c_str(), rows[i].frame_ms,
                 rows[i].mean_relmse(), on_front(i) ? "*" : "");
   }
   for (const auto& e : equal_time) {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "engine/scene/level.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 
 namespace lantern::app {
 
@@ -53,6 +53,10 @@ void add_trade_command(CLI::App& root, CommonOptions& options);
 // skipped with a warning). InputError for a malformed --set or an unknown integrator.
 lighting::IntegratorConfig integrator_config(const std::string& integrator,
                                              const CommonOptions& common, const Level& level);
+
+// The --integrator option of a command: the registry's names in its help, and one line per
+// integrator (name and description) in the command's help footer.
+CLI::Option* add_integrator_option(CLI::App& cmd, std::string& integrator);
 
 // "640x360" -> (640, 360); InputError naming the flag otherwise.
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size);

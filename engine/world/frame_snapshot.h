@@ -73,6 +73,16 @@ struct FrameSnapshot {
   std::shared_ptr<const Level> level;  // meshes, materials and light parameters the ids index
 };
 
+// `s` held still: the same poses again, no motion since the previous frame, history kept (a static
+// scene in which only the random numbers change: what converged and bias renders average).
+inline FrameSnapshot frozen(const FrameSnapshot& s) {
+  FrameSnapshot f = s;
+  f.camera_cut = false;
+  f.prev_camera = f.camera;
+  for (SnapshotInstance& i : f.instances) i.prev_object_to_world = i.object_to_world;
+  return f;
+}
+
 // Resources the Extract system uses: the latest snapshot, and a pending camera-cut request.
 struct FrameSnapshotSlot {
   std::shared_ptr<const FrameSnapshot> latest;

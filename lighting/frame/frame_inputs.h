@@ -61,6 +61,11 @@ class Integrator {
   // Shadow (visibility) rays each of its passes traces per pixel, e.g. {"restir.shade", 1}:
   // what `lantern bench` divides by pass time for rays per second. Empty: not reported.
   virtual std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const { return {}; }
+  // Its settings as `--set KEY=VALUE` pairs: every key with its current value (empty: none).
+  virtual std::vector<std::pair<std::string, std::string>> describe_settings() const = 0;
+  // Changes settings from the next frame on; lantern::InputError naming a bad key or value, and
+  // then nothing changes. How play edits the running integrator without knowing its type.
+  virtual void apply_settings(const std::vector<std::pair<std::string, std::string>>& changes) = 0;
   [[nodiscard]] virtual runtime::graph::BufferHandle add_passes(
       runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
       runtime::graph::BufferHandle hdr) = 0;

@@ -1,4 +1,4 @@
-// HeadlessSession: World + FrameRenderer + HeadlessTarget + graph executor + GPU timer.
+// HeadlessSession: World + FrameRenderer + HeadlessTarget + FrameSession.
 #include "lighting/frame/headless_session.h"
 
 #include <fmt/format.h>
@@ -8,9 +8,6 @@
 #include "engine/core/error.h"
 #include "engine/world/world.h"
 #include "lighting/frame/frame_renderer.h"
-#include "runtime/gpu/gpu_timer.h"
-#include "runtime/graph/graph_executor.h"
-#include "runtime/graph/render_graph.h"
 #include "runtime/target/headless_target.h"
 
 namespace lantern::lighting {
@@ -24,10 +21,6 @@ double ms_since(Clock::time_point start) {
 
 }  // namespace
 
-bool is_delivery_pass(const std::string& name) {
-  return name == "frame.output" || name.rfind("target.", 0) == 0;
-}
-
 struct HeadlessSession::State {
   State(runtime::Device& device, runtime::ShaderLibrary& shaders,
         std::shared_ptr<const Level> level, const SessionOptions& o)
@@ -38,15 +31,12 @@ struct HeadlessSession::State {
         renderer(device, shaders, level, make_integrator(device, shaders, o.integrator), o.width,
                  o.height, o.seed),
         target(device, {.width = o.width, .height = o.height}),
-        executor(device),
-        timer(device, 256) {}
+        session(device, target, renderer) {}
 
   World world;
   FrameRenderer renderer;
   runtime::HeadlessTarget target;
-  runtime::graph::RenderGraph graph;
-  runtime::graph::GraphExecutor executor;
-  runtime::GpuTimer timer;
+  FrameSession session;
 };
 
 HeadlessSession::HeadlessSession(runtime::Device& device, runtime::ShaderLibrary& shaders,
@@ -76,31 +66,14 @@ void HeadlessSession::skip(std::uint32_t frames) {
   if (frames > 0) state_->world.request_camera_cut();
 }
 
-FrameTiming HeadlessSession::render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image) {
+FrameTiming HeadlessSession::render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image,
+                                    const FrameHooks& hooks) {
   State& s = *state_;
-  const auto start = Clock::now();
-  const auto frame = s.target.begin_frame();
-  if (!frame) throw RuntimeError("the headless target gave no frame");
-  s.timer.reset(frame->cmd);
-  s.graph.begin_frame();
-  const runtime::graph::BufferHandle hdr = s.renderer.add_frame(s.graph, snapshot);
   FrameTiming timing;
-  timing.scene_update_ms = s.renderer.scene().last_update().cpu_ms;
-  const runtime::graph::ImageHandle output =
-      s.renderer.add_output_pass(s.graph, hdr, s.target.import_output(s.graph, *frame), 0.0f);
-  s.target.add_delivery(s.graph, *frame, output);
-  s.graph.bake(s.executor.compile_options());
-  s.executor.record(s.graph, frame->cmd, &s.timer);
-  s.graph.end_frame();
-  s.target.end_frame(*frame);
-  timing.wall_ms = ms_since(start);
-  timing.step_ms = last_step_ms_;
-
-  for (const runtime::GpuTimer::Result& r : s.timer.resolve()) {
-    if (r.depth != 0) continue;
-    timing.passes.emplace_back(r.name, r.ms);
-    if (!is_delivery_pass(r.name)) timing.gpu_ms += r.ms;
+  if (!s.session.render(snapshot, hooks, &timing)) {
+    throw RuntimeError("the headless target gave no frame");
   }
+  timing.step_ms = last_step_ms_;
   for (const SystemTiming& t : s.world.scheduler().timings()) {
     timing.systems.emplace_back(std::string(t.name), t.ms);
   }

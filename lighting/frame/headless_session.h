@@ -1,7 +1,7 @@
-// HeadlessSession: a level running without a window — a World stepping it and a FrameRenderer
-// rendering its snapshots through the render graph into a HeadlessTarget, one frame per call,
-// with the frame's timings (GPU per pass, CPU per world system, wall time). What `lantern render`,
-// `bench`, `capture` and `trade` drive.
+// HeadlessSession: a level running without a window — a World stepping it and the FrameSession
+// (lighting/frame/frame_session.h) rendering its snapshots into a HeadlessTarget, one frame per
+// call, with the frame's timings (GPU per pass, CPU per world system, wall time). What
+// `lantern render`, `bench`, `capture`, `trade`, render_offline and the tests drive.
 //
 //   HeadlessSession session(device, shaders, level, {.integrator = config, .width = 320, ...});
 //   session.warm_up();
@@ -15,7 +15,8 @@
 #include <vector>
 
 #include "engine/world/frame_snapshot.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/frame/frame_session.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "runtime/image/image.h"
 
 namespace lantern {
@@ -40,17 +41,6 @@ struct SessionOptions {
   double fixed_dt = 1.0 / 60.0;      // simulated seconds per frame
 };
 
-struct FrameTiming {
-  // GPU ms of the frame's rendering passes (scene.upload, gbuffer, the integrator's); the
-  // delivery passes (frame.output, target.*) are in `passes` but not in this sum.
-  double gpu_ms = 0.0;
-  double wall_ms = 0.0;          // host wall time of render(): update, record, submit, wait
-  double scene_update_ms = 0.0;  // CPU part of it spent updating the scene from the snapshot
-  std::vector<std::pair<std::string, double>> passes;   // GPU ms per pass, in order
-  std::vector<std::pair<std::string, double>> systems;  // CPU ms per world system (last step)
-  double step_ms = 0.0;                                 // host wall time of the last step_world()
-};
-
 class HeadlessSession {
  public:
   // Loads nothing itself: `level` is already loaded. InputError on bad options or settings.
@@ -67,7 +57,8 @@ class HeadlessSession {
   void skip(std::uint32_t frames);
   // Renders `snapshot` (usually the last step_world()'s); with `image`, reads the linear radiance
   // back into it.
-  FrameTiming render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image = nullptr);
+  FrameTiming render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image = nullptr,
+                     const FrameHooks& hooks = {});
 
   World& world();
   FrameRenderer& renderer();
@@ -79,8 +70,5 @@ class HeadlessSession {
   std::unique_ptr<State> state_;
   double last_step_ms_ = 0.0;
 };
-
-// Passes that deliver the image rather than render it (excluded from FrameTiming::gpu_ms).
-bool is_delivery_pass(const std::string& name);
 
 }  // namespace lantern::lighting

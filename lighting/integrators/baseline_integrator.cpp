@@ -2,6 +2,9 @@
 // per shuffled 8x8 tile (shaders/integrators/baseline.comp).
 #include "lighting/integrators/baseline_integrator.h"
 
+#include <fmt/format.h>
+
+#include "engine/core/error.h"
 #include "integrators/baseline.h"
 #include "lighting/frame/tile_order.h"
 #include "lighting/integrators/gbuffer_shading_pass.h"
@@ -14,6 +17,14 @@ using runtime::graph::BufferHandle;
 BaselineIntegrator::BaselineIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders)
     : pipeline_(device, shaders.load("integrators/baseline.comp"),
                 runtime::ComputePipelineDesc{.name = "integrators.baseline", .constants = {}}) {}
+
+void BaselineIntegrator::check_settings(
+    const std::vector<std::pair<std::string, std::string>>& settings) {
+  if (settings.empty()) return;
+  throw InputError(fmt::format(
+      "--set {}: the baseline integrator has no settings (1 sample per pixel per frame)",
+      settings.front().first));
+}
 
 BufferHandle BaselineIntegrator::add_passes(runtime::graph::RenderGraph& graph,
                                             const FrameInputs& inputs, BufferHandle hdr) {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "engine/scene/level.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "lighting/scene/gpu_scene.h"
 #include "runtime/image/image.h"
 

@@ -10,8 +10,9 @@
 
 #include "engine/core/error.h"
 #include "engine/core/log.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "lighting/integrators/offline_render.h"
+#include "lighting/integrators/reference_integrator.h"
 #include "runtime/image/image_io.h"
 
 namespace lantern::lighting {
@@ -198,7 +199,7 @@ ReferenceImage reference_image(runtime::Device& device, runtime::ShaderLibrary& 
   }
 
   OfflineRenderRequest render;
-  render.integrator.kind = IntegratorKind::Reference;
+  render.integrator.name = ReferenceIntegrator::kName;
   render.integrator.spp = request.spp;
   render.integrator.settings = request.settings;
   render.width = request.width;

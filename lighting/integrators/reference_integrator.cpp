@@ -23,24 +23,25 @@ constexpr std::uint32_t kMaxSpp = 1u << 16;
 
 }  // namespace
 
+void apply_reference_setting(ReferenceSettings& settings, std::string_view key,
+                             std::string_view value) {
+  if (key != "spp" && key != "reference.spp") {
+    throw InputError(
+        fmt::format("--set {}: unknown setting for the reference integrator (known: spp)", key));
+  }
+  std::uint32_t n = 0;
+  const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
+  if (ec != std::errc() || end != value.data() + value.size() || n == 0 || n > kMaxSpp) {
+    throw InputError(fmt::format("--set {}={}: expected an integer in 1..{}", key, value, kMaxSpp));
+  }
+  settings.spp = n;
+}
+
 ReferenceSettings parse_reference_settings(
     const std::vector<std::pair<std::string, std::string>>& settings, std::uint32_t spp) {
   ReferenceSettings out;
   out.spp = gpu::kReferenceDefaultSpp;
-  for (const auto& [key, value] : settings) {
-    if (key == "reference.spp") {
-      std::uint32_t n = 0;
-      const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
-      if (ec != std::errc() || end != value.data() + value.size() || n == 0 || n > kMaxSpp) {
-        throw InputError(
-            fmt::format("--set reference.spp={}: expected an integer in 1..{}", value, kMaxSpp));
-      }
-      out.spp = n;
-    } else {
-      throw InputError(fmt::format(
-          "--set {}: unknown setting for the reference integrator (known: reference.spp)", key));
-    }
-  }
+  for (const auto& [key, value] : settings) apply_reference_setting(out, key, value);
   if (spp > kMaxSpp) {
     throw InputError(
         fmt::format("--spp {}: at most {} samples per pixel per frame (average "
@@ -63,6 +64,17 @@ ReferenceIntegrator::ReferenceIntegrator(runtime::Device& device, runtime::Shade
 }
 
 ReferenceIntegrator::~ReferenceIntegrator() = default;
+
+std::vector<std::pair<std::string, std::string>> ReferenceIntegrator::describe_settings() const {
+  return {{"spp", std::to_string(settings_.spp)}};
+}
+
+void ReferenceIntegrator::apply_settings(
+    const std::vector<std::pair<std::string, std::string>>& changes) {
+  ReferenceSettings next = settings_;
+  for (const auto& [key, value] : changes) apply_reference_setting(next, key, value);
+  settings_ = next;
+}
 
 BufferHandle ReferenceIntegrator::add_passes(runtime::graph::RenderGraph& graph,
                                              const FrameInputs& inputs, BufferHandle hdr) {

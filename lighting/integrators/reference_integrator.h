@@ -10,13 +10,14 @@
 // environment with probability env_power / (env_power + emitters' total power), kept current in
 // the env header by GpuScene, else the alias table (environment_map.h explains the power proxy).
 //
-// Settings (--set): reference.spp=N (samples per pixel per frame; IntegratorConfig.spp wins when
-// non-zero). Any other key is an InputError.
+// Settings (--set): spp=N, or reference.spp=N (samples per pixel per frame; IntegratorConfig.spp
+// wins when non-zero). Any other key is an InputError.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -30,7 +31,12 @@ struct ReferenceSettings {
   std::uint32_t spp = 64;  // samples per pixel per frame (gpu::kReferenceDefaultSpp)
 };
 
-// From --set pairs and --spp (0 = the default or reference.spp); InputError on unknown keys and
+// Sets one key ("spp", alias "reference.spp") of `settings`; InputError on unknown keys and bad
+// values.
+void apply_reference_setting(ReferenceSettings& settings, std::string_view key,
+                             std::string_view value);
+
+// From --set pairs and --spp (0 = the default or the spp setting); InputError on unknown keys and
 // bad values.
 ReferenceSettings parse_reference_settings(
     const std::vector<std::pair<std::string, std::string>>& settings, std::uint32_t spp);
@@ -41,8 +47,12 @@ class ReferenceIntegrator final : public Integrator {
                       const ReferenceSettings& settings);
   ~ReferenceIntegrator() override;
 
-  const char* name() const override { return "reference"; }
+  static constexpr const char* kName = "reference";
+
+  const char* name() const override { return kName; }
   void warm_up() override { pipeline_.warm_up(); }
+  std::vector<std::pair<std::string, std::string>> describe_settings() const override;
+  void apply_settings(const std::vector<std::pair<std::string, std::string>>& changes) override;
   // Writes every pixel of `hdr` (StorageWrite): the mean of this frame's spp samples.
   [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,

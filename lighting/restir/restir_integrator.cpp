@@ -32,6 +32,13 @@ void RestirIntegrator::warm_up() {
   runtime::warm_up(device_, pipelines);
 }
 
+void RestirIntegrator::apply_settings(
+    const std::vector<std::pair<std::string, std::string>>& changes) {
+  RestirSettings next = settings_;
+  for (const auto& [key, value] : changes) apply_setting(next, key, value);
+  settings_ = next;
+}
+
 std::vector<std::pair<std::string, double>> RestirIntegrator::shadow_rays_per_pixel() const {
   std::vector<std::pair<std::string, double>> rays{{"restir.shade", 1.0}};
   if (settings_.initial_visibility) rays.emplace_back("restir.initial", 1.0);
@@ -51,9 +58,7 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   if (s.initial_visibility) flags |= gpu::kRestirFlagInitialVisibility;
   p.lights = {inputs.light_count, inputs.previous_light_count, tile_stride(tiles),
               flags};
-  p.sampling = {s.light_candidates, s.bsdf_candidates,
-                static_cast<std::uint32_t>(s.bias_correction),
-                static_cast<std::uint32_t>(s.debug_view)};
+  p.sampling = {s.light_candidates, s.bsdf_candidates, s.bias_correction, s.debug_view};
   p.spatial = {s.neighbours, 0, s.disocclusion_boost, 2 * s.candidates()};
   const float scene_radius = inputs.scene != nullptr ? inputs.scene->scene_radius() : 1.0f;
   p.reuse = {s.radius, s.m_cap(), s.boiling_filter, scene_radius};

@@ -23,10 +23,12 @@ namespace lantern::lighting {
 
 class RestirIntegrator final : public Integrator {
  public:
+  static constexpr const char* kName = "restir";
+
   RestirIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
                    const RestirSettings& settings);
 
-  const char* name() const override { return "restir"; }
+  const char* name() const override { return kName; }
   void warm_up() override;
   // restir.shade traces one shadow ray per pixel; restir.initial one more with initial_visibility.
   std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const override;
@@ -35,8 +37,12 @@ class RestirIntegrator final : public Integrator {
                                                         runtime::graph::BufferHandle hdr) override;
 
   const RestirSettings& settings() const { return settings_; }
-  // Takes effect next frame; a change of the chain's shape keeps history (Final is always kept).
-  void set_settings(const RestirSettings& settings) { settings_ = settings; }
+  std::vector<std::pair<std::string, std::string>> describe_settings() const override {
+    return describe(settings_);
+  }
+  // Checked by apply_setting (restir_settings.h); takes effect next frame, and a change of the
+  // chain's shape keeps history (Final is always kept).
+  void apply_settings(const std::vector<std::pair<std::string, std::string>>& changes) override;
 
   // The push constants a frame with these inputs gets (the pass index and flags aside).
   static gpu::RestirPush make_push(const RestirSettings& settings, const FrameInputs& inputs);

@@ -5,9 +5,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <iterator>
 
 #include "engine/core/error.h"
-#include "shared/restir.h"
 
 namespace lantern::lighting {
 namespace {
@@ -48,58 +48,64 @@ bool parse_bool(std::string_view key, std::string_view value) {
       fmt::format("restir setting '{}': '{}' is not a boolean (on/off, true/false, 1/0)", key, value));
 }
 
-RestirBiasCorrection parse_bias(std::string_view key, std::string_view value) {
-  for (auto mode : {RestirBiasCorrection::None, RestirBiasCorrection::Balance,
-                    RestirBiasCorrection::Pairwise}) {
-    if (value == bias_correction_name(mode)) return mode;
-  }
-  throw InputError(fmt::format(
-      "restir setting '{}': '{}' is not a bias correction (none, balance or pairwise)", key, value));
-}
+constexpr RestirChoice kBiasCorrections[] = {
+    {"none", gpu::kBiasCorrectionNone,
+     "1/M weights: the fastest, but darkens contact shadows and edges where neighbours differ"},
+    {"balance", gpu::kBiasCorrectionBalance,
+     "unbiased, O(k^2) target evaluations: fine for a few neighbours when accuracy matters most"},
+    {"pairwise", gpu::kBiasCorrectionPairwise,
+     "unbiased, O(k) target evaluations: the default, and the cheaper unbiased one as "
+     "neighbours grow"},
+};
 
-RestirDebugView parse_debug_view(std::string_view key, std::string_view value) {
-  for (std::uint32_t v = 0; v < gpu::kRestirDebugCount; ++v) {
-    if (value == debug_view_name(static_cast<RestirDebugView>(v)))
-      return static_cast<RestirDebugView>(v);
+constexpr RestirChoice kDebugViews[] = {
+    {"none", gpu::kRestirDebugNone, "radiance: the image itself"},
+    {"w", gpu::kRestirDebugW,
+     "the final sample's contribution weight W: find where fireflies and dark holes come from"},
+    {"m", gpu::kRestirDebugM,
+     "the final reservoir's M over the M cap: see where history is short (disocclusions, cuts)"},
+    {"age", gpu::kRestirDebugAge,
+     "frames since the final sample was drawn: spot stale samples lingering (lower m_cap)"},
+    {"light", gpu::kRestirDebugLight,
+     "which light each pixel selected (hashed colour): see how far reuse spreads a light"},
+    {"disocclusion", gpu::kRestirDebugDisocclusion,
+     "restir.temporal's outcome (red: no history, green: reprojected, yellow: a retry matched): "
+     "tune depth_threshold and normal_threshold"},
+    {"motion", gpu::kRestirDebugMotion,
+     "the G-buffer's motion vectors: check reprojection when history smears"},
+};
+// Row i names constant i: every constant named once, and "next view" is the next row.
+constexpr bool rows_follow_constants(std::span<const RestirChoice> choices) {
+  for (std::size_t i = 0; i < choices.size(); ++i) {
+    if (choices[i].value != i) return false;
   }
-  throw InputError(fmt::format(
-      "restir setting '{}': '{}' is not a debug view (none, w, m, age, light, disocclusion, "
-      "motion)",
-      key, value));
+  return true;
+}
+static_assert(rows_follow_constants(kBiasCorrections));
+static_assert(rows_follow_constants(kDebugViews));
+static_assert(std::size(kDebugViews) == gpu::kRestirDebugCount, "a debug view lacks a name");
+
+std::uint32_t parse_choice(std::string_view key, std::string_view value,
+                           std::span<const RestirChoice> choices, const char* what) {
+  std::string names;
+  for (const RestirChoice& c : choices) {
+    if (value == c.name) return c.value;
+    names += fmt::format("{}{}", names.empty() ? "" : ", ", c.name);
+  }
+  throw InputError(
+      fmt::format("restir setting '{}': '{}' is not {} ({})", key, value, what, names));
 }
 
 std::string format_float(float f) { return fmt::format("{}", f); }
 
 }  // namespace
 
-const char* bias_correction_name(RestirBiasCorrection mode) {
-  switch (mode) {
-    case RestirBiasCorrection::None:
-      return "none";
-    case RestirBiasCorrection::Balance:
-      return "balance";
-    case RestirBiasCorrection::Pairwise:
-      return "pairwise";
-  }
-  return "?";
-}
+std::span<const RestirChoice> restir_bias_corrections() { return kBiasCorrections; }
+std::span<const RestirChoice> restir_debug_views() { return kDebugViews; }
 
-const char* debug_view_name(RestirDebugView view) {
-  switch (view) {
-    case RestirDebugView::None:
-      return "none";
-    case RestirDebugView::W:
-      return "w";
-    case RestirDebugView::M:
-      return "m";
-    case RestirDebugView::Age:
-      return "age";
-    case RestirDebugView::Light:
-      return "light";
-    case RestirDebugView::Disocclusion:
-      return "disocclusion";
-    case RestirDebugView::Motion:
-      return "motion";
+const char* choice_name(std::span<const RestirChoice> choices, std::uint32_t value) {
+  for (const RestirChoice& c : choices) {
+    if (c.value == value) return c.name;
   }
   return "?";
 }
@@ -114,7 +120,7 @@ RestirSettings restir_preset(std::string_view name) {
     s.spatial_passes = 1;
     s.neighbours = 2;
     s.disocclusion_boost = 2;
-    s.bias_correction = RestirBiasCorrection::None;
+    s.bias_correction = gpu::kBiasCorrectionNone;
     return s;
   }
   if (name == "quality") {
@@ -123,7 +129,7 @@ RestirSettings restir_preset(std::string_view name) {
     s.spatial_passes = 2;
     s.neighbours = 5;
     s.disocclusion_boost = 3;
-    s.bias_correction = RestirBiasCorrection::Balance;
+    s.bias_correction = gpu::kBiasCorrectionBalance;
     return s;
   }
   throw InputError(
@@ -148,7 +154,7 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
   } else if (key == "radius") {
     s.radius = parse_float(key, value, 1.0f, 256.0f);
   } else if (key == "bias_correction" || key == "bias") {
-    s.bias_correction = parse_bias(key, value);
+    s.bias_correction = parse_choice(key, value, kBiasCorrections, "a bias correction");
   } else if (key == "initial_visibility") {
     s.initial_visibility = parse_bool(key, value);
   } else if (key == "boiling_filter") {
@@ -158,7 +164,7 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
   } else if (key == "normal_threshold") {
     s.normal_threshold = parse_float(key, value, -1.0f, 1.0f);
   } else if (key == "debug_view") {
-    s.debug_view = parse_debug_view(key, value);
+    s.debug_view = parse_choice(key, value, kDebugViews, "a debug view");
   } else {
     std::string keys;
     for (const auto& [k, v] : describe(RestirSettings{})) keys += (keys.empty() ? "" : ", ") + k;
@@ -184,12 +190,12 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"neighbours", std::to_string(s.neighbours)},
       {"disocclusion_boost", std::to_string(s.disocclusion_boost)},
       {"radius", format_float(s.radius)},
-      {"bias_correction", bias_correction_name(s.bias_correction)},
+      {"bias_correction", choice_name(kBiasCorrections, s.bias_correction)},
       {"initial_visibility", flag(s.initial_visibility)},
       {"boiling_filter", format_float(s.boiling_filter)},
       {"depth_threshold", format_float(s.depth_threshold)},
       {"normal_threshold", format_float(s.normal_threshold)},
-      {"debug_view", debug_view_name(s.debug_view)},
+      {"debug_view", choice_name(kDebugViews, s.debug_view)},
   };
 }
 

@@ -4,23 +4,32 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
+
+#include "shared/reservoir_mis.h"
+#include "shared/restir.h"
 
 namespace lantern::lighting {
 
-enum class RestirBiasCorrection : std::uint32_t { None = 0, Balance = 1, Pairwise = 2 };
-
-enum class RestirDebugView : std::uint32_t {
-  None = 0,          // radiance
-  W = 1,             // unbiased contribution weight of the final sample
-  M = 2,             // confidence of the final reservoir relative to the M cap
-  Age = 3,           // frames since the final sample was drawn
-  Light = 4,         // which light was selected (hashed colour)
-  Disocclusion = 5,  // where restir.temporal found no history
-  Motion = 6,        // the G-buffer's motion vectors
+// One value of an enumerated setting (bias_correction, debug_view): its `--set` name, the shared
+// constant the shaders test, and when to choose it. The constants have one owner, the header
+// under shaders/shared/; these tables only name them.
+struct RestirChoice {
+  const char* name;
+  std::uint32_t value;
+  const char* when;  // one sentence: the panel's tooltip, the README's table
 };
+
+// bias_correction: the kBiasCorrection* constants (shaders/shared/reservoir_mis.h).
+std::span<const RestirChoice> restir_bias_corrections();
+// debug_view: the kRestirDebug* constants (shaders/shared/restir.h), in their order.
+std::span<const RestirChoice> restir_debug_views();
+// The choice whose value is `value` ("?" when there is none).
+const char* choice_name(std::span<const RestirChoice> choices, std::uint32_t value);
 
 struct RestirSettings {
   // Light candidates per pixel from the power alias table. Raise for many-light scenes with
@@ -49,7 +58,8 @@ struct RestirSettings {
   float radius = 16.0f;
   // How MIS weights combine reservoirs: none (1/M, fastest, darkens contact shadows), balance
   // (unbiased, O(k^2) target evaluations), pairwise (unbiased, O(k)).
-  RestirBiasCorrection bias_correction = RestirBiasCorrection::Pairwise;
+  // One of restir_bias_corrections() (a kBiasCorrection* constant).
+  std::uint32_t bias_correction = gpu::kBiasCorrectionPairwise;
   // Shadow-test the initial pick and drop it when occluded: fewer occluded samples spread by
   // reuse (much less noise in shadowed areas), one more ray per pixel, slight darkening bias.
   bool initial_visibility = false;
@@ -61,8 +71,8 @@ struct RestirSettings {
   float depth_threshold = 0.1f;
   // Minimum cosine between normals for reuse (0.9 = 25 degrees). Lower on bumpy surfaces.
   float normal_threshold = 0.9f;
-  // What hdr shows: radiance, or one of the debug views above.
-  RestirDebugView debug_view = RestirDebugView::None;
+  // What hdr shows: radiance, or one of restir_debug_views() (a kRestirDebug* constant).
+  std::uint32_t debug_view = gpu::kRestirDebugNone;
 
   // Current M: candidates drawn per pixel per frame.
   std::uint32_t candidates() const { return light_candidates + bsdf_candidates; }
@@ -75,8 +85,8 @@ std::vector<std::string> restir_preset_names();
 
 // Sets one knob by its key (the field names above: light_candidates, bsdf_candidates, temporal,
 // m_cap (alias of m_cap_factor), spatial_passes, neighbours, disocclusion_boost, radius,
-// bias_correction (none|balance|pairwise), initial_visibility, boiling_filter, depth_threshold,
-// normal_threshold, debug_view (none|w|m|age|light|disocclusion|motion)).
+// bias_correction (a name from restir_bias_corrections()), initial_visibility, boiling_filter,
+// depth_threshold, normal_threshold, debug_view (a name from restir_debug_views())).
 // lantern::InputError naming the key and the value for unknown keys, unparsable values and
 // values outside the allowed range (e.g. light_candidates = 0 or 10^9).
 void apply_setting(RestirSettings& settings, std::string_view key, std::string_view value);
@@ -87,8 +97,5 @@ RestirSettings make_restir_settings(
 
 // Every key with its current value ("key=value" lines), for logs and bench JSON.
 std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& settings);
-
-const char* bias_correction_name(RestirBiasCorrection mode);
-const char* debug_view_name(RestirDebugView view);
 
 }  // namespace lantern::lighting

@@ -1,5 +1,6 @@
 # Runs COMMAND (a ;-list) and checks its exit code is EXPECT_CODE and, if given, that its
-# stderr contains EXPECT_STDERR and that FILE exists (or, with NO_FILE, does not). JSON_POSITIVE:
+# stderr contains EXPECT_STDERR, its stdout EXPECT_STDOUT, and that FILE exists (or, with
+# NO_FILE, does not). JSON_POSITIVE:
 # comma-separated dotted paths into FILE (JSON) whose numbers must be > 0.
 separate_arguments(cmd UNIX_COMMAND "${COMMAND}")
 if(DEFINED FILE)
@@ -19,6 +20,12 @@ if(DEFINED EXPECT_STDERR)
   list(LENGTH lines count)
   if(count GREATER 1)
     message(FATAL_ERROR "expected one error line, got ${count}:\n${err}")
+  endif()
+endif()
+if(DEFINED EXPECT_STDOUT)
+  string(FIND "${out}" "${EXPECT_STDOUT}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "stdout lacks '${EXPECT_STDOUT}':\n${out}")
   endif()
 endif()
 if(DEFINED FILE AND NOT NO_FILE AND NOT EXISTS ${FILE})

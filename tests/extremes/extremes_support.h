@@ -31,7 +31,6 @@
 namespace lantern::extremes {
 
 using lighting::IntegratorConfig;
-using lighting::IntegratorKind;
 using Settings = std::vector<std::pair<std::string, std::string>>;
 
 struct Emitter {
@@ -152,15 +151,15 @@ inline void transform_level(Level& level, float s, const glm::vec3& t) {
   if (level.camera.zfar > 0.0f) level.camera.zfar *= s;
 }
 
-inline IntegratorConfig baseline() { return {.kind = IntegratorKind::Baseline}; }
+inline IntegratorConfig baseline() { return {.name = "baseline"}; }
 inline IntegratorConfig restir(Settings settings = {}) {
-  return {.kind = IntegratorKind::Restir, .settings = std::move(settings)};
+  return {.name = "restir", .settings = std::move(settings)};
 }
 inline IntegratorConfig reference(std::uint32_t spp = 16) {
-  return {.kind = IntegratorKind::Reference, .spp = spp};
+  return {.name = "reference", .spp = spp};
 }
 
-inline const char* name_of(const IntegratorConfig& c) { return lighting::integrator_name(c.kind); }
+inline const char* name_of(const IntegratorConfig& c) { return c.name.c_str(); }
 
 // The mean of `frames` frames of a static level (the first snapshot held still: temporal reuse
 // accumulates history), or each frame when `average` is false.

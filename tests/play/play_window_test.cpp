@@ -51,17 +51,24 @@ TEST(PlayWindow, ScriptedFlightPanelAndLights) {
   EXPECT_FALSE(r.frame_ms.empty());
 }
 
+// Number keys switch integrators (2 baseline, 3 progressive reference, 1 back to ReSTIR); V
+// steps the debug view: on the reference it waits in the panel (w), the switch to ReSTIR takes
+// it, and V on the running ReSTIR reaches it live (m).
 TEST(PlayWindow, IntegratorSwitchAndProgressiveReference) {
   if (!have_display()) FAIL() << "needs a display: run under xvfb-run (scripts/test.sh does)";
   PlayConfig c = small_config(
       "frame 1 key 2 press\nframe 3 key 3 press\nframe 3 key F1 press\n"
-      "frame 4 key V press\nframe 7 quit\n");
+      "frame 4 key V press\nframe 6 key 1 press\nframe 7 key V press\nframe 9 quit\n");
   c.width = 64;
   c.height = 36;
   const PlayReport r = run_play(c);
-  EXPECT_EQ(r.frames, 7u);
-  EXPECT_EQ(r.rebuilds, 2u);
-  EXPECT_EQ(r.integrator, "reference");
+  EXPECT_EQ(r.frames, 9u);
+  EXPECT_EQ(r.rebuilds, 3u);
+  EXPECT_EQ(r.integrator, "restir");
+  std::string view;
+  for (const auto& [key, value] : r.integrator_settings)
+    if (key == "debug_view") view = value;
+  EXPECT_EQ(view, "m");
   EXPECT_EQ(r.camera_travel, 0.0);
   EXPECT_EQ(r.validation_errors, 0u);
 }

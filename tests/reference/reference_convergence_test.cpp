@@ -67,7 +67,7 @@ TEST_F(ReferenceConvergenceTest, BaselineMeanConvergesToReferenceOnCornellLights
   EXPECT_EQ(again.image.pixels, reference.image.pixels);
 
   lighting::OfflineRenderRequest baseline;
-  baseline.integrator.kind = lighting::IntegratorKind::Baseline;
+  baseline.integrator.name = "baseline";
   baseline.width = request.width;
   baseline.height = request.height;
   baseline.frames = 1024;

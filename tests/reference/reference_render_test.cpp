@@ -89,7 +89,7 @@ struct Frames {
 Frames render_frames(runtime::Device& device, runtime::ShaderLibrary& shaders, const Level& level,
                      std::uint32_t frames, std::uint32_t spp) {
   OfflineRenderRequest request;
-  request.integrator.kind = lighting::IntegratorKind::Reference;
+  request.integrator.name = "reference";
   request.integrator.spp = spp;
   request.width = kSize;
   request.height = kSize;

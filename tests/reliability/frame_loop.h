@@ -1,7 +1,6 @@
-// A headless frame loop for the reliability tests: a World (with a chosen scheduler thread count)
-// steps the level and a FrameRenderer renders each snapshot through the render graph into a
-// HeadlessTarget, read back as linear radiance — the same composition as render_offline, with the
-// World's thread count exposed (render_offline always uses 1).
+// A headless frame loop for the reliability tests: the frames of a lighting::HeadlessSession (the
+// one frame loop, with the World's thread count exposed; render_offline always uses 1), each
+// read back as linear radiance.
 #pragma once
 
 #include <cstdint>
@@ -9,7 +8,7 @@
 #include <string>
 
 #include "engine/scene/level.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "runtime/image/image.h"
 
 namespace lantern::runtime {

@@ -118,9 +118,9 @@ void add_sun(Level& level, float irradiance) {
   level.lights.push_back(sun);
 }
 
-OfflineRenderRequest request_for(lighting::IntegratorKind kind, std::uint32_t frames) {
+OfflineRenderRequest request_for(const std::string& integrator, std::uint32_t frames) {
   OfflineRenderRequest request;
-  request.integrator.kind = kind;
+  request.integrator.name = integrator;
   request.width = kWidth;
   request.height = kHeight;
   request.frames = frames;
@@ -177,16 +177,14 @@ TEST_F(SceneEnvironmentTest, SkyPixelsShowTheEnvironmentAlongTheirRay) {
   add_sun(level, 2.0f);
   const lighting::EnvironmentDistribution env =
       lighting::EnvironmentDistribution::load(*level.environment);
-  for (const auto kind :
-       {lighting::IntegratorKind::Baseline, lighting::IntegratorKind::Reference}) {
-    OfflineRenderRequest request = request_for(kind, 1);
-    request.integrator.spp = kind == lighting::IntegratorKind::Reference ? 1u : 0u;
+  for (const std::string integrator : {"baseline", "reference"}) {
+    OfflineRenderRequest request = request_for(integrator, 1);
+    request.integrator.spp = integrator == "reference" ? 1u : 0u;
     const auto result = lighting::render_offline(device, shaders, level, request);
     ASSERT_EQ(result.images.size(), 1u);
     EXPECT_EQ(result.images[0].count_non_finite(), 0u);
     expect_sky_is_environment(
-        result.images[0], level, env,
-        kind == lighting::IntegratorKind::Baseline ? "baseline" : "reference");
+        result.images[0], level, env, integrator.c_str());
   }
 }
 
@@ -274,7 +272,7 @@ class SceneEnvironmentConvergenceTest : public SceneEnvironmentTest {
  protected:
   const runtime::ImageRGBA32F& reference() {
     if (reference_.width == 0) {
-      OfflineRenderRequest request = request_for(lighting::IntegratorKind::Reference, 4);
+      OfflineRenderRequest request = request_for("reference", 4);
       request.integrator.spp = 128;
       request.average = true;
       auto result = lighting::render_offline(device, shaders, level_, request);
@@ -295,7 +293,7 @@ class SceneEnvironmentConvergenceTest : public SceneEnvironmentTest {
 };
 
 TEST_F(SceneEnvironmentConvergenceTest, BaselineConvergesToReference) {
-  OfflineRenderRequest baseline = request_for(lighting::IntegratorKind::Baseline, 512);
+  OfflineRenderRequest baseline = request_for("baseline", 512);
   baseline.seed = 11;
   expect_converged(reference(), average(baseline), "baseline", 0.01, 0.04);
 }
@@ -317,7 +315,7 @@ TEST_F(SceneEnvironmentConvergenceTest, RestirSamplesTheEnvironmentAndConverges)
        {{"bias_correction", "balance"}, {"bsdf_candidates", "1"}}},
   };
   for (const Case& c : cases) {
-    OfflineRenderRequest restir = request_for(lighting::IntegratorKind::Restir, 64);
+    OfflineRenderRequest restir = request_for("restir", 64);
     restir.integrator.settings = c.settings;
     restir.seed = 5;
     expect_converged(reference(), average(restir), c.name, 0.03, 0.08);
@@ -341,12 +339,12 @@ class SceneEnvironmentSyncTest : public ::testing::Test {
 };
 
 void render_under_sync_validation(runtime::Device& device, runtime::ShaderLibrary& shaders,
-                                  lighting::IntegratorKind kind) {
+                                  const std::string& integrator) {
   Level level =
       env_level("sync.exr", glm::vec3(0.0f, 1.5f, 4.0f), glm::vec3(0.0f, 0.8f, 0.0f), true);
   add_sun(level, 3.0f);
-  OfflineRenderRequest request = request_for(kind, 3);
-  request.integrator.spp = kind == lighting::IntegratorKind::Reference ? 2u : 0u;
+  OfflineRenderRequest request = request_for(integrator, 3);
+  request.integrator.spp = integrator == "reference" ? 2u : 0u;
   request.animate = true;
   const auto result = lighting::render_offline(device, shaders, level, request);
   ASSERT_EQ(result.images.size(), 3u);
@@ -354,12 +352,12 @@ void render_under_sync_validation(runtime::Device& device, runtime::ShaderLibrar
 }
 
 TEST_F(SceneEnvironmentSyncTest, BaselineAndReferenceFramesHaveNoHazard) {
-  render_under_sync_validation(device, shaders, lighting::IntegratorKind::Baseline);
-  render_under_sync_validation(device, shaders, lighting::IntegratorKind::Reference);
+  render_under_sync_validation(device, shaders, "baseline");
+  render_under_sync_validation(device, shaders, "reference");
 }
 
 TEST_F(SceneEnvironmentSyncTest, RestirFramesHaveNoHazard) {
-  render_under_sync_validation(device, shaders, lighting::IntegratorKind::Restir);
+  render_under_sync_validation(device, shaders, "restir");
 }
 
 }  // namespace

@@ -198,13 +198,12 @@ class RestirBiasTest : public runtime::test::GpuTest {
     {
       RenderHarness h(device, shaders, level,
                       lighting::make_integrator(device, shaders,
-                                                {.kind = lighting::IntegratorKind::Reference,
-                                                 .spp = p.ref_spp}),
+                                                {.name = "reference", .spp = p.ref_spp}),
                       p.width, p.height, 7);
       FrameSnapshot s = first;
       for (std::uint32_t f = 0; f < p.ref_frames; ++f) {
         ref_images.push_back(h.render(s, f == 0 ? &gbuffer : nullptr));
-        s = test::frozen(s);
+        s = frozen(s);
       }
     }
     runtime::ImageAccumulator acc;
@@ -255,9 +254,12 @@ class RestirBiasTest : public runtime::test::GpuTest {
     for (std::uint32_t seed = 0; seed < p.seeds; ++seed) {
       RenderHarness h(device, shaders, level, test::make_restir(device, shaders, {}), p.width,
                       p.height, 1000u + seed);
+      const std::vector<std::pair<std::string, std::string>> balanced =
+          h.integrator().describe_settings();
       for (std::uint32_t chain = 0; chain < p.chains; ++chain) {
         for (std::size_t m = 0; m < modes.size(); ++m) {
-          h.restir().set_settings(lighting::make_restir_settings("balanced", modes[m]->settings));
+          h.integrator().apply_settings(balanced);  // the preset, then this mode's changes
+          h.integrator().apply_settings(modes[m]->settings);
           FrameSnapshot s = first;
           s.camera_cut = true;
           double sum = 0.0;
@@ -268,7 +270,7 @@ class RestirBiasTest : public runtime::test::GpuTest {
             const double v = lit_sum(img, mask);
             sum += v;
             if (trace) std::printf(" %+.2f", 100.0 * (v / ref - 1.0));
-            s = test::frozen(s);
+            s = frozen(s);
           }
           if (trace) std::printf(" <- %s seed %u run %u\n", modes[m]->name, seed, chain);
           errors[m].push_back(sum / p.frames / ref - 1.0);

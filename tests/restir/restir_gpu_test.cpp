@@ -42,7 +42,7 @@ class RestirGpuTest : public runtime::test::GpuTest {
     FrameSnapshot s = snapshot;
     for (std::uint32_t f = 0; f < frames; ++f) {
       acc.add(h.render(s));
-      s = test::frozen(s);
+      s = frozen(s);
     }
     return acc.mean();
   }
@@ -198,7 +198,7 @@ TEST_F(RestirGpuTest, DisocclusionRecoversWithinFourFrames) {
   std::vector<FrameSnapshot> frames;
   FrameSnapshot s = first;
   for (int f = 0; f < kFrames; ++f) {
-    if (f > 0) s = test::frozen(s);
+    if (f > 0) s = frozen(s);
     if (f == kT0) {
       s.instances[box].object_to_world =
           glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 50.0f)) *
@@ -206,7 +206,7 @@ TEST_F(RestirGpuTest, DisocclusionRecoversWithinFourFrames) {
     }
     frames.push_back(s);
   }
-  const ImageRGBA32F reference = baseline_mean(cornell(), test::frozen(frames.back()), 512);
+  const ImageRGBA32F reference = baseline_mean(cornell(), frozen(frames.back()), 512);
 
   RenderHarness run(device, shaders, cornell(), test::make_restir(device, shaders, {}), kW, kH);
   std::vector<ImageRGBA32F> images;
@@ -270,7 +270,7 @@ TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
     FrameSnapshot s = first;
     std::vector<ImageRGBA32F> images;
     for (int f = 0; f < 10; ++f) {
-      if (f > 0) s = test::frozen(s);
+      if (f > 0) s = frozen(s);
       if (f == 6) s.lights.erase(s.lights.begin());  // remove A (stable id 0)
       images.push_back(run.render(s));
     }
@@ -317,7 +317,7 @@ TEST_F(RestirGpuTest, CameraCutUsesNoHistory) {
   for (int f = 0; f < 4; ++f) {
     const ImageRGBA32F img = debug.render(s);
     if (f == 3) reused = 1.0 - no_history_fraction(img);
-    s = test::frozen(s);
+    s = frozen(s);
   }
   s.camera_cut = true;
   const double after_cut = no_history_fraction(debug.render(s));
@@ -428,7 +428,7 @@ TEST_F(RestirGpuTest, NonFiniteLightsNeverReachReservoirsOrOutput) {
     for (int k = 0; k < 4; ++k) {
       const ImageRGBA32F img = run.render(f);
       ASSERT_TRUE(test::all_finite(img)) << view << " frame " << k;
-      f = test::frozen(f);
+      f = frozen(f);
     }
   }
   RenderHarness bad_run(device, shaders, level, test::make_restir(device, shaders, {}), kW, kH);
@@ -438,8 +438,8 @@ TEST_F(RestirGpuTest, NonFiniteLightsNeverReachReservoirsOrOutput) {
   for (int k = 0; k < 4; ++k) {
     bad_img = bad_run.render(fb);
     good_img = good_run.render(fg);
-    fb = test::frozen(fb);
-    fg = test::frozen(fg);
+    fb = frozen(fb);
+    fg = frozen(fg);
   }
   const double bad_mean = runtime::mean_rgb(bad_img);
   const double good_mean = runtime::mean_rgb(good_img);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "engine/core/error.h"
 
 namespace lantern::lighting {
@@ -25,9 +27,9 @@ TEST(RestirSettings, PresetsDiffer) {
   const RestirSettings quality = restir_preset("quality");
   EXPECT_LT(fast.light_candidates, balanced.light_candidates);
   EXPECT_LT(balanced.light_candidates, quality.light_candidates);
-  EXPECT_EQ(fast.bias_correction, RestirBiasCorrection::None);
-  EXPECT_EQ(balanced.bias_correction, RestirBiasCorrection::Pairwise);
-  EXPECT_EQ(quality.bias_correction, RestirBiasCorrection::Balance);
+  EXPECT_EQ(fast.bias_correction, gpu::kBiasCorrectionNone);
+  EXPECT_EQ(balanced.bias_correction, gpu::kBiasCorrectionPairwise);
+  EXPECT_EQ(quality.bias_correction, gpu::kBiasCorrectionBalance);
   EXPECT_THROW(restir_preset("ultra"), InputError);
   EXPECT_EQ(balanced.m_cap(), 20.0f * balanced.candidates()) << "default M cap: 20x current M";
 }
@@ -49,9 +51,9 @@ TEST(RestirSettings, AppliesValues) {
                    {"radius", "8.5"}, {"debug_view", "disocclusion"}, {"m_cap", "5"}});
   EXPECT_EQ(s.light_candidates, 32u);
   EXPECT_FALSE(s.temporal);
-  EXPECT_EQ(s.bias_correction, RestirBiasCorrection::Balance);
+  EXPECT_EQ(s.bias_correction, gpu::kBiasCorrectionBalance);
   EXPECT_FLOAT_EQ(s.radius, 8.5f);
-  EXPECT_EQ(s.debug_view, RestirDebugView::Disocclusion);
+  EXPECT_EQ(s.debug_view, gpu::kRestirDebugDisocclusion);
   EXPECT_FLOAT_EQ(s.m_cap(), 5.0f * 32.0f);
 }
 
@@ -83,6 +85,44 @@ TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
       EXPECT_NE(message.find(value), std::string::npos) << key << "=" << value << ": " << message;
     }
   }
+}
+
+// The bias-correction and debug-view tables name the shared constants the shaders test: every
+// constant once, each name parsing to its constant and described back, each with its sentence.
+TEST(RestirSettings, ChoiceTablesNameEverySharedConstantOnce) {
+  struct Table {
+    const char* key;
+    std::span<const RestirChoice> rows;
+    std::set<std::uint32_t> constants;
+  };
+  const Table tables[] = {
+      {"bias_correction",
+       restir_bias_corrections(),
+       {gpu::kBiasCorrectionNone, gpu::kBiasCorrectionBalance, gpu::kBiasCorrectionPairwise}},
+      {"debug_view",
+       restir_debug_views(),
+       {gpu::kRestirDebugNone, gpu::kRestirDebugW, gpu::kRestirDebugM, gpu::kRestirDebugAge,
+        gpu::kRestirDebugLight, gpu::kRestirDebugDisocclusion, gpu::kRestirDebugMotion}},
+  };
+  EXPECT_EQ(tables[1].constants.size(), gpu::kRestirDebugCount);
+  for (const Table& t : tables) {
+    std::set<std::uint32_t> named;
+    for (const RestirChoice& row : t.rows) {
+      EXPECT_TRUE(named.insert(row.value).second) << t.key << ": " << row.value << " named twice";
+      EXPECT_GT(std::string_view(row.when).size(), 20u) << t.key << "=" << row.name;
+      RestirSettings s;
+      apply_setting(s, t.key, row.name);
+      EXPECT_EQ(std::string_view(t.key) == "debug_view" ? s.debug_view : s.bias_correction,
+                row.value)
+          << t.key << "=" << row.name;
+      bool described = false;
+      for (const auto& [key, value] : describe(s)) described |= key == t.key && value == row.name;
+      EXPECT_TRUE(described) << t.key << "=" << row.name;
+    }
+    EXPECT_EQ(named, t.constants) << t.key;
+  }
+  EXPECT_NE(error_of("debug_view", "normals").find("disocclusion"), std::string::npos)
+      << "the message lists the valid views";
 }
 
 }  // namespace

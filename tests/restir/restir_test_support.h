@@ -17,7 +17,8 @@
 #include "engine/level/level_loader.h"
 #include "engine/world/world.h"
 #include "lighting/frame/frame_renderer.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/frame/frame_session.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "lighting/restir/restir_integrator.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/gpu/gpu_timer.h"
@@ -46,26 +47,24 @@ class RenderHarness {
       : device_(device),
         renderer_(device, shaders, std::move(level), std::move(integrator), width, height, seed),
         target_(device, {.width = width, .height = height}),
-        executor_(device),
-        timer_(device, 64) {
+        session_(device, target_, renderer_) {
     renderer_.warm_up();
   }
 
-  // One frame; with `gbuffer`, its ids, motion and emission images come back too.
+  // One frame (the frame session's passes); with `gbuffer`, its ids, motion and emission images
+  // come back too (a readback pass in the HDR hook, after the G-buffer is written).
   runtime::ImageRGBA32F render(const FrameSnapshot& snapshot, GBufferReadback* gbuffer = nullptr) {
-    const auto frame = target_.begin_frame();
-    if (!frame) throw RuntimeError("harness: the headless target gave no frame");
-    timer_.reset(frame->cmd);
-    graph_.begin_frame();
-    const runtime::graph::BufferHandle hdr = renderer_.add_frame(graph_, snapshot);
-    if (gbuffer != nullptr) add_gbuffer_readback();
-    const runtime::graph::ImageHandle output =
-        renderer_.add_output_pass(graph_, hdr, target_.import_output(graph_, *frame), 0.0f);
-    target_.add_delivery(graph_, *frame, output);
-    graph_.bake(executor_.compile_options());
-    executor_.record(graph_, frame->cmd, &timer_);
-    graph_.end_frame();
-    target_.end_frame(*frame);
+    lighting::FrameHooks hooks;
+    if (gbuffer != nullptr) {
+      hooks.hdr = [this](runtime::graph::RenderGraph&, runtime::graph::BufferHandle hdr) {
+        add_gbuffer_readback();
+        return hdr;
+      };
+    }
+    lighting::FrameTiming timing;
+    if (!session_.render(snapshot, hooks, &timing)) {
+      throw RuntimeError("harness: the headless target gave no frame");
+    }
     if (gbuffer != nullptr) {
       const std::size_t n = std::size_t{renderer_.width()} * renderer_.height();
       gbuffer->ids.resize(n);
@@ -75,17 +74,13 @@ class RenderHarness {
       std::memcpy(gbuffer->motion.data(), readback_[1].mapped(), n * sizeof(glm::vec4));
       std::memcpy(gbuffer->emission.data(), readback_[2].mapped(), n * sizeof(glm::vec4));
     }
-    pass_ms_.clear();
-    for (const runtime::GpuTimer::Result& r : timer_.resolve()) {
-      if (r.depth == 0) pass_ms_.emplace_back(r.name, r.ms);
-    }
+    pass_ms_ = std::move(timing.passes);
     return target_.read_output();
   }
 
   lighting::FrameRenderer& renderer() { return renderer_; }
-  lighting::RestirIntegrator& restir() {
-    return dynamic_cast<lighting::RestirIntegrator&>(renderer_.integrator());
-  }
+  // The running integrator; its settings through describe_settings / apply_settings.
+  lighting::Integrator& integrator() { return renderer_.integrator(); }
   const std::vector<std::pair<std::string, double>>& pass_ms() const { return pass_ms_; }
 
  private:
@@ -109,7 +104,8 @@ class RenderHarness {
       runtime::graph::BufferHandle buffers[kImages];
     };
     const std::uint32_t width = renderer_.width(), height = renderer_.height();
-    graph_.add_pass<Copy>(
+    runtime::graph::RenderGraph& graph = session_.graph();
+    graph.add_pass<Copy>(
         "test.gbuffer_readback", runtime::graph::PassKind::Transfer,
         [&](runtime::graph::PassBuilder& b, Copy& d) {
           runtime::graph::ImportInfo host_read;
@@ -120,7 +116,7 @@ class RenderHarness {
           d.images[2] = g.emission_metallic;
           for (int i = 0; i < kImages; ++i) {
             b.read(d.images[i], runtime::graph::Access::TransferSrc);
-            d.buffers[i] = b.write(graph_.import_buffer(readback_[i].name(), readback_[i].handle(),
+            d.buffers[i] = b.write(graph.import_buffer(readback_[i].name(), readback_[i].handle(),
                                                         {readback_[i].size()}, host_read),
                                    runtime::graph::Access::TransferDst);
           }
@@ -143,31 +139,21 @@ class RenderHarness {
   std::vector<runtime::Buffer> readback_;
   lighting::FrameRenderer renderer_;
   runtime::HeadlessTarget target_;
-  runtime::graph::RenderGraph graph_;
-  runtime::graph::GraphExecutor executor_;
-  runtime::GpuTimer timer_;
+  lighting::FrameSession session_;
   std::vector<std::pair<std::string, double>> pass_ms_;
 };
 
 inline std::unique_ptr<lighting::Integrator> make_restir(
     runtime::Device& device, runtime::ShaderLibrary& shaders,
     std::vector<std::pair<std::string, std::string>> settings, std::string preset = "balanced") {
-  return std::make_unique<lighting::RestirIntegrator>(
-      device, shaders, lighting::make_restir_settings(preset, settings));
+  return lighting::make_integrator(
+      device, shaders,
+      {.name = "restir", .preset = std::move(preset), .settings = std::move(settings)});
 }
 
 inline std::unique_ptr<lighting::Integrator> make_baseline(runtime::Device& device,
                                                            runtime::ShaderLibrary& shaders) {
-  return lighting::make_integrator(device, shaders, {.kind = lighting::IntegratorKind::Baseline});
-}
-
-// The same poses again: no motion since the previous frame, history kept.
-inline FrameSnapshot frozen(const FrameSnapshot& s) {
-  FrameSnapshot f = s;
-  f.camera_cut = false;
-  f.prev_camera = f.camera;
-  for (SnapshotInstance& i : f.instances) i.prev_object_to_world = i.object_to_world;
-  return f;
+  return lighting::make_integrator(device, shaders, {.name = "baseline"});
 }
 
 // A level from JSON text (written to a temporary file and loaded like any level).

@@ -5,14 +5,16 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <span>
 #include <vector>
+
+#include "lighting/restir/restir_integrator.h"
 
 namespace lantern::app {
 namespace {
 
-using lighting::IntegratorKind;
-using lighting::RestirBiasCorrection;
-using lighting::RestirDebugView;
+using lighting::IntegratorEntry;
+using lighting::RestirChoice;
 
 std::string fmt_value(float value, const char* unit) {
   return fmt::format("{:.2f} {}", value, unit);
@@ -34,11 +36,19 @@ void push_sample(std::deque<float>& series, float value) {
   while (series.size() > kGraphFrames) series.pop_front();
 }
 
-const char* play_keys_help() {
-  return "Right mouse + move: look   WASD: fly   Q/E: down/up   Shift: faster   wheel: speed\n"
-         "P: back on the camera path   F: flashlight   L: level lights   K: emissive surfaces\n"
-         "Space: spawn a light where you look   C: clear spawned lights\n"
-         "1/2/3: restir/baseline/reference   V: next debug view   F1: panel   Esc: quit";
+std::string play_keys_help() {
+  std::string keys, names;
+  const std::span<const IntegratorEntry> list = lighting::integrators();
+  for (std::size_t i = 0; i < list.size() && i < kIntegratorKeys; ++i) {
+    keys += fmt::format("{}{}", i == 0 ? "" : "/", i + 1);
+    names += fmt::format("{}{}", i == 0 ? "" : "/", list[i].name);
+  }
+  return fmt::format(
+      "Right mouse + move: look   WASD: fly   Q/E: down/up   Shift: faster   wheel: speed\n"
+      "P: back on the camera path   F: flashlight   L: level lights   K: emissive surfaces\n"
+      "Space: spawn a light where you look   C: clear spawned lights\n"
+      "{}: {}   V: next debug view   F1: panel   Esc: quit",
+      keys, names);
 }
 
 void draw_panel(PanelState& s) {
@@ -59,23 +69,25 @@ void draw_panel(PanelState& s) {
   }
 
   if (ImGui::CollapsingHeader("Integrator", ImGuiTreeNodeFlags_DefaultOpen)) {
-    int kind = s.integrator == IntegratorKind::Restir     ? 0
-               : s.integrator == IntegratorKind::Baseline ? 1
-                                                          : 2;
-    if (ImGui::Combo("integrator", &kind, "restir\0baseline\0reference (progressive)\0")) {
-      s.integrator = kind == 0   ? IntegratorKind::Restir
-                     : kind == 1 ? IntegratorKind::Baseline
-                                 : IntegratorKind::Reference;
-      s.rebuild = true;
+    if (ImGui::BeginCombo("integrator", s.integrator.c_str())) {
+      for (const IntegratorEntry& entry : lighting::integrators()) {
+        const bool current = s.integrator == entry.name;
+        if (ImGui::Selectable(entry.name, current) && !current) {
+          s.integrator = entry.name;
+          s.rebuild = true;
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", entry.description);
+      }
+      ImGui::EndCombo();
     }
-    if (s.integrator != IntegratorKind::Restir) {
+    if (lighting::find_integrator(s.integrator).progressive) {
       ImGui::Checkbox("accumulate while still", &s.progressive);
       ImGui::SameLine();
       ImGui::Text("%u frames", s.accumulated);
     }
   }
 
-  if (s.integrator == IntegratorKind::Restir &&
+  if (s.integrator == lighting::RestirIntegrator::kName &&
       ImGui::CollapsingHeader("ReSTIR", ImGuiTreeNodeFlags_DefaultOpen)) {
     const std::vector<std::string> presets = lighting::restir_preset_names();
     int preset = 0;
@@ -106,28 +118,33 @@ void draw_panel(PanelState& s) {
         c = true;
       }
     };
+    // A combo over a table of named shared constants, each row's sentence as its tooltip.
+    auto choice = [&](const char* label, std::uint32_t& v, std::span<const RestirChoice> rows) {
+      if (!ImGui::BeginCombo(label, lighting::choice_name(rows, v))) return;
+      for (const RestirChoice& row : rows) {
+        if (ImGui::Selectable(row.name, row.value == v) && row.value != v) {
+          v = row.value;
+          c = true;
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", row.when);
+      }
+      ImGui::EndCombo();
+    };
+    constexpr int kMaxNeighbours = static_cast<int>(gpu::kRestirMaxNeighbours);
     slider_u("light candidates", r.light_candidates, 1, 64);
     slider_u("BSDF candidates", r.bsdf_candidates, 0, 8);
     c |= ImGui::Checkbox("temporal reuse", &r.temporal);
     slider_f("M cap factor", r.m_cap_factor, 1.0f, 100.0f, "%.1f");
-    slider_u("spatial passes", r.spatial_passes, 0, 4);
-    slider_u("neighbours", r.neighbours, 0, 16);
-    slider_u("disocclusion boost", r.disocclusion_boost, 0, 16);
+    slider_u("spatial passes", r.spatial_passes, 0, static_cast<int>(gpu::kRestirMaxSpatialPasses));
+    slider_u("neighbours", r.neighbours, 0, kMaxNeighbours);
+    slider_u("disocclusion boost", r.disocclusion_boost, 0, kMaxNeighbours);
     slider_f("radius (px)", r.radius, 1.0f, 64.0f, "%.1f");
-    int bias = static_cast<int>(r.bias_correction);
-    if (ImGui::Combo("bias correction", &bias, "none\0balance\0pairwise\0")) {
-      r.bias_correction = static_cast<RestirBiasCorrection>(bias);
-      c = true;
-    }
+    choice("bias correction", r.bias_correction, lighting::restir_bias_corrections());
     c |= ImGui::Checkbox("initial visibility", &r.initial_visibility);
     slider_f("boiling filter", r.boiling_filter, 0.0f, 1.0f, "%.2f");
     slider_f("depth threshold", r.depth_threshold, 0.001f, 1.0f, "%.3f");
     slider_f("normal threshold", r.normal_threshold, -1.0f, 1.0f, "%.2f");
-    int view = static_cast<int>(r.debug_view);
-    if (ImGui::Combo("debug view", &view, "radiance\0W\0M\0age\0light\0disocclusion\0motion\0")) {
-      r.debug_view = static_cast<RestirDebugView>(view);
-      c = true;
-    }
+    choice("debug view", r.debug_view, lighting::restir_debug_views());
     if (c) s.settings_changed = true;
   }
 
@@ -159,7 +176,7 @@ void draw_panel(PanelState& s) {
       ImGui::PopStyleColor();
     }
   }
-  if (ImGui::CollapsingHeader("Keys")) ImGui::TextUnformatted(play_keys_help());
+  if (ImGui::CollapsingHeader("Keys")) ImGui::TextUnformatted(play_keys_help().c_str());
   ImGui::End();
 }
 

@@ -9,22 +9,23 @@
 #include <map>
 #include <string>
 
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
 #include "lighting/restir/restir_settings.h"
 
 namespace lantern::app {
 
 inline constexpr std::size_t kGraphFrames = 120;
+inline constexpr std::size_t kIntegratorKeys = 9;  // keys 1..9: the registry's first nine
 
 struct PanelState {
   // Edited by the panel.
-  lighting::IntegratorKind integrator = lighting::IntegratorKind::Restir;
+  std::string integrator;  // a registry name (lighting/integrators/integrator_registry.h)
   std::string preset = "balanced";
   lighting::RestirSettings restir;
-  bool progressive = true;  // accumulate while still (baseline, reference)
+  bool progressive = true;  // accumulate while still (integrators whose entry is progressive)
   // Requests (set by the panel, cleared by the session).
   bool rebuild = false;           // integrator or preset changed: new integrator
-  bool settings_changed = false;  // a ReSTIR knob changed: set_settings
+  bool settings_changed = false;  // a ReSTIR knob changed: Integrator::apply_settings
   bool toggle_flashlight = false, toggle_level_lights = false, toggle_emissive = false;
   bool spawn_light = false, clear_lights = false, resume_path = false;
   // Shown by the panel.
@@ -49,7 +50,7 @@ void push_sample(std::deque<float>& series, float value);
 // Draws the panel (between ImGui::NewFrame and Render).
 void draw_panel(PanelState& state);
 
-// The key list (panel, --help text, README).
-const char* play_keys_help();
+// The key list (panel, log, README); the number keys 1..9 pick the registry's integrators in order.
+std::string play_keys_help();
 
 }  // namespace lantern::app

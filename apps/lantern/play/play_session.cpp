@@ -1,10 +1,11 @@
 // The play loop. Per frame:
 //   poll window events + script events -> PlayInput; shader sources polled for hot reload;
 //   begin_frame (skipped while minimised); follow the render size; keys and the F1 panel; fly
-//   camera input into the World; world.step(); graph: scene.upload -> gbuffer -> integrator
-//   [-> play.accumulate while still, baseline/reference] -> frame.output (filmic) [-> play.ui ->
-//   play.ui_composite] -> target.present. GPU timestamps per pass (one GpuTimer per frame slot,
-//   read back when the slot comes round again) feed the panel's graphs.
+//   camera input into the World; world.step(); the frame through lighting::FrameSession (the one
+//   frame loop): scene.upload -> gbuffer -> integrator [-> play.accumulate while still, a
+//   progressive integrator: its HDR hook] -> frame.output (filmic) [-> play.ui ->
+//   play.ui_composite: its output hook] -> target.present. The session's GPU timestamps per pass
+//   (read back when the frame slot comes round again) feed the panel's graphs.
 #include "apps/lantern/play/play_session.h"
 
 #include <GLFW/glfw3.h>
@@ -14,6 +15,9 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <span>
+#include <string_view>
+#include <utility>
 
 #include "apps/lantern/play/play_lights.h"
 #include "apps/lantern/play/play_panel.h"
@@ -22,20 +26,19 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "engine/level/level_loader.h"
+#include "engine/perf/statistics.h"
 #include "engine/world/components.h"
 #include "engine/world/fly_camera.h"
 #include "engine/world/world.h"
 #include "lighting/frame/frame_renderer.h"
+#include "lighting/frame/frame_session.h"
 #include "lighting/integrators/auto_exposure.h"
 #include "lighting/integrators/offline_render.h"
-#include "lighting/restir/restir_integrator.h"
 #include "play/play_ui.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/bindings.h"
 #include "runtime/gpu/compute_pipeline.h"
-#include "runtime/gpu/gpu_timer.h"
 #include "runtime/gpu/shader_library.h"
-#include "runtime/graph/graph_executor.h"
 #include "runtime/graph/render_graph.h"
 #include "runtime/target/window_target.h"
 #include "runtime/window/presentation.h"
@@ -55,6 +58,7 @@ constexpr float kLookRadiansPerUnit = 0.004f;
 // The renderer and everything built from one ShaderLibrary: replaced as a whole on an integrator
 // switch or a shader reload (the library outlives what was built from it).
 struct RenderBundle {
+  const lighting::IntegratorEntry* integrator = nullptr;  // the registry row the renderer runs
   std::unique_ptr<runtime::ShaderLibrary> shaders;
   std::unique_ptr<lighting::FrameRenderer> renderer;
   std::unique_ptr<runtime::ComputePipeline> accumulate;
@@ -63,11 +67,11 @@ struct RenderBundle {
 lighting::IntegratorConfig config_for(const PanelState& panel,
                                       const lighting::IntegratorConfig& base) {
   lighting::IntegratorConfig c;
-  c.kind = panel.integrator;
+  c.name = panel.integrator;
   c.preset = panel.preset;
-  if (c.kind == lighting::IntegratorKind::Restir) {
+  if (c.name == lighting::RestirIntegrator::kName) {
     c.settings = lighting::describe(panel.restir);
-  } else if (c.kind == base.kind) {
+  } else if (c.name == base.name) {
     c.settings = base.settings;
     c.spp = base.spp;
   }
@@ -79,6 +83,7 @@ RenderBundle build_bundle(runtime::Device& device, const ShaderReloader& reloade
                           const lighting::IntegratorConfig& config, std::uint32_t width,
                           std::uint32_t height, std::uint32_t seed) {
   RenderBundle b;
+  b.integrator = &lighting::find_integrator(config.name);
   b.shaders = reloader.make_library();
   b.renderer = std::make_unique<lighting::FrameRenderer>(
       device, *b.shaders, level, lighting::make_integrator(device, *b.shaders, config), width,
@@ -177,9 +182,9 @@ PlayReport run_play(const PlayConfig& config) {
 
   PanelState panel;
   panel.level = config.level;
-  panel.integrator = config.integrator.kind;
+  panel.integrator = config.integrator.name;
   panel.preset = config.integrator.preset;
-  if (panel.integrator == lighting::IntegratorKind::Restir)
+  if (panel.integrator == lighting::RestirIntegrator::kName)
     panel.restir =
         lighting::make_restir_settings(config.integrator.preset, config.integrator.settings);
   else
@@ -200,12 +205,7 @@ PlayReport run_play(const PlayConfig& config) {
   enable_fly_camera(world);
   PlayLights lights(world, slots);
 
-  graph::RenderGraph render_graph;
-  graph::GraphExecutor executor(device);
-  std::vector<std::unique_ptr<runtime::GpuTimer>> timers;
-  std::vector<bool> timer_used(target.frames_in_flight(), false);
-  for (std::uint32_t i = 0; i < target.frames_in_flight(); ++i)
-    timers.push_back(std::make_unique<runtime::GpuTimer>(device, 256));
+  lighting::FrameSession session(device, target, *bundle.renderer);
 
   InputScript script = config.script;
   PlayInput before;
@@ -213,15 +213,16 @@ PlayReport run_play(const PlayConfig& config) {
   bool drop_history = false;
   auto last_wall = Clock::now();
   log::info("play: {} at {}x{}, {} integrator, exposure {:.3g}; keys:\n{}", config.level, width,
-            height, lighting::integrator_name(panel.integrator), exposure, play_keys_help());
+            height, panel.integrator, exposure, play_keys_help());
 
   auto rebuild = [&](const lighting::IntegratorConfig& c, const char* why) {
     device.wait_idle();
     bundle = build_bundle(device, reloader, level, c, width, height, config.seed);
+    session.set_renderer(*bundle.renderer);
     drop_history = true;
     accumulated = 0;
     ++report.rebuilds;
-    log::info("play: {} ({} integrator)", why, lighting::integrator_name(c.kind));
+    log::info("play: {} ({} integrator)", why, c.name);
   };
 
   while (true) {
@@ -264,7 +265,8 @@ PlayReport run_play(const PlayConfig& config) {
       before = input;
       continue;
     }
-    const auto frame = target.begin_frame();
+    lighting::FrameTiming finished;
+    const auto frame = session.begin_frame(&finished);
     if (!frame) {
       ++report.skipped;
       before = input;
@@ -273,15 +275,12 @@ PlayReport run_play(const PlayConfig& config) {
     if (config.on_frame) config.on_frame(report.frames);
 
     // GPU times of the frame that last used this slot (its fence has been waited for).
-    if (timer_used[frame->slot]) {
-      double gpu_ms = 0.0;
-      for (const runtime::GpuTimer::Result& r : timers[frame->slot]->resolve()) {
-        if (r.depth != 0) continue;
-        push_sample(panel.pass_ms[r.name], static_cast<float>(r.ms));
-        if (r.name.rfind("target.", 0) != 0) gpu_ms += r.ms;
+    if (finished.gpu_valid) {
+      for (const auto& [name, ms] : finished.passes) {
+        push_sample(panel.pass_ms[name], static_cast<float>(ms));
       }
-      push_sample(panel.frame_ms, static_cast<float>(gpu_ms));
-      report.frame_ms.push_back(gpu_ms);
+      push_sample(panel.frame_ms, static_cast<float>(finished.gpu_ms));
+      report.frame_ms.push_back(finished.gpu_ms);
     }
 
     // The render size follows the window.
@@ -314,21 +313,17 @@ PlayReport run_play(const PlayConfig& config) {
     auto key_pressed = [&](int key) { return keys_free && pressed(input, before, key); };
 
     // Integrator and ReSTIR settings.
-    if (key_pressed(GLFW_KEY_1) && panel.integrator != lighting::IntegratorKind::Restir) {
-      panel.integrator = lighting::IntegratorKind::Restir;
-      panel.rebuild = true;
-    }
-    if (key_pressed(GLFW_KEY_2) && panel.integrator != lighting::IntegratorKind::Baseline) {
-      panel.integrator = lighting::IntegratorKind::Baseline;
-      panel.rebuild = true;
-    }
-    if (key_pressed(GLFW_KEY_3) && panel.integrator != lighting::IntegratorKind::Reference) {
-      panel.integrator = lighting::IntegratorKind::Reference;
-      panel.rebuild = true;
+    const std::span<const lighting::IntegratorEntry> entries = lighting::integrators();
+    for (std::size_t i = 0; i < entries.size() && i < kIntegratorKeys; ++i) {
+      if (key_pressed(GLFW_KEY_1 + static_cast<int>(i)) && panel.integrator != entries[i].name) {
+        panel.integrator = entries[i].name;
+        panel.rebuild = true;
+      }
     }
     if (key_pressed(GLFW_KEY_V)) {
-      panel.restir.debug_view = static_cast<lighting::RestirDebugView>(
-          (static_cast<std::uint32_t>(panel.restir.debug_view) + 1) % 7);
+      // The views' rows follow their kRestirDebug* constants (restir_settings.cpp checks).
+      const std::span<const lighting::RestirChoice> views = lighting::restir_debug_views();
+      panel.restir.debug_view = views[(panel.restir.debug_view + 1) % views.size()].value;
       panel.settings_changed = true;
     }
     if (panel.rebuild) {
@@ -341,11 +336,15 @@ PlayReport run_play(const PlayConfig& config) {
         panel.reload_error = error.what();
       }
     }
-    if (panel.settings_changed) {
-      panel.settings_changed = false;
-      if (auto* restir =
-              dynamic_cast<lighting::RestirIntegrator*>(&bundle.renderer->integrator())) {
-        restir->set_settings(panel.restir);
+    // The panel's ReSTIR knobs go to the running integrator when it is ReSTIR (otherwise they
+    // wait in the panel for the next switch to it).
+    if (std::exchange(panel.settings_changed, false) &&
+        bundle.integrator->name == std::string_view(lighting::RestirIntegrator::kName)) {
+      try {
+        bundle.renderer->integrator().apply_settings(lighting::describe(panel.restir));
+      } catch (const InputError& error) {
+        log::warn("play: settings refused: {}", error.what());
+        panel.reload_error = error.what();
       }
     }
 
@@ -397,34 +396,33 @@ PlayReport run_play(const PlayConfig& config) {
     if (fly.active) ++report.manual_frames;
     if (snapshot.camera_cut) ++report.camera_cuts;
 
-    // The frame's graph.
-    render_graph.begin_frame();
-    if (std::exchange(drop_history, false)) render_graph.invalidate_history();
-    timers[frame->slot]->reset(frame->cmd);
-    timer_used[frame->slot] = true;
-    graph::BufferHandle hdr = bundle.renderer->add_frame(render_graph, snapshot);
-    if (panel.integrator != lighting::IntegratorKind::Restir && panel.progressive) {
-      const auto& update = bundle.renderer->scene().last_update();
-      const bool still = !snapshot.camera_cut && same_pose(snapshot.camera, snapshot.prev_camera) &&
-                         update.moved_instances == 0 && !update.lights_changed;
-      accumulated = still ? accumulated + 1 : 1;
-      hdr = add_accumulate_pass(render_graph, *bundle.accumulate, accum, hdr, width * height,
-                                accumulated);
+    // The frame: the session's passes, accumulation between the HDR image and the output while
+    // a progressive integrator holds still, the panel over the output.
+    lighting::FrameHooks hooks;
+    hooks.exposure = exposure;
+    hooks.drop_history = std::exchange(drop_history, false);
+    if (bundle.integrator->progressive && panel.progressive) {
+      hooks.hdr = [&](graph::RenderGraph& g, graph::BufferHandle hdr) {
+        const auto& update = bundle.renderer->scene().last_update();
+        const bool still = !snapshot.camera_cut &&
+                           same_pose(snapshot.camera, snapshot.prev_camera) &&
+                           update.moved_instances == 0 && !update.lights_changed;
+        accumulated = still ? accumulated + 1 : 1;
+        return add_accumulate_pass(g, *bundle.accumulate, accum, hdr, width * height, accumulated);
+      };
     } else {
       accumulated = 0;
     }
-    graph::ImageHandle output = bundle.renderer->add_output_pass(
-        render_graph, hdr, target.import_output(render_graph, *frame), exposure);
     if (show_panel) {
-      output = ui.add_passes(render_graph, output, width, height, frame->slot);
-      ++report.panel_frames;
-      report.max_ui_triangles = std::max(report.max_ui_triangles, ui.last_triangles());
+      hooks.output = [&](graph::RenderGraph& g, graph::ImageHandle output,
+                         const runtime::TargetFrame& f) {
+        ++report.panel_frames;
+        const graph::ImageHandle shown = ui.add_passes(g, output, width, height, f.slot);
+        report.max_ui_triangles = std::max(report.max_ui_triangles, ui.last_triangles());
+        return shown;
+      };
     }
-    target.add_delivery(render_graph, *frame, output);
-    render_graph.bake(executor.compile_options());
-    executor.record(render_graph, frame->cmd, timers[frame->slot].get());
-    render_graph.end_frame();
-    target.end_frame(*frame);
+    session.render(*frame, snapshot, hooks);
     ++report.frames;
 
     // Panel state for the next frame.
@@ -450,12 +448,11 @@ PlayReport run_play(const PlayConfig& config) {
   device.wait_idle();
   report.spawned_lights = lights.spawned();
   report.flashlight = lights.flashlight_on();
-  report.integrator = lighting::integrator_name(panel.integrator);
+  report.integrator = bundle.integrator->name;
+  report.integrator_settings = bundle.renderer->integrator().describe_settings();
   report.validation_errors = device.validation_errors();
-  const auto median = [](std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    return v[v.size() / 2];
+  const auto median = [](const std::vector<double>& v) {
+    return perf::percentile(std::span<const double>(v), 50.0);
   };
   log::info(
       "play: {} frames shown ({} skipped), median {:.2f} ms GPU / {:.2f} ms wall per frame, camera "

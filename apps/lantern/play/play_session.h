@@ -11,7 +11,8 @@
 
 #include "apps/lantern/play/play_input.h"
 #include "engine/scene/level.h"
-#include "lighting/integrators/integrator_factory.h"
+#include "lighting/integrators/integrator_registry.h"
+#include "lighting/restir/restir_integrator.h"
 
 namespace lantern::app {
 
@@ -20,7 +21,7 @@ struct PlayConfig {
   // The level already loaded from `level` (the command loads it to validate settings); null:
   // run_play loads it.
   std::shared_ptr<const Level> loaded_level;
-  lighting::IntegratorConfig integrator{.kind = lighting::IntegratorKind::Restir};
+  lighting::IntegratorConfig integrator{.name = lighting::RestirIntegrator::kName};
   std::uint32_t width = 640;  // initial window size; the render size follows the window
   std::uint32_t height = 360;
   std::uint32_t seed = 1;
@@ -49,6 +50,7 @@ struct PlayReport {
   bool flashlight = false;
   std::uint32_t rebuilds = 0;    // integrator rebuilds (switches, reloads)
   std::string integrator;        // at the end
+  std::vector<std::pair<std::string, std::string>> integrator_settings;  // its settings at the end
   std::vector<double> frame_ms;  // GPU ms per frame (sum of the frame's passes)
   std::vector<double> wall_ms;   // host ms per frame
   std::uint64_t validation_errors = 0;

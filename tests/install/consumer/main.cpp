@@ -29,7 +29,7 @@ int render_one_frame() {
       load_level(std::filesystem::path(CONSUMER_CONTENT_DIR) / "levels/cornell_lights.json"));
 
   lighting::SessionOptions options;
-  options.integrator.kind = lighting::IntegratorKind::Baseline;
+  options.integrator.name = "baseline";
   options.width = 32;
   options.height = 18;
   lighting::HeadlessSession session(device, shaders, level, options);
