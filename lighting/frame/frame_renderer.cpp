@@ -65,7 +65,8 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   const bool history_valid = frames_ > 0 && !snapshot.camera_cut && !resized_;
   scene_->update(snapshot);
   const FrameCounts counts{scene_->light_count(), scene_->instance_count(),
-                           scene_->emissive_triangles()};
+                           scene_->emissive_triangles(), scene_->previous_light_count(),
+                           scene_->scene_radius()};
   scene_->set_frame_constants(
       make_frame_constants(snapshot, width_, height_, frames_, seed_, counts, history_valid));
   if (!history_valid) graph.invalidate_history();

@@ -18,12 +18,7 @@
 #include "lighting/frame/frame_inputs.h"
 #include "lighting/scene/gpu_scene.h"
 #include "runtime/graph/render_graph.h"
-
-namespace lantern::runtime {
-class Device;
-class ShaderLibrary;
-class ComputePipeline;
-}  // namespace lantern::runtime
+#include "runtime/runtime_fwd.h"
 
 namespace lantern::lighting {
 

@@ -23,15 +23,8 @@
 
 #include "engine/world/frame_snapshot.h"
 #include "runtime/graph/render_graph.h"
+#include "runtime/runtime_fwd.h"
 #include "runtime/target/render_target.h"
-
-namespace lantern::runtime {
-class Device;
-class GpuTimer;
-namespace graph {
-class GraphExecutor;
-}
-}  // namespace lantern::runtime
 
 namespace lantern::lighting {
 

@@ -18,15 +18,11 @@
 #include "lighting/frame/frame_session.h"
 #include "lighting/integrators/integrator_registry.h"
 #include "runtime/image/image.h"
+#include "runtime/runtime_fwd.h"
 
 namespace lantern {
 class World;
 }
-
-namespace lantern::runtime {
-class Device;
-class ShaderLibrary;
-}  // namespace lantern::runtime
 
 namespace lantern::lighting {
 

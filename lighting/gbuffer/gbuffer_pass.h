@@ -25,12 +25,8 @@
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/graphics_pipeline.h"
 #include "runtime/graph/render_graph.h"
+#include "runtime/runtime_fwd.h"
 #include "shared/scene.h"
-
-namespace lantern::runtime {
-class Device;
-class ShaderLibrary;
-}  // namespace lantern::runtime
 
 namespace lantern::lighting {
 

@@ -31,9 +31,6 @@ BufferHandle BaselineIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   const std::uint32_t width = inputs.width;
   const std::uint32_t height = inputs.height;
   gpu::BaselinePush push{};
-  push.frame_index = inputs.frame_index;
-  push.light_count = inputs.light_count;
-  push.scene_radius = inputs.scene->scene_radius();
   const std::uint32_t tiles = tile_count(width, height, gpu::kBaselineTileSize);
   push.tile_stride = tile_stride(tiles);
   return add_gbuffer_shading_pass(graph, "integrators.baseline", pipeline_, inputs, push, tiles,

@@ -16,11 +16,7 @@
 #include <vector>
 
 #include "lighting/frame/frame_inputs.h"
-
-namespace lantern::runtime {
-class Device;
-class ShaderLibrary;
-}  // namespace lantern::runtime
+#include "runtime/runtime_fwd.h"
 
 namespace lantern::lighting {
 

@@ -15,11 +15,7 @@
 #include "lighting/integrators/integrator_registry.h"
 #include "lighting/scene/gpu_scene.h"
 #include "runtime/image/image.h"
-
-namespace lantern::runtime {
-class Device;
-class ShaderLibrary;
-}  // namespace lantern::runtime
+#include "runtime/runtime_fwd.h"
 
 namespace lantern::lighting {
 

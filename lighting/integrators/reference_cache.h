@@ -19,11 +19,7 @@
 
 #include "engine/scene/level.h"
 #include "runtime/image/image.h"
-
-namespace lantern::runtime {
-class Device;
-class ShaderLibrary;
-}  // namespace lantern::runtime
+#include "runtime/runtime_fwd.h"
 
 namespace lantern::lighting {
 

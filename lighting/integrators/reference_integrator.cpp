@@ -81,9 +81,6 @@ BufferHandle ReferenceIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   const std::uint32_t width = inputs.width;
   const std::uint32_t height = inputs.height;
   gpu::ReferencePush push{};
-  push.frame_index = inputs.frame_index;
-  push.light_count = inputs.light_count;
-  push.scene_radius = inputs.scene->scene_radius();
   const std::uint32_t tiles = tile_count(width, height, gpu::kReferenceTileSize);
   push.tile_stride = tile_stride(tiles);
   push.spp = settings_.spp;

@@ -16,11 +16,8 @@
 
 #include "engine/scene/level.h"
 #include "runtime/image/image.h"
+#include "runtime/runtime_fwd.h"
 #include "shared/environment.h"
-
-namespace lantern::runtime {
-class Device;
-}
 
 namespace lantern::lighting {
 

@@ -8,7 +8,6 @@
 
 #include "engine/core/error.h"
 #include "lighting/frame/tile_order.h"
-#include "lighting/restir/restir_pass_common.h"
 #include "lighting/scene/gpu_scene.h"
 #include "shared/reservoir_pack.h"
 
@@ -21,10 +20,10 @@ RestirIntegrator::RestirIntegrator(runtime::Device& device, runtime::ShaderLibra
                                    const RestirSettings& settings)
     : device_(device),
       settings_(settings),
-      initial_(device, shaders),
-      temporal_(device, shaders),
-      spatial_(device, shaders),
-      shade_(device, shaders) {}
+      initial_(device, shaders, "initial"),
+      temporal_(device, shaders, "temporal"),
+      spatial_(device, shaders, "spatial"),
+      shade_(device, shaders, "shade") {}
 
 void RestirIntegrator::warm_up() {
   const std::array<const runtime::ComputePipeline*, 4> pipelines{
@@ -51,17 +50,19 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
                                  inputs.light_count, gpu::kEnvironmentLight));
   }
   gpu::RestirPush p{};
-  p.frame = {inputs.width, inputs.height, inputs.frame_index, inputs.seed};
-  const std::uint32_t tiles = restir_detail::tile_count(inputs.width, inputs.height);
-  std::uint32_t flags = 0;
-  if (inputs.history_valid) flags |= gpu::kRestirFlagHistoryValid;
-  if (s.initial_visibility) flags |= gpu::kRestirFlagInitialVisibility;
-  p.lights = {inputs.light_count, inputs.previous_light_count, tile_stride(tiles),
-              flags};
-  p.sampling = {s.light_candidates, s.bsdf_candidates, s.bias_correction, s.debug_view};
-  p.spatial = {s.neighbours, 0, s.disocclusion_boost, 2 * s.candidates()};
-  const float scene_radius = inputs.scene != nullptr ? inputs.scene->scene_radius() : 1.0f;
-  p.reuse = {s.radius, s.m_cap(), s.boiling_filter, scene_radius};
+  p.tile_stride = tile_stride(tile_count(inputs.width, inputs.height, gpu::kRestirTileSize));
+  p.flags = s.initial_visibility ? gpu::kRestirFlagInitialVisibility : 0u;
+  if (inputs.history_valid) p.flags |= gpu::kRestirFlagHistoryValid;
+  p.light_candidates = s.light_candidates;
+  p.bsdf_candidates = s.bsdf_candidates;
+  p.bias_correction = s.bias_correction;
+  p.debug_view = s.debug_view;
+  p.neighbours = s.neighbours;
+  p.boost_neighbours = s.disocclusion_boost;
+  p.short_history_m = 2 * s.candidates();
+  p.radius = s.radius;
+  p.m_cap = s.m_cap();
+  p.boiling_filter = s.boiling_filter;
   p.similarity = {s.depth_threshold, s.normal_threshold, 0.25f, 0.0f};
   return p;
 }
@@ -89,7 +90,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
     reservoirs_history = graph.history(final_reservoirs);
   }
   const bool history = surfaces_history.valid() && reservoirs_history.valid();
-  if (!history) push.lights.w &= ~gpu::kRestirFlagHistoryValid;
+  if (!history) push.flags &= ~gpu::kRestirFlagHistoryValid;
 
   const std::vector<ReservoirStep> plan = buffers_.next_frame({.temporal = s.temporal,
                                                                .spatial_passes = s.spatial_passes,
@@ -121,33 +122,49 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   for (const ReservoirStep& step : plan) {
     switch (step.stage) {
       case ReservoirStage::Initial: {
-        const RestirInitialPass::Output out =
-            initial_.add(graph, inputs, push, surfaces, handle(step.write));
-        surfaces = out.surfaces;
-        handle(step.write) = out.reservoirs;
+        // restir.initial: the G-buffer packed into RestirSurfaces (this frame's version of the
+        // "restir.surfaces" history) and each pixel's initial reservoir from light (and BSDF)
+        // candidates. Reads the G-buffer and the scene (lights, alias table, materials, BVH).
+        const std::vector<BufferHandle> out =
+            initial_.add(graph, inputs, push,
+                         {{"restir_surfaces", surfaces, RestirPass::Buffer::Write},
+                          {"reservoirs_out", handle(step.write), RestirPass::Buffer::Write}});
+        surfaces = out[0];
+        handle(step.write) = out[1];
         break;
       }
       case ReservoirStage::Temporal: {
-        RestirTemporalPass::Input in;
-        in.surfaces = surfaces;
-        in.reservoirs_in = handle(step.read);
-        if (step.history == ReservoirBuffer::History) {
-          in.surfaces_history = surfaces_history;
-          in.reservoirs_history = reservoirs_history;
-        }
-        in.reservoirs_out = handle(step.write);
-        in.status = status;
-        const RestirTemporalPass::Output out = temporal_.add(graph, inputs, push, in);
-        handle(step.write) = out.reservoirs;
-        status = out.status;
+        // restir.temporal: each pixel's reservoir merged with last frame's final reservoir at its
+        // reprojected pixel after the disocclusion test and the light remap; M capped. Without
+        // history this frame's surfaces and reservoirs stand in for the history bindings (the
+        // shader does not read them: kRestirFlagHistoryValid is clear).
+        const bool reuse = step.history == ReservoirBuffer::History;
+        gpu::RestirPush p = push;
+        if (!reuse) p.flags &= ~gpu::kRestirFlagHistoryValid;
+        const BufferHandle reservoirs_in = handle(step.read);
+        const std::vector<BufferHandle> out = temporal_.add(
+            graph, inputs, p,
+            {{"restir_surfaces", surfaces},
+             {"reservoirs_in", reservoirs_in},
+             {"surfaces_history", reuse ? surfaces_history : surfaces},
+             {"reservoirs_history", reuse ? reservoirs_history : reservoirs_in},
+             {"reservoirs_out", handle(step.write), RestirPass::Buffer::Write},
+             {"temporal_status", status, RestirPass::Buffer::Write}});
+        handle(step.write) = out[0];
+        status = out[1];
         status_written = true;
         break;
       }
       case ReservoirStage::Spatial: {
+        // restir.spatial (N passes): each pixel's reservoir merged with up to k similar
+        // neighbours in a disk (more where history is short); the last writes Final.
         gpu::RestirPush p = push;
-        p.spatial.y = step.spatial_index;
-        handle(step.write) =
-            spatial_.add(graph, inputs, p, surfaces, handle(step.read), handle(step.write));
+        p.spatial_pass = step.spatial_index;
+        handle(step.write) = spatial_.add(graph, inputs, p,
+                                          {{"restir_surfaces", surfaces},
+                                           {"reservoirs_in", handle(step.read)},
+                                           {"reservoirs_out", handle(step.write),
+                                            RestirPass::Buffer::Write}})[0];
         break;
       }
       case ReservoirStage::Shade: {
@@ -168,7 +185,13 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
                            })
                        .status;
         }
-        hdr = shade_.add(graph, inputs, push, surfaces, handle(step.read), status, hdr);
+        // restir.shade: one visibility ray towards the final reservoir's sample per pixel:
+        // emission + BRDF x Le x G x W (or a debug view) into hdr.
+        hdr = shade_.add(graph, inputs, push,
+                         {{"restir_surfaces", surfaces},
+                          {"reservoirs_in", handle(step.read)},
+                          {"temporal_status", status},
+                          {"hdr", hdr, RestirPass::Buffer::Write}})[0];
         break;
       }
     }

@@ -13,11 +13,8 @@
 
 #include "lighting/frame/frame_inputs.h"
 #include "lighting/restir/reservoir_buffers.h"
-#include "lighting/restir/restir_initial_pass.h"
+#include "lighting/restir/restir_pass.h"
 #include "lighting/restir/restir_settings.h"
-#include "lighting/restir/restir_shade_pass.h"
-#include "lighting/restir/restir_spatial_pass.h"
-#include "lighting/restir/restir_temporal_pass.h"
 
 namespace lantern::lighting {
 
@@ -44,16 +41,16 @@ class RestirIntegrator final : public Integrator {
   // chain's shape keeps history (Final is always kept).
   void apply_settings(const std::vector<std::pair<std::string, std::string>>& changes) override;
 
-  // The push constants a frame with these inputs gets (the pass index and flags aside).
+  // The push constants a frame with these settings gets (the pass index and history flag aside).
   static gpu::RestirPush make_push(const RestirSettings& settings, const FrameInputs& inputs);
 
  private:
   runtime::Device& device_;
   RestirSettings settings_;
-  RestirInitialPass initial_;
-  RestirTemporalPass temporal_;
-  RestirSpatialPass spatial_;
-  RestirShadePass shade_;
+  RestirPass initial_;
+  RestirPass temporal_;
+  RestirPass spatial_;
+  RestirPass shade_;
   ReservoirBuffers buffers_;
 };
 

@@ -10,10 +10,13 @@
 
 namespace lantern::lighting {
 
+// The scene's facts FrameConstants carries (GpuScene has them: light_count(), ...).
 struct FrameCounts {
-  std::uint32_t lights = 0;
+  std::uint32_t lights = 0;           // in the alias table (0: none can be sampled)
   std::uint32_t instances = 0;
   std::uint32_t emissive_triangles = 0;
+  std::uint32_t previous_lights = 0;  // last frame's lights: entries of the prev -> cur remap
+  float scene_radius = 1.0f;          // the world's bounding-sphere radius
 };
 
 // World -> clip for `camera` rendering a width x height image (the image's aspect ratio wins

@@ -37,10 +37,7 @@
 #include "runtime/gpu/buffer.h"
 #include "runtime/gpu/buffer_view.h"
 #include "runtime/graph/render_graph.h"
-
-namespace lantern::runtime {
-class Device;
-}
+#include "runtime/runtime_fwd.h"
 
 namespace lantern::lighting {
 

@@ -15,18 +15,10 @@
 #include <vector>
 
 #include "runtime/graph/handles.h"
+#include "runtime/runtime_fwd.h"
 #include "shared/environment.h"
 #include "shared/scene.h"
 #include "shared/scene_bindings.h"
-
-namespace lantern::runtime {
-class Bindings;
-class Pipeline;
-}  // namespace lantern::runtime
-namespace lantern::runtime::graph {
-class PassBuilder;
-class PassContext;
-}  // namespace lantern::runtime::graph
 
 namespace lantern::lighting {
 

@@ -45,9 +45,9 @@ vec3 sample_light(uint index, float select_pdf, vec3 x, vec3 n, vec3 ng, vec3 v,
   float pdf = select_pdf * light_eval_point_pdf(light);
   if (!(pdf > 0.0)) return vec3(0.0);
   vec3 c = light_eval_contribution(light, u, x, n, ng, v, mat.base_color.rgb, mat.params.x,
-                                   mat.params.y, mat.params.z, push.scene_radius);
+                                   mat.params.y, mat.params.z, frame_constants.frame.scene.x);
   if (c == vec3(0.0)) return vec3(0.0);
-  if (!vis_visible(x, light_eval_position(light, u, x, push.scene_radius))) return vec3(0.0);
+  if (!vis_visible(x, light_eval_position(light, u, x, frame_constants.frame.scene.x))) return vec3(0.0);
   return c / pdf;
 }
 
@@ -60,7 +60,7 @@ vec3 sample_environment(float p_env, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMateria
   vec3 c = light_eval_incident(l, le, 1.0, n, ng, v, mat.base_color.rgb, mat.params.x,
                                mat.params.y, mat.params.z);
   if (c == vec3(0.0)) return vec3(0.0);
-  if (!vis_visible(x, x + l * (kDirectionalShadowRadii * push.scene_radius))) return vec3(0.0);
+  if (!vis_visible(x, x + l * (kDirectionalShadowRadii * frame_constants.frame.scene.x))) return vec3(0.0);
   return c / pdf;
 }
 
@@ -79,17 +79,17 @@ vec3 shade_pixel(uvec2 pixel) {
   if (dot(n, ng) < 0.0) n = -n;
   vec3 result = imageLoad(gbuffer_emission_metallic, p).rgb;
   float p_env = env_header.env.params.x;  // 0 without a map; 1 when no emitter has power
-  if (push.light_count > 0u || p_env > 0.0) {
-    uint rng = rng_init(pixel, push.frame_index, fc.frame.w, kBaselineRngPass);
+  if (frame_constants.frame.counts.x > 0u || p_env > 0.0) {
+    uint rng = rng_init(pixel, frame_constants.frame.frame.z, fc.frame.w, kBaselineRngPass);
     float u_select = rng_next_float(rng);
     float u1 = rng_next_float(rng);
     vec2 u_light = rng_next_vec2(rng);
     if (u_select < p_env) {
       result += sample_environment(p_env, x, n, ng, v, mat, vec4(u_light, u1, rng_next_float(rng)));
-    } else if (push.light_count > 0u) {
+    } else if (frame_constants.frame.counts.x > 0u) {
       // Reuse u_select, rescaled to [0,1), for the alias slot.
       float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
-      uint slot = alias_slot(push.light_count, u0);
+      uint slot = alias_slot(frame_constants.frame.counts.x, u0);
       uint index = alias_select(u1, light_alias.e[slot], slot);
       float select_pdf = (1.0 - p_env) * light_alias.e[index].pdf;
       result += sample_light(index, select_pdf, x, n, ng, v, mat, u_light);

@@ -7,13 +7,11 @@
 
 LANTERN_BEGIN_SHARED
 
+// Frame size, index, seed, light count and scene radius come from FrameConstants.
 struct BaselinePush {
-  uint frame_index;    // seeds this frame's random numbers (with FrameConstants.frame.w)
-  uint light_count;    // lights in the alias table; 0 = no light can be sampled
-  float scene_radius;  // world bounding-sphere radius: directional shadow ray length
-  uint tile_stride;    // workgroup g shades tile (g * tile_stride) mod tile count; coprime to it
+  uint tile_stride;  // workgroup g shades tile (g * tile_stride) mod tile count; coprime to it
 };
-LANTERN_STATIC_SIZE(BaselinePush, 16);
+LANTERN_STATIC_SIZE(BaselinePush, 4);
 
 // Pixels per side of the square tile one workgroup shades.
 LANTERN_CONST uint kBaselineTileSize = 8u;

@@ -116,7 +116,7 @@ vec3 brdf(Shading sh, vec3 l) {
 // Probability that light sampling produces direction l towards a point on triangle light `index`
 // at squared distance dist2 (both selection steps), as a solid-angle density.
 float triangle_light_pdf(uint index, float dist2, vec3 l) {
-  if (push.light_count == 0u) return 0.0;
+  if (frame_constants.frame.counts.x == 0u) return 0.0;
   float select = (1.0 - env_header.env.params.x) * light_alias.e[index].pdf;
   return select * light_eval_solid_angle_pdf(scene_lights.l[index], l, dist2);
 }
@@ -134,26 +134,26 @@ vec3 sample_light(Shading sh, inout uint rng) {
     vec3 c = light_eval_incident(l, le, 1.0, sh.n, sh.ng, sh.v, sh.albedo, sh.roughness,
                                  sh.metallic, sh.specular);
     if (c == vec3(0.0)) return vec3(0.0);
-    if (!vis_visible(sh.x, sh.x + l * (kDirectionalShadowRadii * push.scene_radius))) {
+    if (!vis_visible(sh.x, sh.x + l * (kDirectionalShadowRadii * frame_constants.frame.scene.x))) {
       return vec3(0.0);
     }
     return c * (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
   }
-  if (push.light_count == 0u) return vec3(0.0);
+  if (frame_constants.frame.counts.x == 0u) return vec3(0.0);
   // Reuse u_select, rescaled to [0,1), for the alias slot.
   float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
   float u1 = rng_next_float(rng);
   vec2 u_point = rng_next_vec2(rng);
-  uint slot = alias_slot(push.light_count, u0);
+  uint slot = alias_slot(frame_constants.frame.counts.x, u0);
   uint index = alias_select(u1, light_alias.e[slot], slot);
   float select = (1.0 - p_env) * light_alias.e[index].pdf;
   GpuLight light = scene_lights.l[index];
   float pdf_point = select * light_eval_point_pdf(light);
   if (!(pdf_point > 0.0)) return vec3(0.0);
   vec3 c = light_eval_contribution(light, u_point, sh.x, sh.n, sh.ng, sh.v, sh.albedo,
-                                   sh.roughness, sh.metallic, sh.specular, push.scene_radius);
+                                   sh.roughness, sh.metallic, sh.specular, frame_constants.frame.scene.x);
   if (c == vec3(0.0)) return vec3(0.0);
-  vec3 target = light_eval_position(light, u_point, sh.x, push.scene_radius);
+  vec3 target = light_eval_position(light, u_point, sh.x, frame_constants.frame.scene.x);
   if (!vis_visible(sh.x, target)) return vec3(0.0);
   // Punctual and directional lights are deltas no BSDF sample can hit (MIS weight 1); a triangle
   // point is weighted against BSDF sampling of the same direction (solid-angle densities).
@@ -223,7 +223,7 @@ vec3 shade_pixel(uvec2 pixel) {
   // Keep both lobes reachable unless one is absent.
   if (sh.p_specular > 0.0 && sh.p_specular < 1.0) sh.p_specular = clamp(sh.p_specular, 0.1, 0.9);
 
-  uint rng = rng_init(pixel, push.frame_index, fc.frame.w, kReferenceRngPass);
+  uint rng = rng_init(pixel, frame_constants.frame.frame.z, fc.frame.w, kReferenceRngPass);
   vec3 sum = vec3(0.0);
   for (uint i = 0u; i < push.spp; ++i) {
     vec3 c = sample_light(sh, rng) + sample_bsdf(sh, rng);

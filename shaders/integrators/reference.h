@@ -7,17 +7,12 @@
 
 LANTERN_BEGIN_SHARED
 
+// Frame size, index, seed, light count and scene radius come from FrameConstants.
 struct ReferencePush {
-  uint frame_index;    // seeds this frame's random numbers (with FrameConstants.frame.w)
-  uint light_count;    // lights in the alias table; 0 = none can be sampled
-  float scene_radius;  // world bounding-sphere radius: directional shadow ray length
-  uint tile_stride;    // workgroup g shades tile (g * tile_stride) mod tile count; coprime to it
-  uint spp;            // samples per pixel this dispatch (each: one light + one BSDF sample)
-  uint pad0;
-  uint pad1;
-  uint pad2;
+  uint tile_stride;  // workgroup g shades tile (g * tile_stride) mod tile count; coprime to it
+  uint spp;          // samples per pixel this dispatch (each: one light + one BSDF sample)
 };
-LANTERN_STATIC_SIZE(ReferencePush, 32);
+LANTERN_STATIC_SIZE(ReferencePush, 8);
 
 // Pixels per side of the square tile one workgroup shades.
 LANTERN_CONST uint kReferenceTileSize = 8u;

@@ -25,14 +25,20 @@ layout(local_size_x = kRestirTileSize, local_size_y = kRestirTileSize) in;
 
 layout(push_constant) uniform Push { RestirPush push; };
 
+// The frame's facts (FrameConstants, one owner): render size, lights in the alias table, scene
+// radius (directional and environment shadow rays).
+uvec2 restir_size() { return frame_constants.frame.frame.xy; }
+uint restir_light_count() { return frame_constants.frame.counts.x; }
+float restir_scene_radius() { return frame_constants.frame.scene.x; }
+
 // Pixel of this invocation (shuffled 8x8 tiles); false outside the image.
 bool restir_pixel(out uvec2 pixel) {
-  uvec2 size = push.frame.xy;
-  pixel = restir_tile_origin(gl_WorkGroupID.x, push.lights.z, size) + gl_LocalInvocationID.xy;
+  uvec2 size = restir_size();
+  pixel = restir_tile_origin(gl_WorkGroupID.x, push.tile_stride, size) + gl_LocalInvocationID.xy;
   return pixel.x < size.x && pixel.y < size.y;
 }
 
-uint restir_index(uvec2 pixel) { return pixel.y * push.frame.x + pixel.x; }
+uint restir_index(uvec2 pixel) { return pixel.y * restir_size().x + pixel.x; }
 
 // A surface decoded once for many p̂ evaluations.
 struct ShadingPoint {
@@ -78,9 +84,9 @@ vec3 restir_env_contribution(ShadingPoint p, vec2 uv) {
 vec3 restir_contribution(ShadingPoint p, uint light, vec2 uv) {
   if (!p.valid) return vec3(0.0);
   if (light == kEnvironmentLight) return restir_env_contribution(p, uv);
-  if (light >= push.lights.x) return vec3(0.0);
+  if (light >= restir_light_count()) return vec3(0.0);
   return light_eval_contribution(scene_lights.l[light], uv, p.x, p.n, p.ng, p.v, p.albedo,
-                                 p.roughness, p.metallic, p.specular, push.reuse.w);
+                                 p.roughness, p.metallic, p.specular, restir_scene_radius());
 }
 
 // The point a shadow ray from p aims at for sample (light, uv): on the light, or far along the
@@ -88,9 +94,9 @@ vec3 restir_contribution(ShadingPoint p, uint light, vec2 uv) {
 vec3 restir_light_position(ShadingPoint p, uint light, vec2 uv) {
   if (light == kEnvironmentLight) {
     return p.x + env_uv_to_world_direction(env_header.env, uv) *
-                     (kDirectionalShadowRadii * push.reuse.w);
+                     (kDirectionalShadowRadii * restir_scene_radius());
   }
-  return light_eval_position(scene_lights.l[light], uv, p.x, push.reuse.w);
+  return light_eval_position(scene_lights.l[light], uv, p.x, restir_scene_radius());
 }
 
 // p̂ of sample s at p.

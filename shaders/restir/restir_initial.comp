@@ -1,6 +1,6 @@
 // restir.initial: per pixel, packs the G-buffer into a RestirSurface and resamples
-// push.sampling.x light candidates (the environment map with its selection probability, else the
-// power alias table x uniform point on the light) plus push.sampling.y BSDF candidates (a
+// push.light_candidates light candidates (the environment map with its selection probability, else the
+// power alias table x uniform point on the light) plus push.bsdf_candidates BSDF candidates (a
 // closest-hit ray; an emissive triangle hit, or the environment when the ray escapes, is a
 // candidate), combined by the balance heuristic over the two strategies, with target p̂ =
 // luminance of the unshadowed contribution. Optionally shadow-tests the pick
@@ -8,7 +8,7 @@
 // Reads: gbuffer position/normal/albedo_roughness/emission_metallic/ids, scene materials,
 // instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility).
 // Writes: restir_surfaces (history resource "restir.surfaces"), reservoirs_out. History: none.
-// Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
+// Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -77,15 +77,15 @@ float env_candidate(ShadingPoint p, vec3 l, float p_env, float m_light, float m_
 
 Reservoir resample(ShadingPoint p, inout uint rng) {
   Reservoir r = reservoir_empty();
-  uint light_count = push.lights.x;
+  uint light_count = restir_light_count();
   float p_env = restir_env_probability();
-  float m_light = float(push.sampling.x);
-  float m_bsdf = float(push.sampling.y);
+  float m_light = float(push.light_candidates);
+  float m_bsdf = float(push.bsdf_candidates);
   if (light_count == 0u && p_env == 0.0) {
     r.M = m_light + m_bsdf;
     return r;
   }
-  for (uint i = 0u; i < push.sampling.x; ++i) {
+  for (uint i = 0u; i < push.light_candidates; ++i) {
     float u0 = rng_next_float(rng);
     float u1 = rng_next_float(rng);
     vec2 uv = stored_uv(rng_next_vec2(rng));
@@ -106,14 +106,14 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
     uint index = alias_select(u1, light_alias.e[slot], slot);
     float target = light_eval_target(restir_contribution(p, index, uv));
     float denominator = m_light * light_strategy_pdf(index, p_env);
-    if (push.sampling.y > 0u && target > 0.0) {
-      vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, push.reuse.w);
+    if (push.bsdf_candidates > 0u && target > 0.0) {
+      vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, restir_scene_radius());
       denominator += m_bsdf * bsdf_area_pdf(p, scene_lights.l[index], y);
     }
     reservoir_update(r, light_sample_make(index, uv, target), safe_ratio(target, denominator),
                      u_pick);
   }
-  for (uint j = 0u; j < push.sampling.y; ++j) {
+  for (uint j = 0u; j < push.bsdf_candidates; ++j) {
     float u_lobe = rng_next_float(rng);
     vec2 u_dir = rng_next_vec2(rng);
     float u_pick = rng_next_float(rng);
@@ -141,7 +141,7 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
     if (index != kInvalidLight && index != kEnvironmentLight &&
         light_kind(scene_lights.l[index]) == kLightTriangle) {
       target = light_eval_target(restir_contribution(p, index, uv));
-      vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, push.reuse.w);
+      vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, restir_scene_radius());
       float denominator = m_light * light_strategy_pdf(index, p_env) +
                           m_bsdf * bsdf_area_pdf(p, scene_lights.l[index], y);
       weight = safe_ratio(target, denominator);
@@ -174,9 +174,9 @@ void main() {
   ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
   Reservoir r = reservoir_empty();
   if (p.valid) {
-    uint rng = rng_init(pixel, push.frame.z, push.frame.w, kRestirRngInitial);
+    uint rng = rng_init(pixel, frame_constants.frame.frame.z, frame_constants.frame.frame.w, kRestirRngInitial);
     r = resample(p, rng);
-    if ((push.lights.w & kRestirFlagInitialVisibility) != 0u && reservoir_has_sample(r)) {
+    if ((push.flags & kRestirFlagInitialVisibility) != 0u && reservoir_has_sample(r)) {
       vec3 y = restir_light_position(p, r.selected.light_index, vec2(r.selected.u, r.selected.v));
       if (!vis_visible(p.x, y)) {
         // Keep M (the candidates were drawn) but no sample: the pick lights nothing here.

@@ -1,11 +1,11 @@
 // restir.shade: per pixel, the final reservoir's sample shaded with one visibility ray:
 // radiance = G-buffer emission + c(x, y) V(x, y) W (c = BRDF x cos x Le x G, shared/light_eval.h);
 // sky pixels show the environment map along their camera ray (lib/environment.glsl). With a
-// debug view (push.sampling.w) writes that view instead. Never writes NaN/Inf.
+// debug view (push.debug_view) writes that view instead. Never writes NaN/Inf.
 // Reads: restir_surfaces, reservoirs_in (the final reservoirs), gbuffer emission_metallic and
 // motion, temporal_status, frame constants, lights, environment (env_*), BVH.
 // Writes: hdr (vec4 per pixel).
-// History: none. Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
+// History: none. Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -27,7 +27,7 @@ vec3 hash_colour(uint x) {
 
 vec3 debug_view(uint view, uvec2 pixel, uint index, Reservoir r, bool surface) {
   if (view == kRestirDebugW) return vec3(r.W / (1.0 + r.W));
-  if (view == kRestirDebugM) return vec3(safe_ratio(r.M, push.reuse.y));
+  if (view == kRestirDebugM) return vec3(safe_ratio(r.M, push.m_cap));
   if (view == kRestirDebugAge) return vec3(reservoir_has_sample(r) ? float(r.age) / 32.0 : 0.0);
   if (view == kRestirDebugLight) {
     return reservoir_has_sample(r) ? hash_colour(r.selected.light_index) : vec3(0.0);
@@ -53,8 +53,8 @@ void main() {
   Reservoir r = reservoir_unpack(reservoirs_in.r[index]);
   vec3 value;
   bool valid = restir_surface_valid(surface);
-  if (push.sampling.w != kRestirDebugNone) {
-    value = debug_view(push.sampling.w, pixel, index, r, valid);
+  if (push.debug_view != kRestirDebugNone) {
+    value = debug_view(push.debug_view, pixel, index, r, valid);
   } else if (!valid) {
     value = env_sky_radiance(frame_constants.frame, pixel);
   } else {

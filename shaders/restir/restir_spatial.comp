@@ -1,12 +1,12 @@
-// restir.spatial (pass push.spatial.y of N): merges each pixel's reservoir with up to
-// push.spatial.x neighbours drawn uniformly in a disk of push.reuse.x pixels, skipping neighbours
+// restir.spatial (pass push.spatial_pass of N): merges each pixel's reservoir with up to
+// push.neighbours neighbours drawn uniformly in a disk of push.radius pixels, skipping neighbours
 // whose surface is dissimilar (depth, normal, material, roughness). Pixels short of history
-// (M below push.spatial.w, e.g. just disoccluded) draw push.spatial.z more neighbours. MIS
-// weights per push.sampling.z (none O(k), pairwise O(k), balance O(k^2) target evaluations).
+// (M below push.short_history_m, e.g. just disoccluded) draw push.boost_neighbours more neighbours. MIS
+// weights per push.bias_correction (none O(k), pairwise O(k), balance O(k^2) target evaluations).
 // Reads: restir_surfaces, reservoirs_in, frame constants, lights, environment (env_*).
 // Writes: reservoirs_out.
 // History: none (the last pass's output is the frame's final reservoirs, kept by the graph).
-// Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
+// Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -29,25 +29,25 @@ void main() {
   vec3 camera = frame_constants.frame.camera_position.xyz;
   g_reservoirs[0] = r;
   g_points[0] = restir_shading_point(surface, camera);
-  uint rng = rng_init(pixel, push.frame.z, push.frame.w, kRestirRngSpatial + push.spatial.y);
-  uint tries = push.spatial.x + (r.M < float(push.spatial.w) ? push.spatial.z : 0u);
+  uint rng = rng_init(pixel, frame_constants.frame.frame.z, frame_constants.frame.frame.w, kRestirRngSpatial + push.spatial_pass);
+  uint tries = push.neighbours + (r.M < float(push.short_history_m) ? push.boost_neighbours : 0u);
   tries = min(tries, kRestirMaxNeighbours);
-  ivec2 size = ivec2(push.frame.xy);
+  ivec2 size = ivec2(restir_size());
   float depth = restir_surface_depth(surface);
   uint count = 1u;
   for (uint t = 0u; t < tries; ++t) {
     vec2 u = rng_next_vec2(rng);
-    float radius = push.reuse.x * sqrt(u.x);
+    float radius = push.radius * sqrt(u.x);
     float angle = kTwoPi * u.y;
     ivec2 q = ivec2(pixel) + ivec2(round(radius * vec2(cos(angle), sin(angle))));
     if (q == ivec2(pixel) || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-    uint q_index = uint(q.y) * push.frame.x + uint(q.x);
+    uint q_index = uint(q.y) * restir_size().x + uint(q.x);
     RestirSurface other = restir_surfaces.s[q_index];
     if (!restir_surfaces_similar(surface, depth, other, push.similarity)) continue;
     g_reservoirs[count] = reservoir_unpack(reservoirs_in.r[q_index]);
     g_points[count] = restir_shading_point(other, camera);
     ++count;
   }
-  if (count > 1u) r = restir_combine(count, push.sampling.z, rng);
+  if (count > 1u) r = restir_combine(count, push.bias_correction, rng);
   reservoirs_out.r[index] = reservoir_pack(r);
 }

@@ -4,13 +4,13 @@
 // camera saw this point at, normal, material, roughness). The history sample's light is remapped
 // through light_previous_to_current (an environment sample stays one); a removed light drops the
 // history sample (M kept, as for an empty history reservoir). History confidence M is capped
-// (push.reuse.y). MIS weights per push.sampling.z. Optional boiling filter over the tile.
+// (push.m_cap). MIS weights per push.bias_correction. Optional boiling filter over the tile.
 // Reads: restir_surfaces, surfaces_history, reservoirs_in, reservoirs_history, gbuffer_motion,
 // light_previous_to_current, frame constants, lights, environment (env_*).
 // Writes: reservoirs_out, temporal_status.
 // History: "restir.surfaces" and "restir.reservoirs" of last frame; without
 // kRestirFlagHistoryValid the history bindings are stand-ins and are not read.
-// Dispatch: one workgroup per 8x8 tile, shuffled (push.lights.z).
+// Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -29,7 +29,7 @@ shared float s_weights[kRestirTileSize * kRestirTileSize];
 // Finds last frame's pixel for this surface; -1 when disoccluded. status: kRestirStatus*.
 ivec2 find_history(uvec2 pixel, RestirSurface surface, inout uint rng, out uint status) {
   status = kRestirStatusNoHistory;
-  ivec2 size = ivec2(push.frame.xy);
+  ivec2 size = ivec2(restir_size());
   vec2 motion = imageLoad(gbuffer_motion, ivec2(pixel)).xy;
   if (!(is_finite(motion.x) && is_finite(motion.y))) return ivec2(-1);
   vec2 previous = vec2(pixel) + 0.5 + motion;
@@ -57,11 +57,11 @@ void main() {
   if (inside) {
     RestirSurface surface = restir_surfaces.s[index];
     r = reservoir_unpack(reservoirs_in.r[index]);
-    if (restir_surface_valid(surface) && (push.lights.w & kRestirFlagHistoryValid) != 0u) {
-      uint rng = rng_init(pixel, push.frame.z, push.frame.w, kRestirRngTemporal);
+    if (restir_surface_valid(surface) && (push.flags & kRestirFlagHistoryValid) != 0u) {
+      uint rng = rng_init(pixel, frame_constants.frame.frame.z, frame_constants.frame.frame.w, kRestirRngTemporal);
       ivec2 q = find_history(pixel, surface, rng, status);
       if (q.x >= 0) {
-        uint q_index = uint(q.y) * push.frame.x + uint(q.x);
+        uint q_index = uint(q.y) * restir_size().x + uint(q.x);
         Reservoir history = reservoir_unpack(reservoirs_history.r[q_index]);
         history.age = min(history.age + 1u, kPackedMaxAge);
         // A removed light (or an empty history reservoir) leaves no sample but keeps M: the
@@ -70,25 +70,25 @@ void main() {
         // was empty: +7% on cornell_lights' lit surfaces, +18% with 1 candidate.)
         uint light = history.selected.light_index;
         if (light != kInvalidLight && light != kEnvironmentLight) {
-          light = light < push.lights.y ? light_previous_to_current.index[light] : kInvalidLight;
-          if (light >= push.lights.x) light = kInvalidLight;
+          light = light < frame_constants.frame.history.x ? light_previous_to_current.index[light] : kInvalidLight;
+          if (light >= restir_light_count()) light = kInvalidLight;
         }
         reservoir_remap_light(history, light);
-        reservoir_cap_m(history, push.reuse.y);
+        reservoir_cap_m(history, push.m_cap);
         if (history.M > 0.0) {
           g_reservoirs[0] = r;
           g_points[0] = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
           g_reservoirs[1] = history;
           g_points[1] = restir_shading_point(surfaces_history.s[q_index],
                                              frame_constants.frame.prev_camera_position.xyz);
-          r = restir_combine(2u, push.sampling.z, rng);
+          r = restir_combine(2u, push.bias_correction, rng);
         }
       }
     }
   }
 
   // Boiling filter: drop reservoirs whose weight is far above the tile's mean non-zero weight.
-  if (push.reuse.z > 0.0) {
+  if (push.boiling_filter > 0.0) {
     uint local = gl_LocalInvocationIndex;
     s_weights[local] = reservoir_has_sample(r) ? r.W * r.selected.target_pdf : 0.0;
     barrier();
@@ -99,7 +99,7 @@ void main() {
       sum += w;
       count += w > 0.0 ? 1.0 : 0.0;
     }
-    float multiplier = mix(32.0, 2.0, clamp(push.reuse.z, 0.0, 1.0));
+    float multiplier = mix(32.0, 2.0, clamp(push.boiling_filter, 0.0, 1.0));
     if (count > 0.0 && s_weights[local] > multiplier * sum / count) r = reservoir_empty();
   }
   if (!inside) return;

@@ -45,18 +45,29 @@ LANTERN_CONST uint kRestirRngInitial = 0x52490u;
 LANTERN_CONST uint kRestirRngTemporal = 0x52491u;
 LANTERN_CONST uint kRestirRngSpatial = 0x52492u;  // + pass index
 
+// What the restir.* passes take from the settings (lighting/restir/restir_settings.h). The frame's
+// size, index, seed, light counts and scene radius are FrameConstants' (restir_common.glsl).
 struct RestirPush {
-  uvec4 frame;       // x, y: render size; z: frame index; w: seed
-  uvec4 lights;      // x: light count; y: previous light count; z: tile stride; w: kRestirFlag*
-  uvec4 sampling;    // x: light candidates; y: BSDF candidates; z: kBiasCorrection*; w: debug view
-  uvec4 spatial;     // x: neighbours; y: spatial pass index; z: extra neighbours when M is short;
-                     // w: M below which a pixel counts as short of history
-  vec4 reuse;        // x: spatial radius (pixels); y: temporal M cap (absolute); z: boiling filter
-                     // strength 0..1; w: scene radius (directional shadow rays)
-  vec4 similarity;   // x: max relative depth difference; y: min cos between normals;
-                     // z: max roughness difference; w: unused
+  uint tile_stride;       // workgroup g handles tile (g * tile_stride) mod tile count (coprime)
+  uint flags;             // kRestirFlag*
+  uint light_candidates;  // initial candidates from light sampling
+  uint bsdf_candidates;   // initial candidates from BSDF rays
+  uint bias_correction;   // kBiasCorrection* (shared/reservoir_mis.h)
+  uint debug_view;        // kRestirDebug*
+  uint neighbours;        // spatial neighbours per pass
+  uint spatial_pass;      // this spatial pass's index (seeds its random numbers)
+  uint boost_neighbours;  // extra spatial neighbours for a pixel short of history
+  uint short_history_m;   // M below which a pixel counts as short of history
+  float radius;           // spatial radius in pixels
+  float m_cap;            // temporal M cap (absolute)
+  float boiling_filter;   // boiling filter strength 0..1
+  uint pad0;
+  uint pad1;
+  uint pad2;
+  vec4 similarity;        // restir_surfaces_similar's thresholds: x max relative depth difference;
+                          // y min cos between normals; z max roughness difference; w unused
 };
-LANTERN_STATIC_SIZE(RestirPush, 96);
+LANTERN_STATIC_SIZE(RestirPush, 80);
 
 // The per-pixel surface the passes resample at, packed from the G-buffer by restir.initial
 // (and kept one frame as history for restir.temporal's disocclusion test). 48 bytes: albedo,

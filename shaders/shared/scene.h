@@ -19,11 +19,16 @@ struct FrameConstants {
   mat4 inv_view_proj;      // clip -> world, this frame
   vec4 camera_position;    // xyz world position; w: vertical field of view (radians)
   vec4 prev_camera_position;
-  uvec4 frame;             // x, y: render size; z: frame index; w: seed
-  uvec4 counts;            // x: lights; y: instances; z: emissive triangles; w: 1 after a camera cut
+  uvec4 frame;             // x, y: render size; z: frame index; w: seed (every pass reads these
+                           // here: push constants do not repeat them)
+  uvec4 counts;            // x: lights in the alias table (0: none can be sampled); y: instances;
+                           // z: emissive triangles; w: 1 after a camera cut
   vec4 environment;        // rgb: uniform sky radiance scale; w: exposure
+  uvec4 history;           // x: last frame's lights (entries of light_previous_to_current); yzw: 0
+  vec4 scene;              // x: radius of the world's bounding sphere (directional and environment
+                           // shadow rays end kDirectionalShadowRadii radii away); yzw: 0
 };
-LANTERN_STATIC_SIZE(FrameConstants, 3 * 64 + 5 * 16);
+LANTERN_STATIC_SIZE(FrameConstants, 3 * 64 + 7 * 16);
 
 struct GpuVertex {
   vec4 position_u;  // xyz object-space position; w: texture u

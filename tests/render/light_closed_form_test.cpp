@@ -430,9 +430,9 @@ INSTANTIATE_TEST_SUITE_P(
                                          LightCase::SpotRange, LightCase::Directional,
                                          LightCase::Triangles, LightCase::Environment,
                                          LightCase::Occluded)),
-    [](const ::testing::TestParamInfo<std::tuple<int, LightCase>>& info) {
-      return kIntegrators[std::get<0>(info.param)].name + "_" +
-             case_name(std::get<1>(info.param));
+    [](const ::testing::TestParamInfo<std::tuple<int, LightCase>>& param) {
+      return kIntegrators[std::get<0>(param.param)].name + "_" +
+             case_name(std::get<1>(param.param));
     });
 
 }  // namespace

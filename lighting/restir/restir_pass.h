@@ -1,0 +1,47 @@
+// RestirPass: one restir.* compute pass — its pipeline (shaders/restir/restir_<stage>.comp, named
+// "restir.<stage>"), the scene buffers and G-buffer images its shader uses (declared and bound
+// from the shader's reflection: SceneHandles, GBufferHandles), its own buffers by GLSL name, the
+// push constants, and one workgroup per shuffled 8x8 tile (lighting/frame/tile_order.h). What
+// each pass reads and writes is listed where RestirIntegrator adds it (restir_integrator.cpp)
+// and in its shader's header.
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "lighting/frame/frame_inputs.h"
+#include "runtime/gpu/compute_pipeline.h"
+#include "runtime/runtime_fwd.h"
+#include "shared/restir.h"
+
+namespace lantern::lighting {
+
+class RestirPass {
+ public:
+  // A buffer of the pass's own, by the name its shader gives it.
+  struct Buffer {
+    const char* name;
+    runtime::graph::BufferHandle handle;
+    enum Use { Read, Write } use = Read;  // Write: every pixel written, nothing read
+  };
+
+  // `stage`: "initial", "temporal", "spatial" or "shade".
+  RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& stage);
+
+  // Adds the pass; returns the new version of each Write buffer, in `buffers` order. A handle may
+  // be read under two names (a stand-in).
+  std::vector<runtime::graph::BufferHandle> add(runtime::graph::RenderGraph& graph,
+                                                const FrameInputs& inputs,
+                                                const gpu::RestirPush& push,
+                                                std::initializer_list<Buffer> buffers) const;
+
+  const runtime::ComputePipeline& pipeline() const { return pipeline_; }
+
+ private:
+  std::string name_;
+  runtime::ComputePipeline pipeline_;
+};
+
+}  // namespace lantern::lighting
