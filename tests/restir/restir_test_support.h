@@ -1,8 +1,9 @@
 // A small harness for ReSTIR GPU tests: a FrameRenderer with a chosen integrator rendering
 // caller-made snapshots (so a test can move an occluder, remove a light or cut the camera
 // exactly when it wants) through the render graph into a HeadlessTarget, read back as linear
-// radiance, optionally with the frame's G-buffer instance ids and motion vectors read back (to
-// judge reuse by geometry). Plus helpers for levels written inline and for region statistics.
+// radiance, optionally with the frame's G-buffer instance ids, motion vectors and emission read
+// back (to judge reuse by geometry, and to tell emitters from lit surfaces). Plus helpers for
+// levels written inline and for region statistics.
 #pragma once
 
 #include <cmath>
@@ -29,11 +30,12 @@
 
 namespace lantern::test {
 
-// Host copies of one frame's gbuffer.ids and gbuffer.motion (shared/gbuffer.h), row-major from
-// the top-left.
+// Host copies of one frame's gbuffer.ids, gbuffer.motion and gbuffer.emission_metallic
+// (shared/gbuffer.h), row-major from the top-left.
 struct GBufferReadback {
-  std::vector<glm::uvec4> ids;    // x: instance (gpu::kNoInstance = sky)
-  std::vector<glm::vec4> motion;  // xy: previous pixel position minus current
+  std::vector<glm::uvec4> ids;      // x: instance (gpu::kNoInstance = sky)
+  std::vector<glm::vec4> motion;    // xy: previous pixel position minus current
+  std::vector<glm::vec4> emission;  // rgb: emitted radiance of the surface seen; a: metallic
 };
 
 class RenderHarness {
@@ -49,8 +51,8 @@ class RenderHarness {
     renderer_.warm_up();
   }
 
-  // One frame (the frame session's passes); with `gbuffer`, its ids and motion images come back
-  // too (a readback pass in the HDR hook, after the G-buffer is written).
+  // One frame (the frame session's passes); with `gbuffer`, its ids, motion and emission images
+  // come back too (a readback pass in the HDR hook, after the G-buffer is written).
   runtime::ImageRGBA32F render(const FrameSnapshot& snapshot, GBufferReadback* gbuffer = nullptr) {
     lighting::FrameHooks hooks;
     if (gbuffer != nullptr) {
@@ -67,8 +69,10 @@ class RenderHarness {
       const std::size_t n = std::size_t{renderer_.width()} * renderer_.height();
       gbuffer->ids.resize(n);
       gbuffer->motion.resize(n);
+      gbuffer->emission.resize(n);
       std::memcpy(gbuffer->ids.data(), readback_[0].mapped(), n * sizeof(glm::uvec4));
       std::memcpy(gbuffer->motion.data(), readback_[1].mapped(), n * sizeof(glm::vec4));
+      std::memcpy(gbuffer->emission.data(), readback_[2].mapped(), n * sizeof(glm::vec4));
     }
     pass_ms_ = std::move(timing.passes);
     return target_.read_output();
@@ -80,11 +84,13 @@ class RenderHarness {
   const std::vector<std::pair<std::string, double>>& pass_ms() const { return pass_ms_; }
 
  private:
-  // A Transfer pass copying gbuffer.ids and gbuffer.motion into host-visible buffers.
+  // A Transfer pass copying gbuffer.ids, .motion and .emission_metallic (16 bytes a texel each)
+  // into host-visible buffers.
   void add_gbuffer_readback() {
     const std::size_t bytes = std::size_t{renderer_.width()} * renderer_.height() * 16;
     if (readback_.empty()) {
-      for (const char* name : {"test.ids_readback", "test.motion_readback"}) {
+      for (const char* name :
+           {"test.ids_readback", "test.motion_readback", "test.emission_readback"}) {
         readback_.emplace_back(device_, runtime::BufferDesc{
                                             .size = bytes,
                                             .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -94,8 +100,8 @@ class RenderHarness {
     }
     const lighting::GBufferHandles& g = renderer_.last_inputs().gbuffer;
     struct Copy {
-      runtime::graph::ImageHandle images[2];
-      runtime::graph::BufferHandle buffers[2];
+      runtime::graph::ImageHandle images[kImages];
+      runtime::graph::BufferHandle buffers[kImages];
     };
     const std::uint32_t width = renderer_.width(), height = renderer_.height();
     runtime::graph::RenderGraph& graph = session_.graph();
@@ -107,7 +113,8 @@ class RenderHarness {
               VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
           d.images[0] = g.ids;
           d.images[1] = g.motion;
-          for (int i = 0; i < 2; ++i) {
+          d.images[2] = g.emission_metallic;
+          for (int i = 0; i < kImages; ++i) {
             b.read(d.images[i], runtime::graph::Access::TransferSrc);
             d.buffers[i] = b.write(graph.import_buffer(readback_[i].name(), readback_[i].handle(),
                                                         {readback_[i].size()}, host_read),
@@ -116,7 +123,7 @@ class RenderHarness {
           b.side_effect();
         },
         [width, height](runtime::graph::PassContext& ctx, const Copy& d) {
-          for (int i = 0; i < 2; ++i) {
+          for (int i = 0; i < kImages; ++i) {
             VkBufferImageCopy region{};
             region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
             region.imageExtent = {width, height, 1};
@@ -127,6 +134,7 @@ class RenderHarness {
         });
   }
 
+  static constexpr int kImages = 3;  // ids, motion, emission_metallic
   runtime::Device& device_;
   std::vector<runtime::Buffer> readback_;
   lighting::FrameRenderer renderer_;
