@@ -5,11 +5,10 @@
 // merges last frame's final reservoir (stored through reservoir_pack / reservoir_unpack, M capped
 // at m_cap x the fresh M, MIS weights of the bias-correction mode), then k spatial neighbours;
 // the frame's estimate is integrand(y) * W, the integrand carrying a visibility the target does
-// not (like restir.shade's shadow ray). The combine is restir_combine / restir_mis_weight of
-// shaders/restir/restir_reuse.glsl line for line, calling the same shared functions
-// (reservoir_merge, reservoir_finalize, mis_weight_none / _balance, mis_balance_term,
-// mis_pairwise_*); the loop itself lives in GLSL only (it reads the shader's domain arrays), so
-// it is mirrored here rather than included.
+// not (like restir.shade's shadow ray). The combine is the shaders' own loop,
+// shared/reservoir_combine.h's reservoir_combine (restir.temporal and restir.spatial call it
+// through restir_reuse.glsl), reading this test's domains through combine_domain_reservoir /
+// combine_domain_target.
 //
 // Power: every unbiasedness check first asserts that 3 sigma of its chains is below 1%
 // (kResolve), so a 1% bias cannot hide in the noise.
@@ -118,46 +117,27 @@ Reservoir initial_ris(const ChainConfig& c, uint pixel, uint& rng) {
   return r;
 }
 
+// The domains reservoir_combine (shared/reservoir_combine.h, the shaders' loop) reads: domain j's
+// reservoir and its pixel, for the combine in progress.
+const std::vector<Reservoir>* g_domains = nullptr;
+const std::vector<uint>* g_domain_pixels = nullptr;
+Reservoir combine_domain_reservoir(uint j) { return (*g_domains)[j]; }
+float combine_domain_target(uint j, LightSample y) { return target((*g_domain_pixels)[j], y); }
+
+}  // namespace
+}  // namespace lantern::gpu
+
+#include "shared/reservoir_combine.h"
+
+namespace lantern::gpu {
+namespace {
+
 // restir_combine of restir_reuse.glsl: domain 0 is canonical; pixel_of[j] is domain j's pixel.
 Reservoir combine(const std::vector<Reservoir>& d, const std::vector<uint>& pixel_of, uint mode,
                   uint& rng) {
-  const uint count = uint(d.size());
-  const float k = float(count - 1u);
-  float m_total = 0.0f;
-  for (const Reservoir& r : d) m_total += r.M;
-  Reservoir out = reservoir_empty();
-  for (uint j = 0; j < count; ++j) {
-    float u = rng_next_float(rng);
-    float p_c = 0.0f;
-    float m = 0.0f;
-    if (reservoir_has_sample(d[j])) {
-      const LightSample y = d[j].selected;
-      p_c = target(pixel_of[0], y);
-      if (p_c > 0.0f) {
-        if (mode == kBiasCorrectionNone) {
-          m = mis_weight_none(d[j].M, m_total);
-        } else if (mode == kBiasCorrectionBalance) {
-          float denominator = 0.0f;
-          float p_j = 0.0f;
-          for (uint l = 0; l < count; ++l) {
-            float p_l = l == 0u ? p_c : target(pixel_of[l], y);
-            if (l == j) p_j = p_l;
-            denominator += mis_balance_term(d[l].M, p_l);
-          }
-          m = mis_weight_balance(d[j].M, p_j, denominator);
-        } else if (j == 0u) {
-          m = mis_pairwise_canonical_init(k);
-          for (uint i = 1; i < count; ++i)
-            m += mis_pairwise_canonical_term(d[i].M, target(pixel_of[i], y), d[0].M, p_c, k);
-        } else {
-          m = mis_pairwise_neighbour(d[j].M, target(pixel_of[j], y), d[0].M, p_c, k);
-        }
-      }
-    }
-    reservoir_merge(out, d[j], m, p_c, u);
-  }
-  reservoir_finalize(out);
-  return out;
+  g_domains = &d;
+  g_domain_pixels = &pixel_of;
+  return reservoir_combine(uint(d.size()), mode, rng);
 }
 
 struct ChainResult {

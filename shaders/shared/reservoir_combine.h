@@ -1,0 +1,79 @@
+// Combining the finalized reservoirs of `count` domains (restir.temporal: the pixel and its
+// history; restir.spatial: the pixel and k neighbours) into one for the canonical domain 0, with
+// the resampling MIS weights of the bias-correction mode (shared/reservoir_mis.h). Shared by the
+// restir.* shaders (restir/restir_reuse.glsl) and the CPU chain tests, so both run this loop.
+// The includer defines, before including this header:
+//   Reservoir combine_domain_reservoir(uint j)           domain j's finalized reservoir
+//   float combine_domain_target(uint j, LightSample y)   p̂ of sample y in domain j
+#ifndef LANTERN_SHARED_RESERVOIR_COMBINE_H
+#define LANTERN_SHARED_RESERVOIR_COMBINE_H
+
+#include "shared/lang.h"
+#include "shared/reservoir.h"
+#include "shared/reservoir_mis.h"
+#include "shared/rng.h"
+
+LANTERN_BEGIN_SHARED
+
+// m_j(y_j) for domain j's own sample y_j; p_c = p̂ of y_j in the canonical domain.
+LANTERN_FUNC float reservoir_combine_weight(uint j, uint count, uint mode, float p_c,
+                                            float m_total) {
+  Reservoir r_j = combine_domain_reservoir(j);
+  LightSample y = r_j.selected;
+  float k = float(count - 1u);
+  if (mode == kBiasCorrectionNone) {
+    return mis_weight_none(r_j.M, m_total);
+  }
+  if (mode == kBiasCorrectionBalance) {
+    float denominator = 0.0f;
+    float p_j = 0.0f;
+    for (uint l = 0u; l < count; ++l) {
+      float p_l = l == 0u ? p_c : combine_domain_target(l, y);
+      if (l == j) {
+        p_j = p_l;
+      }
+      denominator += mis_balance_term(combine_domain_reservoir(l).M, p_l);
+    }
+    return mis_weight_balance(r_j.M, p_j, denominator);
+  }
+  // Pairwise.
+  float m_c = combine_domain_reservoir(0u).M;
+  if (j == 0u) {
+    float m = mis_pairwise_canonical_init(k);
+    for (uint i = 1u; i < count; ++i) {
+      m += mis_pairwise_canonical_term(combine_domain_reservoir(i).M,
+                                       combine_domain_target(i, y), m_c, p_c, k);
+    }
+    return m;
+  }
+  return mis_pairwise_neighbour(r_j.M, combine_domain_target(j, y), m_c, p_c, k);
+}
+
+// Resamples the `count` domains into one finalized reservoir for domain 0 (one random number per
+// domain, in domain order).
+LANTERN_FUNC Reservoir reservoir_combine(uint count, uint mode, LANTERN_INOUT(uint) rng) {
+  float m_total = 0.0f;
+  for (uint j = 0u; j < count; ++j) {
+    m_total += combine_domain_reservoir(j).M;
+  }
+  Reservoir out_r = reservoir_empty();
+  for (uint j = 0u; j < count; ++j) {
+    float u = rng_next_float(rng);
+    Reservoir r_j = combine_domain_reservoir(j);
+    float p_c = 0.0f;
+    float m = 0.0f;
+    if (reservoir_has_sample(r_j)) {
+      p_c = combine_domain_target(0u, r_j.selected);
+      if (p_c > 0.0f) {
+        m = reservoir_combine_weight(j, count, mode, p_c, m_total);
+      }
+    }
+    reservoir_merge(out_r, r_j, m, p_c, u);
+  }
+  reservoir_finalize(out_r);
+  return out_r;
+}
+
+LANTERN_END_SHARED
+
+#endif
