@@ -44,8 +44,8 @@ struct FrameInputs {
   std::uint32_t height = 0;
   std::uint32_t frame_index = 0;  // frames rendered since the renderer was created
   std::uint32_t seed = 1;
-  // False on the first frame, after a camera cut and after a resize: no temporal history.
-  bool history_valid = false;
+  // Temporal history is the graph's: graph.history(h) is invalid on the first frame, after a
+  // camera cut and after a resize (FrameRenderer invalidates it), so passes ask the graph.
   std::uint32_t light_count = 0;           // current lights (alias table size)
   std::uint32_t previous_light_count = 0;  // entries of light_previous_to_current
 };

@@ -69,7 +69,9 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
                            scene_->scene_radius()};
   scene_->set_frame_constants(
       make_frame_constants(snapshot, width_, height_, frames_, seed_, counts, history_valid));
+  // The one decision on history: the graph drops it; every pass then sees invalid history handles.
   if (!history_valid) graph.invalidate_history();
+  history_valid_ = history_valid;
 
   const SceneHandles scene = scene_->add_upload_pass(graph, scene_->import(graph));
   const GBufferHandles gbuffer =
@@ -86,7 +88,6 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   inputs_.height = height_;
   inputs_.frame_index = frames_;
   inputs_.seed = seed_;
-  inputs_.history_valid = history_valid;
   inputs_.light_count = scene_->light_count();
   inputs_.previous_light_count = scene_->previous_light_count();
   hdr = integrator_->add_passes(graph, inputs_, hdr);

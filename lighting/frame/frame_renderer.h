@@ -51,6 +51,9 @@ class FrameRenderer {
   // A new render size: the next frame has no history.
   void resize(std::uint32_t width, std::uint32_t height);
 
+  // Whether the last add_frame kept temporal history (false on the first frame, after a camera
+  // cut or a resize: it invalidated the graph's history).
+  bool history_valid() const { return history_valid_; }
   const GpuScene& scene() const { return *scene_; }
   GpuScene& scene() { return *scene_; }
   Integrator& integrator() { return *integrator_; }
@@ -71,6 +74,7 @@ class FrameRenderer {
   std::uint32_t seed_;
   std::uint32_t frames_ = 0;
   bool resized_ = false;
+  bool history_valid_ = false;
   FrameInputs inputs_;
 };
 

@@ -53,7 +53,6 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   gpu::RestirPush p{};
   p.tile_stride = tile_stride(tile_count(inputs.width, inputs.height, gpu::kRestirTileSize));
   p.flags = s.initial_visibility ? gpu::kRestirFlagInitialVisibility : 0u;
-  if (inputs.history_valid) p.flags |= gpu::kRestirFlagHistoryValid;
   p.light_candidates = s.light_candidates;
   p.bsdf_candidates = s.bsdf_candidates;
   p.bias_correction = s.bias_correction;
@@ -86,12 +85,12 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   // pair: +114..175% persisting for frames when only the removed light's samples are dropped,
   // -20% when their confidence is kept). Lights disappear rarely; skip reuse for one frame.
   const bool lights_removed = inputs.previous_light_count > inputs.light_count;
-  if (s.temporal && inputs.history_valid && !lights_removed) {
+  if (s.temporal && !lights_removed) {
     surfaces_history = graph.history(surfaces);
     reservoirs_history = graph.history(final_reservoirs);
   }
   const bool history = surfaces_history.valid() && reservoirs_history.valid();
-  if (!history) push.flags &= ~gpu::kRestirFlagHistoryValid;
+  if (history) push.flags |= gpu::kRestirFlagHistoryValid;
 
   const std::vector<ReservoirStep> plan = buffers_.next_frame({.temporal = s.temporal,
                                                                .spatial_passes = s.spatial_passes,

@@ -50,7 +50,7 @@ TEST_F(FrameRendererTest, CornellLightsAlongTheCameraPathIsFiniteAndLit) {
     EXPECT_EQ(image.count_non_finite(), 0u) << "frame " << frame;
     EXPECT_GT(mean_luminance(image), 0.0) << "frame " << frame;
     const auto& inputs = harness.renderer().last_inputs();
-    EXPECT_EQ(inputs.history_valid, frame > 0) << "frame " << frame;
+    EXPECT_EQ(harness.renderer().history_valid(), frame > 0) << "frame " << frame;
     EXPECT_EQ(inputs.frame_index, static_cast<std::uint32_t>(frame));
     if (frame == 3) {
       EXPECT_GT(glm::length(snapshot.camera.position - first_position), 1e-3f)
