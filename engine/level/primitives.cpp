@@ -50,6 +50,15 @@ Mesh make_plane(glm::vec2 size) {
   return m;
 }
 
+Material make_lambert(float rho) {
+  Material m;
+  m.base_color = glm::vec4(rho, rho, rho, 1.0f);
+  m.metallic = 0.0f;
+  m.roughness = 1.0f;
+  m.specular_factor = 0.0f;
+  return m;
+}
+
 Mesh make_box(glm::vec3 size, bool inward) {
   Mesh m;
   m.name = "box";

@@ -1,4 +1,5 @@
-// Procedural meshes for levels: plane, box, spheres and grids of emissive quads. All are centred
+// Procedural meshes for levels: plane, box, spheres and grids of emissive quads (and a plain
+// Lambertian material). All are centred
 // on the origin (the grid is placed by its own origin/axes) with outward normals and CCW fronts.
 #pragma once
 
@@ -7,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/scene/material.h"
 #include "engine/scene/mesh.h"
 
 namespace lantern {
@@ -19,6 +21,10 @@ Mesh make_box(glm::vec3 size, bool inward = false);
 Mesh make_uv_sphere(float radius, std::uint32_t segments, std::uint32_t rings);
 // An icosphere: `subdivisions` 0 = icosahedron (20 triangles), each level x4.
 Mesh make_ico_sphere(float radius, std::uint32_t subdivisions);
+
+// A grey Lambertian material of albedo `rho` (no metal, no specular layer, roughness 1): the
+// surface closed-form lighting tests shade.
+Material make_lambert(float rho);
 
 // Appends `src` transformed by `m` to `dst` (normals by the inverse transpose): generators merge
 // many small static pieces into one mesh per material.

@@ -39,17 +39,8 @@ struct Emitter {
   float size = 0.5f;                     // edge length, metres
 };
 
-inline Material lambert(float rho) {
-  Material m;
-  m.base_color = glm::vec4(rho, rho, rho, 1.0f);
-  m.metallic = 0.0f;
-  m.roughness = 1.0f;
-  m.specular_factor = 0.0f;
-  return m;
-}
-
 inline Material emissive(float radiance) {
-  Material m = lambert(0.0f);
+  Material m = make_lambert(0.0f);
   m.emissive_factor = glm::vec3(1.0f);
   m.emissive_strength = radiance;
   return m;
@@ -79,9 +70,9 @@ inline std::uint32_t add_material(Level& level, Material m) {
 inline Level room(const std::string& name = "extremes_room") {
   Level level;
   level.name = name;
-  const std::uint32_t floor_mat = add_material(level, lambert(0.5f));
-  const std::uint32_t box_mat = add_material(level, lambert(0.6f));
-  Material glossy = lambert(0.7f);
+  const std::uint32_t floor_mat = add_material(level, make_lambert(0.5f));
+  const std::uint32_t box_mat = add_material(level, make_lambert(0.6f));
+  Material glossy = make_lambert(0.7f);
   glossy.roughness = 0.35f;
   glossy.specular_factor = 1.0f;
   const std::uint32_t glossy_mat = add_material(level, glossy);

@@ -16,6 +16,7 @@
 
 #include "engine/core/error.h"
 #include "engine/level/level_loader.h"
+#include "engine/level/primitives.h"
 #include "lighting/scene/scene_data.h"
 #include "runtime/gpu/shader_library.h"
 #include "shared/bvh.h"
@@ -141,7 +142,7 @@ TEST_F(ExtremesTest, OnePointLightMatchesClosedForm) {
   Level level;
   level.name = "one_point_light";
   add_mesh(level, make_plane(glm::vec2(20.0f, 20.0f)));
-  add_material(level, lambert(0.5f));
+  add_material(level, make_lambert(0.5f));
   level.instances.push_back(place("floor", 0, 0, glm::mat4(1.0f)));
   Light light;
   light.type = LightType::Point;

@@ -44,21 +44,12 @@ class ReferenceRenderTest : public runtime::test::GpuTest {
   runtime::ShaderLibrary shaders;
 };
 
-Material lambert(float rho) {
-  Material m;
-  m.base_color = glm::vec4(rho, rho, rho, 1.0f);
-  m.metallic = 0.0f;
-  m.roughness = 1.0f;
-  m.specular_factor = 0.0f;
-  return m;
-}
-
 // A 20 x 20 Lambertian plane at y = 0 seen from straight above (camera at height `eye`).
 Level plane_level(float eye, float yfov) {
   Level level;
   level.name = "reference_plane";
   level.meshes.push_back(make_plane(glm::vec2(20.0f, 20.0f)));
-  level.materials.push_back(lambert(kRho));
+  level.materials.push_back(make_lambert(kRho));
   Instance inst;
   inst.name = "plane";
   level.instances.push_back(inst);
@@ -172,7 +163,7 @@ TEST_F(ReferenceRenderTest, PlaneUnderEmissiveRectangleMatchesPolygonFormula) {
   quad.bounds.min = centre - half;
   quad.bounds.max = centre + half;
   level.meshes.push_back(quad);
-  Material emitter = lambert(0.0f);
+  Material emitter = make_lambert(0.0f);
   emitter.emissive_factor = glm::vec3(5.0f);
   level.materials.push_back(emitter);
   Instance inst;

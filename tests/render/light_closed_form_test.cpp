@@ -146,15 +146,6 @@ Light make_light(LightCase c) {
   return light;
 }
 
-Material lambert(float rho) {
-  Material m;
-  m.base_color = glm::vec4(rho, rho, rho, 1.0f);
-  m.metallic = 0.0f;
-  m.roughness = 1.0f;
-  m.specular_factor = 0.0f;
-  return m;
-}
-
 // A square of half-size `half` at height y, facing +Y (down = false) or -Y.
 Instance square(std::uint32_t material, float y, float half, bool down) {
   Instance inst;
@@ -171,12 +162,12 @@ Level make_level(LightCase c) {
   Level level;
   level.name = std::string("closed_form_") + case_name(c);
   level.meshes.push_back(make_plane(glm::vec2(20.0f, 20.0f)));  // y = 0, facing +Y
-  level.materials.push_back(lambert(kRho));
+  level.materials.push_back(make_lambert(kRho));
   Instance plane;
   plane.name = "plane";
   level.instances.push_back(plane);
   if (c == LightCase::Triangles) {
-    Material emitter = lambert(0.0f);
+    Material emitter = make_lambert(0.0f);
     emitter.emissive_factor = kQuadRadiance;
     level.materials.push_back(emitter);
     level.instances.push_back(square(1, kQuadHeight, kQuadHalf, true));
@@ -197,7 +188,7 @@ Level make_level(LightCase c) {
     level.environment = EnvironmentMap{dir / "uniform.exr", 1.0f, glm::quat(1, 0, 0, 0)};
   } else {
     if (c == LightCase::Occluded) {
-      level.materials.push_back(lambert(0.3f));
+      level.materials.push_back(make_lambert(0.3f));
       level.instances.push_back(square(1, kOccluderHeight, kOccluderHalf, false));
     }
     level.lights.push_back(make_light(c));

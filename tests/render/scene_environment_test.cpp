@@ -46,28 +46,19 @@ class SceneEnvironmentTest : public runtime::test::GpuTest {
   runtime::ShaderLibrary shaders;
 };
 
-Material lambert(float rho) {
-  Material m;
-  m.base_color = glm::vec4(rho, rho, rho, 1.0f);
-  m.metallic = 0.0f;
-  m.roughness = 1.0f;
-  m.specular_factor = 0.0f;
-  return m;
-}
-
 // A 20 x 20 grey plane at y = 0 (and optionally a unit box standing on it at the origin) under a
 // 32 x 16 colour environment map (rotated), camera at `eye` looking at `target`.
 Level env_level(const std::string& file, glm::vec3 eye, glm::vec3 target, bool box) {
   Level level;
   level.name = "scene_env_" + file;
   level.meshes.push_back(make_plane(glm::vec2(20.0f, 20.0f)));
-  level.materials.push_back(lambert(0.6f));
+  level.materials.push_back(make_lambert(0.6f));
   Instance plane;
   plane.name = "plane";
   level.instances.push_back(plane);
   if (box) {
     level.meshes.push_back(make_box(glm::vec3(1.0f)));
-    Material m = lambert(0.8f);
+    Material m = make_lambert(0.8f);
     m.roughness = 0.4f;
     m.specular_factor = 0.5f;
     level.materials.push_back(m);
