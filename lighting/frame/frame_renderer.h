@@ -1,14 +1,12 @@
 // FrameRenderer: one frame of a level from its FrameSnapshot, as render-graph passes:
 //   scene.upload (GpuScene: instances with previous transforms, TLAS, lights + remap, constants)
 //   -> gbuffer (lighting/gbuffer/gbuffer_pass.h) -> the integrator's passes -> the HDR buffer.
-// It owns the GpuScene, the G-buffer pass and the Integrator; the caller owns the graph, the
-// executor and the target (see lighting/integrators/offline_render.cpp and
-// apps/lantern/cmd_play.cpp).
+// It owns the GpuScene, the G-buffer pass and the Integrator; the FrameSession
+// (lighting/frame/frame_session.h) owns the graph, the executor and the target and drives it:
 //
 //   FrameRenderer renderer(device, shaders, level, make_integrator(device, shaders, config), w, h,
-//   1); renderer.warm_up(); graph.begin_frame(); BufferHandle hdr = renderer.add_frame(graph,
-//   world.step()); renderer.add_output_pass(graph, hdr, target.import_output(graph, frame), 0.0f);
-//   // linear
+//   1); renderer.warm_up(); FrameSession session(device, target, renderer);
+//   session.render(world.step());
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 // The scene's environment map for any pass (baseline, reference, ReSTIR): declares the four
-// buffers GpuScene::bind binds by name (env_header, env_texels, env_marginal, env_conditional;
-// lighting/scene/gpu_scene.h), defines the fetches shared/environment.h needs, and adds
+// scene buffers SceneHandles binds by name (env_header, env_texels, env_marginal, env_conditional;
+// lighting/scene/scene_buffers.h; included through lib/scene_buffers.glsl), defines the fetches shared/environment.h needs, and adds
 //   vec3 env_camera_ray_dir(FrameConstants fc, uvec2 pixel)
 //     World direction of the camera ray through the centre of `pixel` (row 0 at the top).
 //   vec3 env_sky_radiance(FrameConstants fc, uvec2 pixel)
@@ -11,8 +11,9 @@
 // Light selection: env_header.env.params.x is the probability that a light sample picks the
 // environment (else the power alias table, scaled by 1 - params.x); env_sample / env_pdf
 // (shared/environment.h) draw and evaluate a direction.
-// Bindings: set ENV_DESCRIPTOR_SET (default 0), bindings ENV_BINDING_BASE .. + 3 (default 20:
-// header, texels, marginal, conditional); the including shader must include shared/scene.h.
+// Bindings: set ENV_DESCRIPTOR_SET (default 0), bindings ENV_BINDING_BASE .. + 3 (header,
+// texels, marginal, conditional): lib/scene_buffers.glsl sets the base to kSceneEnvHeader, the
+// slots of shared/scene_bindings.h. Include it through lib/scene_buffers.glsl.
 #ifndef LANTERN_LIB_ENVIRONMENT_GLSL
 #define LANTERN_LIB_ENVIRONMENT_GLSL
 
@@ -24,7 +25,7 @@
 #define ENV_DESCRIPTOR_SET 0
 #endif
 #ifndef ENV_BINDING_BASE
-#define ENV_BINDING_BASE 20
+#error "lib/environment.glsl: include lib/scene_buffers.glsl (it places the environment's slots)"
 #endif
 
 layout(std430, set = ENV_DESCRIPTOR_SET, binding = ENV_BINDING_BASE) readonly buffer

@@ -21,7 +21,8 @@
 // Bindings: set VIS_DESCRIPTOR_SET (default 0), bindings VIS_BINDING_BASE .. + 3 (default 0..3):
 // the BVH uses four (header, nodes, triangles, instances), ray query one (scene_tlas at
 // VIS_TLAS_BINDING, default the base; the scene's at kSceneTlas, shared/scene_bindings.h).
-// Bind them with lighting::VisibilityScene::bind (lighting/visibility/visibility_scene.h).
+// Frame passes get them through lib/scene_buffers.glsl (SceneHandles binds them); the standalone
+// visibility probes bind lighting::VisibilityScene (lighting/visibility/visibility_scene.h).
 #ifndef LANTERN_LIB_VISIBILITY_GLSL
 #define LANTERN_LIB_VISIBILITY_GLSL
 

@@ -1,5 +1,5 @@
-// The scene's environment map (GpuScene owns it; every integrator binds it through
-// GpuScene::bind) on the GPU, through render_offline as `lantern render` runs it:
+// The scene's environment map (GpuScene owns it; every integrator binds it through SceneHandles,
+// lighting/scene/scene_buffers.h) on the GPU, through render_offline as `lantern render` runs it:
 //   - sky pixels (G-buffer sky) of baseline and reference show the map's radiance along the
 //     pixel's camera ray, exactly (a pixel whose ray lies within 1e-4 rad of a texel border may
 //     show the neighbour texel);
