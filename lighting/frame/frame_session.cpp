@@ -75,7 +75,6 @@ void FrameSession::render(const runtime::TargetFrame& frame, const FrameSnapshot
   timer.reset(frame.cmd);
   timer_used_[frame.slot] = true;
   graph_.begin_frame();
-  if (hooks.drop_history) graph_.invalidate_history();
   runtime::graph::BufferHandle hdr = renderer_->add_frame(graph_, snapshot);
   if (hooks.hdr) hdr = hooks.hdr(graph_, hdr);
   runtime::graph::ImageHandle output = renderer_->add_output_pass(

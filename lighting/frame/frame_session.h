@@ -58,8 +58,7 @@ struct FrameHooks {
                                             runtime::graph::ImageHandle,
                                             const runtime::TargetFrame&)>
       output;
-  float exposure = 0.0f;      // the output pass's exposure in stops (0: none)
-  bool drop_history = false;  // no temporal history this frame (e.g. after a pipeline reload)
+  float exposure = 0.0f;  // the output pass's: 0 linear copy, > 0 exposure x filmic tonemap
 };
 
 class FrameSession {
@@ -83,7 +82,7 @@ class FrameSession {
               const FrameHooks& hooks = {}, FrameTiming* timing = nullptr);
 
   // Renders with another FrameRenderer from the next frame on (play: integrator switch, shader
-  // reload); pass drop_history in that frame's hooks.
+  // reload). A new renderer's first frame has no history (it invalidates the graph's).
   void set_renderer(FrameRenderer& renderer) { renderer_ = &renderer; }
   runtime::RenderTarget& target() { return target_; }
   FrameRenderer& renderer() { return *renderer_; }

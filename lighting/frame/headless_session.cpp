@@ -66,11 +66,10 @@ void HeadlessSession::skip(std::uint32_t frames) {
   if (frames > 0) state_->world.request_camera_cut();
 }
 
-FrameTiming HeadlessSession::render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image,
-                                    const FrameHooks& hooks) {
+FrameTiming HeadlessSession::render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image) {
   State& s = *state_;
   FrameTiming timing;
-  if (!s.session.render(snapshot, hooks, &timing)) {
+  if (!s.session.render(snapshot, {}, &timing)) {
     throw RuntimeError("the headless target gave no frame");
   }
   timing.step_ms = last_step_ms_;

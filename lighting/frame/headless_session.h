@@ -53,8 +53,7 @@ class HeadlessSession {
   void skip(std::uint32_t frames);
   // Renders `snapshot` (usually the last step_world()'s); with `image`, reads the linear radiance
   // back into it.
-  FrameTiming render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image = nullptr,
-                     const FrameHooks& hooks = {});
+  FrameTiming render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image = nullptr);
 
   World& world();
   FrameRenderer& renderer();

@@ -7,6 +7,7 @@
 
 #include "engine/core/error.h"
 #include "engine/perf/statistics.h"
+#include "engine/world/world.h"
 #include "lighting/frame/frame_renderer.h"
 #include "lighting/frame/headless_session.h"
 
@@ -68,7 +69,8 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
   for (std::uint32_t frame = 0; frame < request.frames; ++frame) {
     const bool step = request.animate || frame == 0;
     if (step) {
-      snapshot = std::make_shared<const FrameSnapshot>(session.step_world());
+      session.step_world();
+      snapshot = session.world().latest();
     } else if (frame == 1) {
       snapshot = std::make_shared<const FrameSnapshot>(frozen(*snapshot));
     }

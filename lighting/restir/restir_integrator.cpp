@@ -117,7 +117,8 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
     throw RuntimeError("restir: the reservoir plan names no buffer where one is needed");
   };
 
-  BufferHandle status = graph.create_buffer("restir.temporal_status", {pixels * sizeof(std::uint32_t)});
+  BufferHandle status =
+      graph.create_buffer("restir.temporal_status", {pixels * sizeof(std::uint32_t)});
   bool status_written = false;
   for (const ReservoirStep& step : plan) {
     switch (step.stage) {

@@ -40,9 +40,9 @@ std::uint32_t float_bits(float f) {
 
 GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
                    VisibilityBackend visibility)
-    : device_(device), level_(std::move(level)), visibility_(visibility) {
+    : device_(device), level_(std::move(level)) {
   if (!level_) throw InputError("GpuScene: no level");
-  if (visibility_ == VisibilityBackend::RayQuery && !device_.caps().ray_query) {
+  if (visibility == VisibilityBackend::RayQuery && !device_.caps().ray_query) {
     throw InputError(
         fmt::format("ray-query visibility needs VK_KHR_ray_query, which device '{}' lacks; use bvh",
                     device_.info().name));
@@ -99,6 +99,18 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
         env_header_.params.x);
   }
 
+  // What the rows upload from: members whose addresses never change (the environment's arrays are
+  // fixed once loaded; the other contents change in place).
+  sources_.frame_constants = &constants_;
+  sources_.data = &data_;
+  sources_.light_previous_to_current = &remap_;
+  sources_.env_header = &env_header_;
+  sources_.env_texels = env_ ? std::as_bytes(std::span(env_->texels()))
+                             : std::as_bytes(std::span(env_dummy_texels_));
+  sources_.env_marginal = env_ ? std::as_bytes(std::span(env_->marginal()))
+                               : std::as_bytes(std::span(env_dummy_alias_));
+  sources_.env_conditional = env_ ? std::as_bytes(std::span(env_->conditional()))
+                                  : std::as_bytes(std::span(env_dummy_alias_));
   for (std::uint32_t s = 0; s < gpu::kSceneBufferCount; ++s) {
     if (kSceneBuffers[s].kind != SceneResourceKind::Buffer) continue;
     ensure_capacity(s);
@@ -110,7 +122,7 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
     arrays_[s].dirty.clear();
   }
   // BLASes and the TLAS of the level's placement (blocking, setup time).
-  if (visibility_ == VisibilityBackend::RayQuery)
+  if (visibility == VisibilityBackend::RayQuery)
     ray_query_ = std::make_unique<RayQueryScene>(device_, data_.bvh);
 }
 
@@ -118,18 +130,7 @@ GpuScene::~GpuScene() = default;
 
 std::span<const std::byte> GpuScene::cpu_bytes(std::uint32_t slot) const {
   if (kSceneBuffers[slot].bytes == nullptr) return {};  // built on the device (the TLAS)
-  SceneBufferSources sources;
-  sources.frame_constants = &constants_;
-  sources.data = &data_;
-  sources.light_previous_to_current = &remap_;
-  sources.env_header = &env_header_;
-  sources.env_texels = env_ ? std::as_bytes(std::span(env_->texels()))
-                            : std::as_bytes(std::span(env_dummy_texels_));
-  sources.env_marginal = env_ ? std::as_bytes(std::span(env_->marginal()))
-                              : std::as_bytes(std::span(env_dummy_alias_));
-  sources.env_conditional = env_ ? std::as_bytes(std::span(env_->conditional()))
-                                 : std::as_bytes(std::span(env_dummy_alias_));
-  return kSceneBuffers[slot].bytes(sources);
+  return kSceneBuffers[slot].bytes(sources_);
 }
 
 void GpuScene::mark_dirty(std::uint32_t slot, std::uint64_t begin, std::uint64_t end) {

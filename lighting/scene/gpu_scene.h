@@ -109,7 +109,9 @@ class GpuScene {
   const EnvironmentDistribution* environment_map() const { return env_ ? &*env_ : nullptr; }
   std::uint64_t bytes() const;
 
-  VisibilityBackend visibility() const { return visibility_; }
+  VisibilityBackend visibility() const {
+    return ray_query_ ? VisibilityBackend::RayQuery : VisibilityBackend::Bvh;
+  }
   const Level& level() const { return *level_; }
   const SceneData& data() const { return data_; }
   const std::vector<std::uint32_t>& light_previous_to_current() const { return remap_; }
@@ -170,6 +172,7 @@ class GpuScene {
   std::vector<EmissiveInstance> emissive_;
   std::vector<BvhInstanceDesc> bvh_descs_;
   std::array<DeviceArray, gpu::kSceneBufferCount> arrays_;
+  SceneBufferSources sources_;  // the rows' CPU arrays (filled once at construction)
   std::array<runtime::Buffer, kStagingSlots> staging_;
   struct Retired {
     std::uint64_t upload = 0;  // uploads_ when it was retired
@@ -184,7 +187,6 @@ class GpuScene {
   std::vector<gpu::vec4> env_dummy_texels_;
   std::vector<gpu::AliasEntry> env_dummy_alias_;
   std::uint64_t uploads_ = 0;  // scene.upload passes added so far
-  VisibilityBackend visibility_ = VisibilityBackend::Bvh;
   std::unique_ptr<RayQueryScene> ray_query_;  // RayQuery only
   bool tlas_dirty_ = false;                   // an instance moved since the last TLAS build
   SceneUpdateStats stats_;

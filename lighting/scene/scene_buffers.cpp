@@ -91,7 +91,8 @@ void SceneHandles::declare_reads(runtime::graph::PassBuilder& builder,
   using runtime::graph::Access;
   for (const SceneBufferRow& row : kSceneBuffers) {
     const bool storage = pipeline.find_binding(row.shader_name) != nullptr;
-    const bool texel = row.texel_name != nullptr && pipeline.find_binding(row.texel_name) != nullptr;
+    const bool texel =
+        row.texel_name != nullptr && pipeline.find_binding(row.texel_name) != nullptr;
     if (!storage && !texel) continue;
     const runtime::graph::BufferHandle h = buffers[row.slot];
     if (!h.valid()) {

@@ -330,6 +330,13 @@ class Parser {
   }
 
   void resolve_structs() {
+    // The stride of the arrays of each element type (one pass, not one per struct).
+    std::unordered_map<std::uint32_t, std::uint32_t> stride_of_element;
+    for (const Id& a : ids_) {
+      if ((a.op == SpvOpTypeArray || a.op == SpvOpTypeRuntimeArray) && !a.operands.empty() &&
+          a.array_stride)
+        stride_of_element[a.operands[0]] = *a.array_stride;
+    }
     for (std::uint32_t i = 0; i < ids_.size(); ++i) {
       const Id& t = ids_[i];
       if (t.op != SpvOpTypeStruct || t.name.empty()) continue;
@@ -342,11 +349,8 @@ class Parser {
         if (m < n) s.member_names[m] = name;
       for (const auto& [m, offset] : t.member_offsets)
         if (m < n) s.member_offsets[m] = offset;
-      for (const Id& a : ids_) {
-        if ((a.op == SpvOpTypeArray || a.op == SpvOpTypeRuntimeArray) && !a.operands.empty() &&
-            a.operands[0] == i && a.array_stride)
-          s.array_stride = *a.array_stride;
-      }
+      if (const auto stride = stride_of_element.find(i); stride != stride_of_element.end())
+        s.array_stride = stride->second;
       auto same = std::find_if(out_.structs.begin(), out_.structs.end(),
                                [&](const StructLayout& o) { return o.name == s.name; });
       const auto decorated = [](const StructLayout& l) {

@@ -7,8 +7,8 @@
 // kMargin (1/64 px) is wider than lavapipe's vertex snapping (1/256 px), so a dropped triangle
 // could not have produced a fragment; what survives is rasterised exactly as before.
 // Reads: scene frame_constants, vertices, indices, instances, gbuffer_chunks, gbuffer_dispatch
-// (indirect). Writes: gbuffer_triangles ((instance, triangle) per survivor), gbuffer_clip (three clip
-// positions per survivor), gbuffer_draw.x (+3 per survivor). History: none.
+// (indirect). Writes: gbuffer_triangles ((instance, triangle) per survivor), gbuffer_clip (three
+// clip positions per survivor), gbuffer_draw.x (+3 per survivor). History: none.
 // Dispatch: indirect, one workgroup of kGBufferCullChunk threads per chunk of one instance.
 #version 460
 #extension GL_GOOGLE_include_directive : require
@@ -19,10 +19,16 @@
 
 layout(local_size_x = 128) in;
 
-layout(std430, binding = PASS_BINDING(0)) restrict readonly buffer ChunkBuffer { uint first[]; } gbuffer_chunks;
-layout(std430, binding = PASS_BINDING(1)) writeonly buffer TriangleBuffer { uvec2 t[]; } gbuffer_triangles;
+layout(std430, binding = PASS_BINDING(0)) restrict readonly buffer ChunkBuffer {
+  uint first[];
+} gbuffer_chunks;
+layout(std430, binding = PASS_BINDING(1)) writeonly buffer TriangleBuffer {
+  uvec2 t[];
+} gbuffer_triangles;
 layout(std430, binding = PASS_BINDING(2)) writeonly buffer ClipBuffer { vec4 p[]; } gbuffer_clip;
-layout(std430, binding = PASS_BINDING(3)) coherent buffer DrawBuffer { uint vertex_count; } gbuffer_draw;
+layout(std430, binding = PASS_BINDING(3)) coherent buffer DrawBuffer {
+  uint vertex_count;
+} gbuffer_draw;
 
 layout(push_constant) uniform Push { GBufferDrawsPush push; };
 

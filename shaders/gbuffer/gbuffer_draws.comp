@@ -15,9 +15,15 @@
 layout(local_size_x = 256) in;
 layout(constant_id = 0) const bool kForward = false;
 
-layout(std430, binding = PASS_BINDING(0)) writeonly buffer ChunkBuffer { uint first[]; } gbuffer_chunks;
-layout(std430, binding = PASS_BINDING(1)) writeonly buffer DispatchBuffer { uint words[]; } gbuffer_dispatch;
-layout(std430, binding = PASS_BINDING(2)) writeonly buffer DrawBuffer { uvec4 commands[]; } gbuffer_draw;
+layout(std430, binding = PASS_BINDING(0)) writeonly buffer ChunkBuffer {
+  uint first[];
+} gbuffer_chunks;
+layout(std430, binding = PASS_BINDING(1)) writeonly buffer DispatchBuffer {
+  uint words[];
+} gbuffer_dispatch;
+layout(std430, binding = PASS_BINDING(2)) writeonly buffer DrawBuffer {
+  uvec4 commands[];
+} gbuffer_draw;
 
 layout(push_constant) uniform Push { GBufferDrawsPush push; };
 

@@ -8,7 +8,9 @@
 
 #include "lib/scene_buffers.glsl"
 
-layout(std430, binding = PASS_BINDING(0)) restrict readonly buffer TriangleBuffer { uvec2 t[]; } gbuffer_triangles;
+layout(std430, binding = PASS_BINDING(0)) restrict readonly buffer TriangleBuffer {
+  uvec2 t[];
+} gbuffer_triangles;
 layout(binding = PASS_BINDING(1), r32ui) uniform restrict readonly uimage2D gbuffer_visibility;
 
 #include "gbuffer/gbuffer_resolve.glsl"

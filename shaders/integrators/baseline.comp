@@ -2,8 +2,9 @@
 // from the G-buffer (position, facing normals, material id, emission seen from the camera); one
 // light sample: the environment map with probability env.params.x (its luminance x solid-angle
 // distribution, shared/environment.h), else one emitter from the power alias table, evaluated by
-// shared/light_eval.h (the light evaluation of ReSTIR and the reference); one shadow ray. Sky pixels show the environment along the camera ray
-// (lib/environment.glsl env_sky_radiance; the uniform sky colour without a map).
+// shared/light_eval.h (the light evaluation of ReSTIR and the reference); one shadow ray. Sky
+// pixels show the environment along the camera ray (lib/environment.glsl env_sky_radiance; the
+// uniform sky colour without a map).
 // Reads: G-buffer images (shared/gbuffer.h) and the scene (lib/scene_buffers.glsl: materials,
 // lights, alias table, environment, BVH through lib/visibility.glsl, frame constants).
 // Writes: radiance (rgba32f per pixel, row-major from the top-left; the host averages
@@ -29,7 +30,9 @@
 
 layout(local_size_x = kBaselineTileSize, local_size_y = kBaselineTileSize) in;
 
-layout(std430, binding = PASS_BINDING(0)) writeonly buffer RadianceBuffer { vec4 pixels[]; } radiance;
+layout(std430, binding = PASS_BINDING(0)) writeonly buffer RadianceBuffer {
+  vec4 pixels[];
+} radiance;
 layout(binding = PASS_BINDING(1), rgba32f) uniform readonly image2D gbuffer_position;
 layout(binding = PASS_BINDING(2), rgba32f) uniform readonly image2D gbuffer_normal;
 layout(binding = PASS_BINDING(3), rgba32f) uniform readonly image2D gbuffer_emission_metallic;
@@ -44,10 +47,11 @@ vec3 sample_light(uint index, float select_pdf, vec3 x, vec3 n, vec3 ng, vec3 v,
   GpuLight light = scene_lights.l[index];
   float pdf = select_pdf * light_eval_point_pdf(light);
   if (!(pdf > 0.0)) return vec3(0.0);
-  vec3 c = light_eval_contribution(light, u, x, n, ng, v, mat.base_color.rgb, mat.params.x,
-                                   mat.params.y, mat.params.z, frame_constants.frame.scene.x);
+  vec3 y = light_eval_position(light, u, x, frame_constants.frame.scene.x);
+  vec3 c = light_eval_contribution_at(light, y, x, n, ng, v, mat.base_color.rgb, mat.params.x,
+                                      mat.params.y, mat.params.z);
   if (c == vec3(0.0)) return vec3(0.0);
-  if (!vis_visible(x, light_eval_position(light, u, x, frame_constants.frame.scene.x))) return vec3(0.0);
+  if (!vis_visible(x, y)) return vec3(0.0);
   return c / pdf;
 }
 
@@ -60,7 +64,8 @@ vec3 sample_environment(float p_env, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMateria
   vec3 c = light_eval_incident(l, le, 1.0, n, ng, v, mat.base_color.rgb, mat.params.x,
                                mat.params.y, mat.params.z);
   if (c == vec3(0.0)) return vec3(0.0);
-  if (!vis_visible(x, x + l * (kDirectionalShadowRadii * frame_constants.frame.scene.x))) return vec3(0.0);
+  vec3 far = x + l * (kDirectionalShadowRadii * frame_constants.frame.scene.x);
+  if (!vis_visible(x, far)) return vec3(0.0);
   return c / pdf;
 }
 
@@ -80,7 +85,7 @@ vec3 shade_pixel(uvec2 pixel) {
   vec3 result = imageLoad(gbuffer_emission_metallic, p).rgb;
   float p_env = env_header.env.params.x;  // 0 without a map; 1 when no emitter has power
   if (frame_constants.frame.counts.x > 0u || p_env > 0.0) {
-    uint rng = rng_init(pixel, frame_constants.frame.frame.z, fc.frame.w, kBaselineRngPass);
+    uint rng = frame_rng(pixel, kBaselineRngPass);
     float u_select = rng_next_float(rng);
     float u1 = rng_next_float(rng);
     vec2 u_light = rng_next_vec2(rng);

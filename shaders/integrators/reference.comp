@@ -1,7 +1,7 @@
 // integrators.reference: converged direct lighting, the yardstick of baseline and ReSTIR. Per
 // pixel: the G-buffer's primary hit (the same surface baseline and ReSTIR shade), its emission
-// seen from the camera (or the environment on sky pixels), then `spp` samples, each one light sample and one BSDF sample combined with the
-// power heuristic (MIS, Veach 1995):
+// seen from the camera (or the environment on sky pixels), then `spp` samples, each one light
+// sample and one BSDF sample combined with the power heuristic (MIS, Veach 1995):
 //   light sampling: the environment with probability env.params.x (its luminance x solid-angle
 //     distribution, shared/environment.h), else one emitter from the power alias table (triangles:
 //     uniform area point, solid-angle pdf; punctual lights: delta, weight 1); one shadow ray;
@@ -35,7 +35,9 @@
 
 layout(local_size_x = kReferenceTileSize, local_size_y = kReferenceTileSize) in;
 
-layout(std430, binding = PASS_BINDING(0)) writeonly buffer RadianceBuffer { vec4 pixels[]; } radiance;
+layout(std430, binding = PASS_BINDING(0)) writeonly buffer RadianceBuffer {
+  vec4 pixels[];
+} radiance;
 layout(binding = PASS_BINDING(1), rgba32f) uniform readonly image2D gbuffer_position;
 layout(binding = PASS_BINDING(2), rgba32f) uniform readonly image2D gbuffer_normal;
 layout(binding = PASS_BINDING(3), rgba32f) uniform readonly image2D gbuffer_emission_metallic;
@@ -150,10 +152,10 @@ vec3 sample_light(Shading sh, inout uint rng) {
   GpuLight light = scene_lights.l[index];
   float pdf_point = select * light_eval_point_pdf(light);
   if (!(pdf_point > 0.0)) return vec3(0.0);
-  vec3 c = light_eval_contribution(light, u_point, sh.x, sh.n, sh.ng, sh.v, sh.albedo,
-                                   sh.roughness, sh.metallic, sh.specular, frame_constants.frame.scene.x);
-  if (c == vec3(0.0)) return vec3(0.0);
   vec3 target = light_eval_position(light, u_point, sh.x, frame_constants.frame.scene.x);
+  vec3 c = light_eval_contribution_at(light, target, sh.x, sh.n, sh.ng, sh.v, sh.albedo,
+                                      sh.roughness, sh.metallic, sh.specular);
+  if (c == vec3(0.0)) return vec3(0.0);
   if (!vis_visible(sh.x, target)) return vec3(0.0);
   // Punctual and directional lights are deltas no BSDF sample can hit (MIS weight 1); a triangle
   // point is weighted against BSDF sampling of the same direction (solid-angle densities).
@@ -223,7 +225,7 @@ vec3 shade_pixel(uvec2 pixel) {
   // Keep both lobes reachable unless one is absent.
   if (sh.p_specular > 0.0 && sh.p_specular < 1.0) sh.p_specular = clamp(sh.p_specular, 0.1, 0.9);
 
-  uint rng = rng_init(pixel, frame_constants.frame.frame.z, fc.frame.w, kReferenceRngPass);
+  uint rng = frame_rng(pixel, kReferenceRngPass);
   vec3 sum = vec3(0.0);
   for (uint i = 0u; i < push.spp; ++i) {
     vec3 c = sample_light(sh, rng) + sample_bsdf(sh, rng);

@@ -1,6 +1,7 @@
 // The scene's environment map for any pass (baseline, reference, ReSTIR): declares the four
 // scene buffers SceneHandles binds by name (env_header, env_texels, env_marginal, env_conditional;
-// lighting/scene/scene_buffers.h; included through lib/scene_buffers.glsl), defines the fetches shared/environment.h needs, and adds
+// lighting/scene/scene_buffers.h; included through lib/scene_buffers.glsl), defines the fetches
+// shared/environment.h needs, and adds
 //   vec3 env_camera_ray_dir(FrameConstants fc, uvec2 pixel)
 //     World direction of the camera ray through the centre of `pixel` (row 0 at the top).
 //   vec3 env_sky_radiance(FrameConstants fc, uvec2 pixel)

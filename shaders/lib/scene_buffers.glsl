@@ -7,8 +7,8 @@
 //   kInvalidLight), the BVH (lib/bvh_traverse.glsl: bvh_header, bvh_*_texels; in the rayquery
 //   variant instead the TLAS scene_tlas at kSceneTlas) and the
 //   environment (lib/environment.glsl: env_header, env_texels, env_marginal, env_conditional).
-// Then lib/visibility.glsl's vis_trace_closest / vis_visible are available. A pass declares its
-// own resources from binding kPassBindingBase on: layout(binding = PASS_BINDING(0)) ...
+// Then lib/visibility.glsl's vis_trace_closest / vis_visible and frame_rng are available. A pass
+// declares its own resources from kPassBindingBase on: layout(binding = PASS_BINDING(0)).
 #ifndef LANTERN_LIB_SCENE_BUFFERS_GLSL
 #define LANTERN_LIB_SCENE_BUFFERS_GLSL
 
@@ -16,6 +16,7 @@
 
 #include "shared/alias_table.h"
 #include "shared/lights.h"
+#include "shared/rng.h"
 #include "shared/scene.h"
 #include "shared/scene_bindings.h"
 
@@ -51,5 +52,11 @@ layout(std430, binding = kSceneLightPreviousToCurrent) restrict readonly buffer 
 #include "lib/visibility.glsl"
 #define ENV_BINDING_BASE kSceneEnvHeader
 #include "lib/environment.glsl"
+
+// The random stream of `pixel` in pass `pass` this frame (the frame's index and seed are the
+// frame constants').
+uint frame_rng(uvec2 pixel, uint pass) {
+  return rng_init(pixel, frame_constants.frame.frame.z, frame_constants.frame.frame.w, pass);
+}
 
 #endif

@@ -3,8 +3,9 @@
 // from that decoded point. Every pass evaluates p̂ through restir_contribution() on a packed
 // surface, so all domains use exactly the same target function (needed for unbiased MIS).
 // The scene (frame constants, lights, environment, BVH) comes from lib/scene_buffers.glsl; a pass
-// declares its own resources from PASS_BINDING(0) on. A sample's light index is a light of the list or kEnvironmentLight (a direction of the
-// environment map, solid-angle measure; shared/reservoir.h).
+// declares its own resources from PASS_BINDING(0) on. A sample's light index is a light of the
+// list or kEnvironmentLight (a direction of the environment map, solid-angle measure;
+// shared/reservoir.h).
 #ifndef LANTERN_RESTIR_COMMON_GLSL
 #define LANTERN_RESTIR_COMMON_GLSL
 

@@ -1,6 +1,6 @@
 // restir.initial: per pixel, packs the G-buffer into a RestirSurface and resamples
-// push.light_candidates light candidates (the environment map with its selection probability, else the
-// power alias table x uniform point on the light) plus push.bsdf_candidates BSDF candidates (a
+// push.light_candidates light candidates (the environment map with its selection probability, else
+// the power alias table x uniform point on the light) plus push.bsdf_candidates BSDF candidates (a
 // closest-hit ray; an emissive triangle hit, or the environment when the ray escapes, is a
 // candidate), combined by the balance heuristic over the two strategies, with target p̂ =
 // luminance of the unshadowed contribution. Optionally shadow-tests the pick
@@ -24,8 +24,12 @@ layout(binding = PASS_BINDING(1), rgba32f) readonly uniform image2D gbuffer_norm
 layout(binding = PASS_BINDING(2), rgba16f) readonly uniform image2D gbuffer_albedo_roughness;
 layout(binding = PASS_BINDING(3), rgba32f) readonly uniform image2D gbuffer_emission_metallic;
 layout(binding = PASS_BINDING(4), rgba32ui) readonly uniform uimage2D gbuffer_ids;
-layout(std430, binding = PASS_BINDING(5)) writeonly buffer SurfaceOut { RestirSurface s[]; } restir_surfaces;
-layout(std430, binding = PASS_BINDING(6)) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
+layout(std430, binding = PASS_BINDING(5)) writeonly buffer SurfaceOut {
+  RestirSurface s[];
+} restir_surfaces;
+layout(std430, binding = PASS_BINDING(6)) writeonly buffer ReservoirOut {
+  PackedReservoir r[];
+} reservoirs_out;
 
 // Probability of the GGX lobe in the BSDF sampling mixture (the rest is cosine-weighted).
 float specular_lobe_probability(ShadingPoint p) {
@@ -174,7 +178,7 @@ void main() {
   ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
   Reservoir r = reservoir_empty();
   if (p.valid) {
-    uint rng = rng_init(pixel, frame_constants.frame.frame.z, frame_constants.frame.frame.w, kRestirRngInitial);
+    uint rng = frame_rng(pixel, kRestirRngInitial);
     r = resample(p, rng);
     if ((push.flags & kRestirFlagInitialVisibility) != 0u && reservoir_has_sample(r)) {
       vec3 y = restir_light_position(p, r.selected.light_index, vec2(r.selected.u, r.selected.v));

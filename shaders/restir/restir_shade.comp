@@ -15,9 +15,15 @@
 
 layout(binding = PASS_BINDING(0), rgba32f) readonly uniform image2D gbuffer_emission_metallic;
 layout(binding = PASS_BINDING(1), rgba32f) readonly uniform image2D gbuffer_motion;
-layout(std430, binding = PASS_BINDING(2)) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
-layout(std430, binding = PASS_BINDING(3)) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
-layout(std430, binding = PASS_BINDING(4)) readonly buffer StatusIn { uint status[]; } temporal_status;
+layout(std430, binding = PASS_BINDING(2)) readonly buffer SurfaceIn {
+  RestirSurface s[];
+} restir_surfaces;
+layout(std430, binding = PASS_BINDING(3)) readonly buffer ReservoirIn {
+  PackedReservoir r[];
+} reservoirs_in;
+layout(std430, binding = PASS_BINDING(4)) readonly buffer StatusIn {
+  uint status[];
+} temporal_status;
 layout(std430, binding = PASS_BINDING(5)) writeonly buffer HdrOut { vec4 pixels[]; } hdr;
 
 vec3 hash_colour(uint x) {

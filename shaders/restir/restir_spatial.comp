@@ -1,8 +1,9 @@
 // restir.spatial (pass push.spatial_pass of N): merges each pixel's reservoir with up to
 // push.neighbours neighbours drawn uniformly in a disk of push.radius pixels, skipping neighbours
 // whose surface is dissimilar (depth, normal, material, roughness). Pixels short of history
-// (M below push.short_history_m, e.g. just disoccluded) draw push.boost_neighbours more neighbours. MIS
-// weights per push.bias_correction (none O(k), pairwise O(k), balance O(k^2) target evaluations).
+// (M below push.short_history_m, e.g. just disoccluded) draw push.boost_neighbours more
+// neighbours. MIS weights per push.bias_correction (none O(k), pairwise O(k), balance O(k^2)
+// target evaluations).
 // Reads: restir_surfaces, reservoirs_in, frame constants, lights, environment (env_*).
 // Writes: reservoirs_out.
 // History: none (the last pass's output is the frame's final reservoirs, kept by the graph).
@@ -12,9 +13,15 @@
 
 #include "restir/restir_reuse.glsl"
 
-layout(std430, binding = PASS_BINDING(0)) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
-layout(std430, binding = PASS_BINDING(1)) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
-layout(std430, binding = PASS_BINDING(2)) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
+layout(std430, binding = PASS_BINDING(0)) readonly buffer SurfaceIn {
+  RestirSurface s[];
+} restir_surfaces;
+layout(std430, binding = PASS_BINDING(1)) readonly buffer ReservoirIn {
+  PackedReservoir r[];
+} reservoirs_in;
+layout(std430, binding = PASS_BINDING(2)) writeonly buffer ReservoirOut {
+  PackedReservoir r[];
+} reservoirs_out;
 
 void main() {
   uvec2 pixel;
@@ -29,7 +36,7 @@ void main() {
   vec3 camera = frame_constants.frame.camera_position.xyz;
   g_reservoirs[0] = r;
   g_points[0] = restir_shading_point(surface, camera);
-  uint rng = rng_init(pixel, frame_constants.frame.frame.z, frame_constants.frame.frame.w, kRestirRngSpatial + push.spatial_pass);
+  uint rng = frame_rng(pixel, kRestirRngSpatial + push.spatial_pass);
   uint tries = push.neighbours + (r.M < float(push.short_history_m) ? push.boost_neighbours : 0u);
   tries = min(tries, kRestirMaxNeighbours);
   ivec2 size = ivec2(restir_size());

@@ -17,12 +17,24 @@
 #include "restir/restir_reuse.glsl"
 
 layout(binding = PASS_BINDING(0), rgba32f) readonly uniform image2D gbuffer_motion;
-layout(std430, binding = PASS_BINDING(1)) readonly buffer SurfaceIn { RestirSurface s[]; } restir_surfaces;
-layout(std430, binding = PASS_BINDING(2)) readonly buffer SurfaceHistory { RestirSurface s[]; } surfaces_history;
-layout(std430, binding = PASS_BINDING(3)) readonly buffer ReservoirIn { PackedReservoir r[]; } reservoirs_in;
-layout(std430, binding = PASS_BINDING(4)) readonly buffer ReservoirHistory { PackedReservoir r[]; } reservoirs_history;
-layout(std430, binding = PASS_BINDING(5)) writeonly buffer ReservoirOut { PackedReservoir r[]; } reservoirs_out;
-layout(std430, binding = PASS_BINDING(6)) writeonly buffer StatusOut { uint status[]; } temporal_status;
+layout(std430, binding = PASS_BINDING(1)) readonly buffer SurfaceIn {
+  RestirSurface s[];
+} restir_surfaces;
+layout(std430, binding = PASS_BINDING(2)) readonly buffer SurfaceHistory {
+  RestirSurface s[];
+} surfaces_history;
+layout(std430, binding = PASS_BINDING(3)) readonly buffer ReservoirIn {
+  PackedReservoir r[];
+} reservoirs_in;
+layout(std430, binding = PASS_BINDING(4)) readonly buffer ReservoirHistory {
+  PackedReservoir r[];
+} reservoirs_history;
+layout(std430, binding = PASS_BINDING(5)) writeonly buffer ReservoirOut {
+  PackedReservoir r[];
+} reservoirs_out;
+layout(std430, binding = PASS_BINDING(6)) writeonly buffer StatusOut {
+  uint status[];
+} temporal_status;
 
 shared float s_weights[kRestirTileSize * kRestirTileSize];
 
@@ -58,7 +70,7 @@ void main() {
     RestirSurface surface = restir_surfaces.s[index];
     r = reservoir_unpack(reservoirs_in.r[index]);
     if (restir_surface_valid(surface) && (push.flags & kRestirFlagHistoryValid) != 0u) {
-      uint rng = rng_init(pixel, frame_constants.frame.frame.z, frame_constants.frame.frame.w, kRestirRngTemporal);
+      uint rng = frame_rng(pixel, kRestirRngTemporal);
       ivec2 q = find_history(pixel, surface, rng, status);
       if (q.x >= 0) {
         uint q_index = uint(q.y) * restir_size().x + uint(q.x);
@@ -70,7 +82,8 @@ void main() {
         // was empty: +7% on cornell_lights' lit surfaces, +18% with 1 candidate.)
         uint light = history.selected.light_index;
         if (light != kInvalidLight && light != kEnvironmentLight) {
-          light = light < frame_constants.frame.history.x ? light_previous_to_current.index[light] : kInvalidLight;
+          light = light < frame_constants.frame.history.x ? light_previous_to_current.index[light]
+                                                           : kInvalidLight;
           if (light >= restir_light_count()) light = kInvalidLight;
         }
         reservoir_remap_light(history, light);

@@ -71,17 +71,17 @@ LANTERN_FUNC float light_eval_solid_angle_pdf(GpuLight light, vec3 l, float dist
   return geometry > 0.0f ? safe_ratio(light_eval_point_pdf(light), geometry) : 0.0f;
 }
 
-// The geometry term of (light, uv) at x and the unit direction l towards it: cos_light / d^2 for
-// triangles; 1/d^2 with the KHR_lights_punctual range window (p2.w; 0 = none) for point lights,
-// times the cone for spots; 1 for directional lights. Zero when x coincides with the light.
-LANTERN_FUNC float light_eval_geometry(GpuLight light, vec2 uv, vec3 x, float scene_radius,
-                                       LANTERN_OUT(vec3) l) {
+// The geometry term at x of the light point y (light_eval_position's) and the unit direction l
+// towards it: cos_light / d^2 for triangles; 1/d^2 with the KHR_lights_punctual range window
+// (p2.w; 0 = none) for point lights, times the cone for spots; 1 for directional lights (y not
+// used). Zero when x coincides with the light.
+LANTERN_FUNC float light_eval_geometry(GpuLight light, vec3 y, vec3 x, LANTERN_OUT(vec3) l) {
   uint kind = light_kind(light);
   if (kind == kLightDirectional) {
     l = directional_light_to_light(vec3(light.p1));
     return 1.0f;
   }
-  vec3 to_light = light_eval_position(light, uv, x, scene_radius) - x;
+  vec3 to_light = y - x;
   float dist2 = dot(to_light, to_light);
   if (!(dist2 > 0.0f)) {
     l = vec3(0.0f, 0.0f, 1.0f);
@@ -117,19 +117,28 @@ LANTERN_FUNC vec3 light_eval_incident(vec3 l, vec3 radiance, float geometry, vec
   return finite ? max(c, vec3(0.0f)) : vec3(0.0f);
 }
 
-// Unshadowed contribution c(x, y) of light sample (light, uv) (see the header): zero below either
-// normal, behind a one-sided triangle, outside a spot cone or a punctual range, and for non-finite
-// inputs. Arguments as light_eval_incident.
-LANTERN_FUNC vec3 light_eval_contribution(GpuLight light, vec2 uv, vec3 x, vec3 n, vec3 ng, vec3 v,
-                                          vec3 albedo, float roughness, float metallic,
-                                          float specular, float scene_radius) {
+// Unshadowed contribution c(x, y) of the light point y (light_eval_position's; see the header):
+// zero below either normal, behind a one-sided triangle, outside a spot cone or a punctual range,
+// and for non-finite inputs. Arguments as light_eval_incident. For a caller that also traces the
+// shadow ray towards y.
+LANTERN_FUNC vec3 light_eval_contribution_at(GpuLight light, vec3 y, vec3 x, vec3 n, vec3 ng,
+                                             vec3 v, vec3 albedo, float roughness, float metallic,
+                                             float specular) {
   vec3 l;
-  float geometry = light_eval_geometry(light, uv, x, scene_radius, l);
+  float geometry = light_eval_geometry(light, y, x, l);
   if (!(geometry > 0.0f)) {
     return vec3(0.0f);
   }
   return light_eval_incident(l, vec3(light.radiance), geometry, n, ng, v, albedo, roughness,
                              metallic, specular);
+}
+
+// The same for sample (light, uv).
+LANTERN_FUNC vec3 light_eval_contribution(GpuLight light, vec2 uv, vec3 x, vec3 n, vec3 ng, vec3 v,
+                                          vec3 albedo, float roughness, float metallic,
+                                          float specular, float scene_radius) {
+  return light_eval_contribution_at(light, light_eval_position(light, uv, x, scene_radius), x, n,
+                                    ng, v, albedo, roughness, metallic, specular);
 }
 
 // ReSTIR's target function p̂(y) at x: luminance of the unshadowed contribution, guarded.

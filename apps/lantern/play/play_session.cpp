@@ -211,7 +211,6 @@ PlayReport run_play(const PlayConfig& config) {
   InputScript script = config.script;
   PlayInput before;
   std::uint32_t accumulated = 0;
-  bool drop_history = false;
   auto last_wall = Clock::now();
   log::info("play: {} at {}x{}, {} integrator, exposure {:.3g}; keys:\n{}", config.level, width,
             height, panel.integrator, exposure, play_keys_help());
@@ -219,8 +218,7 @@ PlayReport run_play(const PlayConfig& config) {
   auto rebuild = [&](const lighting::IntegratorConfig& c, const char* why) {
     device.wait_idle();
     bundle = build_bundle(device, reloader, level, c, width, height, config.seed);
-    session.set_renderer(*bundle.renderer);
-    drop_history = true;
+    session.set_renderer(*bundle.renderer);  // its first frame drops the graph's history
     accumulated = 0;
     ++report.rebuilds;
     log::info("play: {} ({} integrator)", why, c.name);
@@ -401,7 +399,6 @@ PlayReport run_play(const PlayConfig& config) {
     // a progressive integrator holds still, the panel over the output.
     lighting::FrameHooks hooks;
     hooks.exposure = exposure;
-    hooks.drop_history = std::exchange(drop_history, false);
     if (bundle.integrator->progressive && panel.progressive) {
       hooks.hdr = [&](graph::RenderGraph& g, graph::BufferHandle hdr) {
         const auto& update = bundle.renderer->scene().last_update();
