@@ -9,4 +9,8 @@ const char* behaviour_type_name(const Behaviour& b) {
   return kNames[b.index()];
 }
 
+bool behaviour_moves(const Behaviour& b) {
+  return !std::holds_alternative<FlickerBehaviour>(b);
+}
+
 }  // namespace lantern

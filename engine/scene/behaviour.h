@@ -51,4 +51,7 @@ using Behaviour =
 // "rotate", "orbit", "flicker", "follow_path": the names the level format uses.
 const char* behaviour_type_name(const Behaviour& b);
 
+// Whether the behaviour changes its instance's transform (flicker changes only emission).
+bool behaviour_moves(const Behaviour& b);
+
 }  // namespace lantern

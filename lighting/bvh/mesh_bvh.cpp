@@ -40,7 +40,7 @@ Aabb triangle_bounds(std::span<const glm::vec3> positions, const std::uint32_t* 
 
 MeshBvh::MeshBvh(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices,
                  const BvhBuildOptions& options)
-    : indices_(indices.begin(), indices.end()), vertex_count_(positions.size()) {
+    : indices_(indices.begin(), indices.end()), positions_(positions.begin(), positions.end()) {
   if (indices.size() % 3 != 0)
     throw InputError(fmt::format("mesh BVH: {} indices is not a multiple of 3", indices.size()));
   for (std::size_t i = 0; i < indices.size(); ++i) {
@@ -75,10 +75,11 @@ void MeshBvh::set_triangles(std::span<const glm::vec3> positions, std::span<Aabb
 }
 
 void MeshBvh::refit(std::span<const glm::vec3> positions) {
-  if (positions.size() != vertex_count_)
+  if (positions.size() != positions_.size())
     throw InputError(fmt::format("mesh BVH refit: {} vertices given, the mesh was built with {}",
-                                 positions.size(), vertex_count_));
+                                 positions.size(), positions_.size()));
   check_positions(positions, "mesh BVH refit");
+  positions_.assign(positions.begin(), positions.end());
   std::vector<Aabb> slot_bounds(order_.size());
   set_triangles(positions, slot_bounds);
   refit_bvh(nodes_, slot_bounds);

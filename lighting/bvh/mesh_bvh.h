@@ -26,6 +26,10 @@ class MeshBvh {
   void refit(std::span<const glm::vec3> positions);
 
   const std::vector<gpu::BvhNode>& nodes() const { return nodes_; }
+  // The vertices and triangle indices it was built (or last refit) with: for trees built from the
+  // same triangles in another space (SceneBvh's merged world-space tree).
+  const std::vector<glm::vec3>& positions() const { return positions_; }
+  const std::vector<std::uint32_t>& indices() const { return indices_; }
   // Triangles in leaf order; BvhTriangle::v0.w holds the original triangle index.
   const std::vector<gpu::BvhTriangle>& triangles() const { return triangles_; }
   std::size_t triangle_count() const { return triangles_.size(); }
@@ -38,7 +42,7 @@ class MeshBvh {
   void set_triangles(std::span<const glm::vec3> positions, std::span<Aabb> slot_bounds);
 
   std::vector<std::uint32_t> indices_;
-  std::size_t vertex_count_ = 0;
+  std::vector<glm::vec3> positions_;
   std::vector<std::uint32_t> order_;  // leaf slot -> original triangle
   std::vector<gpu::BvhNode> nodes_;
   std::vector<gpu::BvhTriangle> triangles_;

@@ -69,10 +69,7 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
     emissive_.push_back(e);
   }
   triangle_emitters_ = first;
-  for (std::size_t i = 0; i < level_->instances.size(); ++i) {
-    bvh_descs_.push_back(
-        {level_->instances[i].mesh, level_->instances[i].world, static_cast<std::uint32_t>(i)});
-  }
+  bvh_descs_ = bvh_instance_descs(*level_);
   remap_.resize(data_.lights.lights().size());
   for (std::uint32_t i = 0; i < remap_.size(); ++i) remap_[i] = i;
   constants_.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
@@ -226,10 +223,17 @@ void GpuScene::update_instances(const FrameSnapshot& snapshot) {
     mark_dirty(gpu::kSceneInstances, lo * sizeof(gpu::GpuInstance), hi * sizeof(gpu::GpuInstance));
   }
   if (moved) {
+    const std::uint64_t blas_generation = data_.bvh.blas_generation();
     data_.bvh.set_instances(bvh_descs_);
     stats_.tlas_rebuilt = true;
     tlas_dirty_ = ray_query_ != nullptr;
     ensure_capacity(gpu::kSceneBvhNodes);
+    if (data_.bvh.blas_generation() != blas_generation) {
+      // A fixed instance moved: the merged tree and the packed BLASes changed, not only the TLAS.
+      ensure_capacity(gpu::kSceneBvhTriangles);
+      mark_all_dirty(gpu::kSceneBvhTriangles);
+      mark_all_dirty(gpu::kSceneBvhNodes);
+    }
     const gpu::BvhSceneHeader& h = data_.bvh.header();
     mark_dirty(gpu::kSceneBvhNodes, std::uint64_t{h.tlas_node_offset} * sizeof(gpu::BvhNode),
                data_.bvh.nodes().size() * sizeof(gpu::BvhNode));

@@ -106,6 +106,17 @@ std::vector<LightEmitter> extract_light_emitters(const Level& level, float scene
   return emitters;
 }
 
+std::vector<BvhInstanceDesc> bvh_instance_descs(const Level& level) {
+  std::vector<BvhInstanceDesc> descs;
+  descs.reserve(level.instances.size());
+  for (std::size_t i = 0; i < level.instances.size(); ++i) {
+    const Instance& inst = level.instances[i];
+    const bool fixed = !inst.behaviour || !behaviour_moves(*inst.behaviour);
+    descs.push_back({inst.mesh, inst.world, static_cast<std::uint32_t>(i), fixed});
+  }
+  return descs;
+}
+
 SceneData build_scene_data(const Level& level) {
   SceneData scene;
   for (const Material& m : level.materials) scene.materials.push_back(to_gpu_material(m));
@@ -127,7 +138,6 @@ SceneData build_scene_data(const Level& level) {
   }
 
   // Instances: GpuInstance records, BVH instances and the world box.
-  std::vector<BvhInstanceDesc> descs;
   glm::vec3 lo(std::numeric_limits<float>::max());
   glm::vec3 hi(-std::numeric_limits<float>::max());
   for (std::size_t i = 0; i < level.instances.size(); ++i) {
@@ -138,7 +148,6 @@ SceneData build_scene_data(const Level& level) {
                                    level.meshes.size(), scene.materials.size()));
     }
     const Mesh& mesh = level.meshes[inst.mesh];
-    descs.push_back({inst.mesh, inst.world, static_cast<std::uint32_t>(i)});
     gpu::GpuInstance g{};
     g.object_to_world = inst.world;
     g.prev_object_to_world = inst.world;
@@ -154,7 +163,7 @@ SceneData build_scene_data(const Level& level) {
       hi = glm::max(hi, w);
     }
   }
-  scene.bvh.set_instances(descs);
+  scene.bvh.set_instances(bvh_instance_descs(level));
   if (lo.x <= hi.x) {
     scene.bounds_min = lo;
     scene.bounds_max = hi;

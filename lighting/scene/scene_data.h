@@ -1,5 +1,5 @@
 // The CPU-side GPU records of a static level: vertices, indices, materials, instances, the
-// two-level BVH and the light table (emissive triangles + analytic lights), ready to upload
+// scene BVH and the light table (emissive triangles + analytic lights), ready to upload
 // (lighting/scene/gpu_scene.h). Built once from a Level; no Vulkan here.
 #pragma once
 
@@ -47,6 +47,10 @@ void append_triangle_emitters(const Mesh& mesh, const glm::mat4& world, const gl
 LightEmitter analytic_emitter(std::uint32_t index, LightType type, const glm::vec3& position,
                               const glm::vec3& direction, const glm::vec3& intensity,
                               float inner_cone, float outer_cone, float range, float scene_radius);
+
+// The BVH placement of every Level instance (user_id = instance index): instances whose
+// behaviour never moves them (none, or flicker) are declared fixed, so the BVH merges them.
+std::vector<BvhInstanceDesc> bvh_instance_descs(const Level& level);
 
 // Builds everything; throws lantern::InputError on bad level data (bad indices, singular
 // transforms, out-of-range material or mesh references).

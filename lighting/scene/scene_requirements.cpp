@@ -68,7 +68,7 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
         {"bytes", 0}};
   }
 
-  // Visibility: the two-level BVH (compute traversal), and with ray query also a BLAS per mesh and
+  // Visibility: the scene BVH (compute traversal), and with ray query also a BLAS per mesh and
   // a TLAS over the instances (the driver's; its size is known only on the device).
   const SceneBvh& bvh = scene.bvh;
   const std::uint64_t bvh_bytes = array_bytes<gpu::BvhNode>(bvh.nodes().size()) +
@@ -76,7 +76,11 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
                                   array_bytes<gpu::BvhInstance>(bvh.instances().size()) +
                                   sizeof(gpu::BvhSceneHeader);
   summary.enabled["visibility"] = {
-      {"structure", "two-level SAH BVH: per-mesh BLAS, TLAS over instances rebuilt when they move"},
+      {"structure",
+       "SAH BVH: the fixed instances merged into one world-space tree, a BLAS per mesh of the "
+       "instances that move, a TLAS over both rebuilt when instances move"},
+      {"merged_instances", bvh.merged_instance_count()},
+      {"merged_triangles", bvh.merged_triangle_count()},
       {"backend", std::string(visibility_backend_name(visibility.backend))},
       {"backend_why", visibility.why.empty() ? "default" : visibility.why},
       {"traversal", visibility.backend == VisibilityBackend::RayQuery

@@ -110,8 +110,9 @@ void RayQueryScene::ensure_tlas_capacity(std::uint32_t count) {
 
 void RayQueryScene::write_instances(const SceneBvh& bvh, std::uint32_t slot) {
   std::vector<VkAccelerationStructureInstanceKHR> records;
+  // The instances as placed (not SceneBvh's merged record: ray query has its own TLAS per mesh).
   const auto& instances = bvh.instances();
-  for (std::size_t i = 0; i < instances.size(); ++i) {
+  for (std::size_t i = 0; i < bvh.instance_count(); ++i) {
     const VkDeviceAddress blas = mesh_blas_.at(bvh.instance_mesh(i));
     if (blas == 0) continue;
     const glm::mat4& m = instances[i].object_to_world;

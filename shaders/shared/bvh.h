@@ -1,4 +1,4 @@
-// GPU layout of the two-level BVH (nodes, triangles, instances, scene header) and the ray-box and
+// GPU layout of the scene BVH (nodes, triangles, instances, scene header) and the ray-box and
 // ray-triangle tests that the CPU traversal and the GLSL traversal (shaders/lib/bvh_traverse.glsl)
 // both run. Built on the CPU by lighting/bvh/.
 #ifndef LANTERN_SHARED_BVH_H
@@ -25,10 +25,11 @@ struct BvhNode {
 };
 LANTERN_STATIC_SIZE(BvhNode, 32);
 
-// A triangle stored for Möller–Trumbore: one vertex and the two edges leaving it (object space).
+// A triangle stored for Möller–Trumbore: one vertex and the two edges leaving it (object space;
+// world space in the merged tree of fixed instances, lighting/bvh/scene_bvh.h).
 struct BvhTriangle {
   vec4 v0;  // xyz = vertex 0, w = bits of the mesh's original triangle index (the hit's primitive)
-  vec4 e1;  // xyz = vertex 1 - vertex 0, w = 0
+  vec4 e1;  // xyz = vertex 1 - vertex 0, w = bits of 0, or in the merged tree its instance + 1
   vec4 e2;  // xyz = vertex 2 - vertex 0, w = 0
 };
 LANTERN_STATIC_SIZE(BvhTriangle, 48);

@@ -79,6 +79,7 @@ LANTERN_FUNC bool bvh_traverse_blas(LANTERN_BVH_SCENE_PARAM uint node_offset, ui
           hit.u = tuv.y;
           hit.v = tuv.z;
           hit.primitive = floatBitsToUint(tri.v0.w);
+          hit.instance = floatBitsToUint(tri.e1.w);  // a merged triangle's own instance + 1
           found = true;
           if (any_hit) return true;
         }
@@ -140,8 +141,11 @@ LANTERN_FUNC bool bvh_traverse_instance(LANTERN_BVH_SCENE_PARAM uint instance, v
   if (!bvh_traverse_blas(LANTERN_BVH_SCENE offsets.x, offsets.y, object_origin, object_direction,
                          tmin, any_hit, hit))
     return false;
-  hit.instance = instance;
-  hit.user_id = offsets.z;
+  // Triangles of the merged tree of fixed instances name their own instance (shared/bvh.h).
+  uint source = hit.instance;
+  hit.instance = source == 0u ? instance : source - 1u;
+  hit.user_id =
+      source == 0u ? offsets.z : bvh_fetch_instance_offsets(LANTERN_BVH_SCENE hit.instance).z;
   return true;
 }
 
