@@ -1,8 +1,8 @@
 // Combining reservoirs from several domains (restir.temporal: pixel + its history; restir.spatial:
 // pixel + k neighbours) with the resampling MIS weights of the bias-correction mode
 // (shared/reservoir_combine.h, the loop the CPU chain tests run). Domain 0 is the canonical pixel;
-// the caller fills g_reservoirs and g_points (finalized reservoirs, decoded surfaces) and calls
-// restir_combine.
+// the caller fills g_reservoirs and g_points (finalized reservoirs, decoded surfaces), or defines
+// the domain accessors itself (below), and calls restir_combine.
 #ifndef LANTERN_RESTIR_REUSE_GLSL
 #define LANTERN_RESTIR_REUSE_GLSL
 
@@ -10,12 +10,18 @@
 
 const uint kRestirMaxDomains = kRestirMaxNeighbours + 1u;
 
+// The shared combine loop (shared/reservoir_combine.h) reads the domains through
+// combine_domain_reservoir(j) and combine_domain_target(j, y). A pass that defines
+// RESTIR_REUSE_PASS_DOMAINS provides them itself (restir.spatial: from pixel indices, since a
+// private array of decoded points indexed by a loop counter cost lavapipe more than decoding
+// again); otherwise the pass fills these arrays.
+#ifndef RESTIR_REUSE_PASS_DOMAINS
 Reservoir g_reservoirs[kRestirMaxDomains];
 ShadingPoint g_points[kRestirMaxDomains];
 
-// The shared combine loop (shared/reservoir_combine.h) reads the domains through these.
 Reservoir combine_domain_reservoir(uint j) { return g_reservoirs[j]; }
 float combine_domain_target(uint j, LightSample y) { return restir_target(g_points[j], y); }
+#endif
 
 #include "shared/reservoir_combine.h"
 
