@@ -192,6 +192,8 @@ void SceneBvh::set_instances(std::span<const BvhInstanceDesc> instances) {
   if (!merged_nodes_.empty()) {
     // The merged tree's record: identity transforms (its triangles are in world space).
     gpu::BvhInstance inst{};
+    inst.object_to_world = glm::mat4(1.0f);
+    inst.world_to_object = glm::mat4(1.0f);
     inst.node_offset = merged_node_offset_;
     inst.triangle_offset = merged_triangle_offset_;
     world_bounds.push_back(node_bounds(merged_nodes_[0]));
