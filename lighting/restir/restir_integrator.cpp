@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 
 #include "engine/core/error.h"
@@ -21,14 +22,16 @@ RestirIntegrator::RestirIntegrator(runtime::Device& device, runtime::ShaderLibra
     : device_(device),
       settings_(settings),
       visibility_(visibility),
+      presample_(device, shaders, "presample"),
       initial_(device, shaders, "initial", visibility),
       temporal_(device, shaders, "temporal"),
       spatial_(device, shaders, "spatial"),
       shade_(device, shaders, "shade", visibility) {}
 
 void RestirIntegrator::warm_up() {
-  const std::array<const runtime::ComputePipeline*, 4> pipelines{
-      &initial_.pipeline(), &temporal_.pipeline(), &spatial_.pipeline(), &shade_.pipeline()};
+  const std::array<const runtime::ComputePipeline*, 5> pipelines{
+      &presample_.pipeline(), &initial_.pipeline(), &temporal_.pipeline(), &spatial_.pipeline(),
+      &shade_.pipeline()};
   runtime::warm_up(device_, pipelines);
 }
 
@@ -63,9 +66,33 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   p.radius = s.radius;
   p.m_cap = s.m_cap();
   p.boiling_filter = s.boiling_filter;
+  // Presampling pays off only when the tiles are smaller than the light list.
+  p.presample_tiles = inputs.light_count > gpu::kRestirPresampleTileSize ? s.presample_tiles : 0u;
   p.similarity = {s.depth_threshold, s.normal_threshold, 0.25f, 0.0f};
   return p;
 }
+
+namespace {
+
+// A transfer pass filling `buffer` with the 32-bit `value`; returns its new version.
+BufferHandle clear_buffer(runtime::graph::RenderGraph& graph, const char* name,
+                          BufferHandle buffer, std::uint32_t value) {
+  struct Clear {
+    BufferHandle buffer;
+  };
+  return graph
+      .add_pass<Clear>(
+          name, runtime::graph::PassKind::Transfer,
+          [&](runtime::graph::PassBuilder& b, Clear& d) {
+            d.buffer = b.write(buffer, Access::TransferDst);
+          },
+          [value](runtime::graph::PassContext& ctx, const Clear& d) {
+            vkCmdFillBuffer(ctx.cmd(), ctx.buffer(d.buffer), 0, VK_WHOLE_SIZE, value);
+          })
+      .buffer;
+}
+
+}  // namespace
 
 BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
                                           const FrameInputs& inputs, BufferHandle hdr) {
@@ -123,13 +150,29 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   for (const ReservoirStep& step : plan) {
     switch (step.stage) {
       case ReservoirStage::Initial: {
+        // restir.presample (when on): push.presample_tiles tiles of lights drawn from the alias
+        // table, with copies of their records. Off, a one-entry stand-in is bound (not read).
+        const std::uint32_t entries = push.presample_tiles * gpu::kRestirPresampleTileSize;
+        BufferHandle presampled = graph.create_buffer(
+            "restir.presampled_lights",
+            {std::max<VkDeviceSize>(entries, 1) * sizeof(gpu::PresampledLight)});
+        if (entries > 0) {
+          const std::uint32_t per_group = gpu::kRestirTileSize * gpu::kRestirTileSize;
+          presampled = presample_.add(graph, inputs, push,
+                                      {{"presampled_lights", presampled,
+                                        RestirPass::Buffer::Write}},
+                                      (entries + per_group - 1) / per_group)[0];
+        } else {
+          presampled = clear_buffer(graph, "restir.clear_presampled", presampled, 0u);
+        }
         // restir.initial: the G-buffer packed into RestirSurfaces (this frame's version of the
         // "restir.surfaces" history) and each pixel's initial reservoir from light (and BSDF)
         // candidates. Reads the G-buffer and the scene (lights, alias table, materials, BVH).
         const std::vector<BufferHandle> out =
             initial_.add(graph, inputs, push,
                          {{"restir_surfaces", surfaces, RestirPass::Buffer::Write},
-                          {"reservoirs_out", handle(step.write), RestirPass::Buffer::Write}});
+                          {"reservoirs_out", handle(step.write), RestirPass::Buffer::Write},
+                          {"presampled_lights", presampled}});
         surfaces = out[0];
         handle(step.write) = out[1];
         break;
@@ -171,20 +214,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
       case ReservoirStage::Shade: {
         if (!status_written) {
           // No temporal pass: every pixel is "no history" for the disocclusion view.
-          struct Clear {
-            BufferHandle status;
-          };
-          status = graph
-                       .add_pass<Clear>(
-                           "restir.clear_status", runtime::graph::PassKind::Transfer,
-                           [&](runtime::graph::PassBuilder& b, Clear& d) {
-                             d.status = b.write(status, Access::TransferDst);
-                           },
-                           [](runtime::graph::PassContext& ctx, const Clear& d) {
-                             vkCmdFillBuffer(ctx.cmd(), ctx.buffer(d.status), 0, VK_WHOLE_SIZE,
-                                             gpu::kRestirStatusNoHistory);
-                           })
-                       .status;
+          status = clear_buffer(graph, "restir.clear_status", status, gpu::kRestirStatusNoHistory);
         }
         // restir.shade: one visibility ray towards the final reservoir's sample per pixel:
         // emission + BRDF x Le x G x W (or a debug view) into hdr.

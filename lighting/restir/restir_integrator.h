@@ -50,6 +50,7 @@ class RestirIntegrator final : public Integrator {
   runtime::Device& device_;
   RestirSettings settings_;
   VisibilityBackend visibility_;
+  RestirPass presample_;
   RestirPass initial_;
   RestirPass temporal_;
   RestirPass spatial_;

@@ -22,7 +22,8 @@ RestirPass::RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
 
 std::vector<BufferHandle> RestirPass::add(runtime::graph::RenderGraph& graph,
                                           const FrameInputs& inputs, const gpu::RestirPush& push,
-                                          std::initializer_list<Buffer> buffers) const {
+                                          std::initializer_list<Buffer> buffers,
+                                          std::uint32_t workgroups) const {
   struct Data {
     SceneHandles scene;
     GBufferHandles gbuffer;
@@ -48,7 +49,7 @@ std::vector<BufferHandle> RestirPass::add(runtime::graph::RenderGraph& graph,
           d.buffers.push_back(buffer);
         }
       },
-      [this, push, width, height](runtime::graph::PassContext& ctx, const Data& d) {
+      [this, push, width, height, workgroups](runtime::graph::PassContext& ctx, const Data& d) {
         runtime::Bindings b(pipeline_);
         d.scene.bind(b, ctx);
         d.gbuffer.bind(b, ctx);
@@ -57,7 +58,9 @@ std::vector<BufferHandle> RestirPass::add(runtime::graph::RenderGraph& graph,
         }
         pipeline_.bind(ctx.cmd(), b);
         pipeline_.push_constants(ctx.cmd(), push);
-        pipeline_.dispatch(ctx.cmd(), tile_count(width, height, gpu::kRestirTileSize));
+        pipeline_.dispatch(ctx.cmd(), workgroups != 0
+                                          ? workgroups
+                                          : tile_count(width, height, gpu::kRestirTileSize));
       });
   std::vector<BufferHandle> written;
   for (const Buffer& buffer : data.buffers) {

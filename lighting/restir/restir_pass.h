@@ -28,17 +28,19 @@ class RestirPass {
     enum Use { Read, Write } use = Read;  // Write: every pixel written, nothing read
   };
 
-  // `stage`: "initial", "temporal", "spatial" or "shade"; `visibility` picks the shader variant of
-  // the passes that trace (initial, shade).
+  // `stage`: "presample", "initial", "temporal", "spatial" or "shade"; `visibility` picks the
+  // shader variant of the passes that trace (initial, shade).
   RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& stage,
              VisibilityBackend visibility = VisibilityBackend::Bvh);
 
   // Adds the pass; returns the new version of each Write buffer, in `buffers` order. A handle may
-  // be read under two names (a stand-in).
+  // be read under two names (a stand-in). `workgroups`: 0 for one per shuffled tile of the image,
+  // else that many (a pass over something else than pixels: restir.presample).
   std::vector<runtime::graph::BufferHandle> add(runtime::graph::RenderGraph& graph,
                                                 const FrameInputs& inputs,
                                                 const gpu::RestirPush& push,
-                                                std::initializer_list<Buffer> buffers) const;
+                                                std::initializer_list<Buffer> buffers,
+                                                std::uint32_t workgroups = 0) const;
 
   const runtime::ComputePipeline& pipeline() const { return pipeline_; }
 

@@ -155,6 +155,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.radius = parse_float(key, value, 1.0f, 256.0f);
   } else if (key == "bias_correction" || key == "bias") {
     s.bias_correction = parse_choice(key, value, kBiasCorrections, "a bias correction");
+  } else if (key == "presample_tiles") {
+    s.presample_tiles = parse_uint(key, value, 0, gpu::kRestirMaxPresampleTiles);
   } else if (key == "initial_visibility") {
     s.initial_visibility = parse_bool(key, value);
   } else if (key == "boiling_filter") {
@@ -190,6 +192,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"neighbours", std::to_string(s.neighbours)},
       {"disocclusion_boost", std::to_string(s.disocclusion_boost)},
       {"radius", format_float(s.radius)},
+      {"presample_tiles", std::to_string(s.presample_tiles)},
       {"bias_correction", choice_name(kBiasCorrections, s.bias_correction)},
       {"initial_visibility", flag(s.initial_visibility)},
       {"boiling_filter", format_float(s.boiling_filter)},

@@ -60,6 +60,11 @@ struct RestirSettings {
   // (unbiased, O(k^2) target evaluations), pairwise (unbiased, O(k)).
   // One of restir_bias_corrections() (a kBiasCorrection* constant).
   std::uint32_t bias_correction = gpu::kBiasCorrectionPairwise;
+  // Light presampling tiles of kRestirPresampleTileSize lights each (shared/restir.h): light
+  // candidates are drawn from one tile per 8x8 workgroup instead of the whole list, which keeps
+  // their reads in cache. 0 turns it off (the alias table directly: fewer correlated candidates,
+  // slower with many lights). More tiles decorrelate neighbouring workgroups at more memory.
+  std::uint32_t presample_tiles = 128;
   // Shadow-test the initial pick and drop it when occluded: fewer occluded samples spread by
   // reuse (much less noise in shadowed areas), one more ray per pixel, slight darkening bias.
   bool initial_visibility = false;
@@ -85,7 +90,7 @@ std::vector<std::string> restir_preset_names();
 
 // Sets one knob by its key (the field names above: light_candidates, bsdf_candidates, temporal,
 // m_cap (alias of m_cap_factor), spatial_passes, neighbours, disocclusion_boost, radius,
-// bias_correction (a name from restir_bias_corrections()), initial_visibility, boiling_filter,
+// presample_tiles, bias_correction (a name from restir_bias_corrections()), initial_visibility, boiling_filter,
 // depth_threshold, normal_threshold, debug_view (a name from restir_debug_views())).
 // lantern::InputError naming the key and the value for unknown keys, unparsable values and
 // values outside the allowed range (e.g. light_candidates = 0 or 10^9).

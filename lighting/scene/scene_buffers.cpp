@@ -50,8 +50,9 @@ constexpr std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers = {{
      [](const Sources& s) { return bytes_of_one(&s.data->bvh.header()); }, kBuffer},
     {gpu::kSceneBvhNodes, "scene.bvh_nodes", "BvhNodeBuffer", "bvh_node_texels", false,
      [](const Sources& s) { return bytes_of(s.data->bvh.nodes()); }, kBuffer},
+    // Written again when a fixed instance moves out of the merged tree (SceneBvh::blas_generation).
     {gpu::kSceneBvhTriangles, "scene.bvh_triangles", "BvhTriangleBuffer", "bvh_triangle_texels",
-     true, [](const Sources& s) { return bytes_of(s.data->bvh.triangles()); }, kBuffer},
+     false, [](const Sources& s) { return bytes_of(s.data->bvh.triangles()); }, kBuffer},
     {gpu::kSceneBvhInstances, "scene.bvh_instances", "BvhInstanceBuffer", "bvh_instance_texels",
      false, [](const Sources& s) { return bytes_of(s.data->bvh.instances()); }, kBuffer},
     {gpu::kSceneEnvHeader, "scene.env_header", "env_header", nullptr, false,

@@ -81,13 +81,19 @@ vec3 restir_env_contribution(ShadingPoint p, vec2 uv) {
                              p.roughness, p.metallic, p.specular);
 }
 
+// Unshadowed contribution at p of point uv of the light whose record is `light`.
+vec3 restir_light_contribution(ShadingPoint p, GpuLight light, vec2 uv) {
+  if (!p.valid) return vec3(0.0);
+  return light_eval_contribution(light, uv, p.x, p.n, p.ng, p.v, p.albedo, p.roughness,
+                                 p.metallic, p.specular, restir_scene_radius());
+}
+
 // Unshadowed contribution of light sample (light, uv) at p (zero for a light index out of range).
 vec3 restir_contribution(ShadingPoint p, uint light, vec2 uv) {
   if (!p.valid) return vec3(0.0);
   if (light == kEnvironmentLight) return restir_env_contribution(p, uv);
   if (light >= restir_light_count()) return vec3(0.0);
-  return light_eval_contribution(scene_lights.l[light], uv, p.x, p.n, p.ng, p.v, p.albedo,
-                                 p.roughness, p.metallic, p.specular, restir_scene_radius());
+  return restir_light_contribution(p, scene_lights.l[light], uv);
 }
 
 // The point a shadow ray from p aims at for sample (light, uv): on the light, or far along the

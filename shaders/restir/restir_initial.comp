@@ -3,10 +3,12 @@
 // the power alias table x uniform point on the light) plus push.bsdf_candidates BSDF candidates (a
 // closest-hit ray; an emissive triangle hit, or the environment when the ray escapes, is a
 // candidate), combined by the balance heuristic over the two strategies, with target p̂ =
-// luminance of the unshadowed contribution. Optionally shadow-tests the pick
-// (kRestirFlagInitialVisibility).
+// luminance of the unshadowed contribution. Light candidates come from this workgroup's tile of
+// presampled lights when push.presample_tiles > 0 (restir.presample). Optionally shadow-tests the
+// pick (kRestirFlagInitialVisibility).
 // Reads: gbuffer position/normal/albedo_roughness/emission_metallic/ids, scene materials,
-// instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility).
+// instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility),
+// presampled_lights (restir.presample's; a stand-in when presampling is off).
 // Writes: restir_surfaces (history resource "restir.surfaces"), reservoirs_out. History: none.
 // Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
 #version 460
@@ -30,6 +32,9 @@ layout(std430, binding = PASS_BINDING(5)) writeonly buffer SurfaceOut {
 layout(std430, binding = PASS_BINDING(6)) writeonly buffer ReservoirOut {
   PackedReservoir r[];
 } reservoirs_out;
+layout(std430, binding = PASS_BINDING(7)) readonly buffer PresampledIn {
+  PresampledLight e[];
+} presampled_lights;
 
 // Probability of the GGX lobe in the BSDF sampling mixture (the rest is cosine-weighted).
 float specular_lobe_probability(ShadingPoint p) {
@@ -53,9 +58,36 @@ float bsdf_area_pdf(ShadingPoint p, GpuLight light, vec3 y) {
 }
 
 // Light strategy density of (light, uv): selection pdf * point density (the alias table's pdf
-// is over the emitters; the environment takes p_env of the selections first).
+// is over the emitters; the environment takes p_env of the selections first). Presampled
+// candidates have the same marginal density (restir.presample stores it).
 float light_strategy_pdf(uint index, float p_env) {
   return (1.0 - p_env) * light_alias.e[index].pdf * light_eval_point_pdf(scene_lights.l[index]);
+}
+
+// A light candidate from u0 (in [0,1), after the environment's share) and u1: from this
+// workgroup's presampled tile when presampling is on, else from the alias table. Returns the
+// light's index and record and its light-strategy density (before the (1 - p_env) factor).
+uint draw_light(float u0, float u1, uint tile_base, out GpuLight light, out float pdf) {
+  if (push.presample_tiles > 0u) {
+    uint slot = min(uint(u0 * float(kRestirPresampleTileSize)), kRestirPresampleTileSize - 1u);
+    PresampledLight e = presampled_lights.e[tile_base + slot];
+    light = e.light;
+    pdf = e.pdf;
+    return e.index;
+  }
+  uint slot = alias_slot(restir_light_count(), u0);
+  uint index = alias_select(u1, light_alias.e[slot], slot);
+  light = scene_lights.l[index];
+  pdf = light_alias.e[index].pdf * light_eval_point_pdf(light);
+  return index;
+}
+
+// First entry of the presampled tile this workgroup draws from this frame.
+uint presampled_tile_base() {
+  if (push.presample_tiles == 0u) return 0u;
+  uint rng = frame_rng(uvec2(gl_WorkGroupID.x, 0u), kRestirRngPresampleTile);
+  uint tile = min(uint(rng_next_float(rng) * float(push.presample_tiles)), push.presample_tiles - 1u);
+  return tile * kRestirPresampleTileSize;
 }
 
 // Light strategy density of environment direction l (solid angle).
@@ -89,6 +121,7 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
     r.M = m_light + m_bsdf;
     return r;
   }
+  uint tile_base = presampled_tile_base();
   for (uint i = 0u; i < push.light_candidates; ++i) {
     float u0 = rng_next_float(rng);
     float u1 = rng_next_float(rng);
@@ -106,13 +139,14 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
       continue;
     }
     u0 = p_env > 0.0 ? clamp((u0 - p_env) / (1.0 - p_env), 0.0, 0.99999994) : u0;
-    uint slot = alias_slot(light_count, u0);
-    uint index = alias_select(u1, light_alias.e[slot], slot);
-    float target = light_eval_target(restir_contribution(p, index, uv));
-    float denominator = m_light * light_strategy_pdf(index, p_env);
+    GpuLight light;
+    float pdf;
+    uint index = draw_light(u0, u1, tile_base, light, pdf);
+    float target = light_eval_target(restir_light_contribution(p, light, uv));
+    float denominator = m_light * (1.0 - p_env) * pdf;
     if (push.bsdf_candidates > 0u && target > 0.0) {
-      vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, restir_scene_radius());
-      denominator += m_bsdf * bsdf_area_pdf(p, scene_lights.l[index], y);
+      vec3 y = light_eval_position(light, uv, p.x, restir_scene_radius());
+      denominator += m_bsdf * bsdf_area_pdf(p, light, y);
     }
     reservoir_update(r, light_sample_make(index, uv, target), safe_ratio(target, denominator),
                      u_pick);

@@ -8,6 +8,7 @@
 #include "shared/common_math.h"
 #include "shared/gbuffer.h"
 #include "shared/lang.h"
+#include "shared/lights.h"
 
 LANTERN_BEGIN_SHARED
 
@@ -44,6 +45,27 @@ LANTERN_CONST uint kRestirStatusReprojected = 1u;  // 1 + retry index when a ret
 LANTERN_CONST uint kRestirRngInitial = 0x52490u;
 LANTERN_CONST uint kRestirRngTemporal = 0x52491u;
 LANTERN_CONST uint kRestirRngSpatial = 0x52492u;  // + pass index
+LANTERN_CONST uint kRestirRngPresample = 0x524a0u;
+LANTERN_CONST uint kRestirRngPresampleTile = 0x524a1u;
+
+// Light presampling (RIS tiles, Wyman and Panteleev, HPG 2021): restir.presample draws
+// kRestirPresampleTileSize lights per tile from the power alias table into push.presample_tiles
+// tiles, each entry a copy of the light record with its density; restir.initial then draws one
+// workgroup's light candidates uniformly from one tile, so its reads stay within the tile's
+// 80 KiB instead of the whole light list (night_market: 8 MiB of light records read at random).
+// Every candidate keeps the alias table's marginal distribution, so RIS stays unbiased; the
+// candidates of one tile are correlated, which costs a little variance.
+LANTERN_CONST uint kRestirPresampleTileSize = 1024u;
+LANTERN_CONST uint kRestirMaxPresampleTiles = 1024u;
+
+struct PresampledLight {
+  GpuLight light;  // a copy of scene_lights[index] (this frame's)
+  uint index;      // the light's index in the list
+  float pdf;       // alias selection pdf x point density (light_eval_point_pdf): area measure
+  uint pad0;
+  uint pad1;
+};
+LANTERN_STATIC_SIZE(PresampledLight, 80);
 
 // What the restir.* passes take from the settings (lighting/restir/restir_settings.h). The frame's
 // size, index, seed, light counts and scene radius are FrameConstants' (restir_common.glsl).
@@ -61,7 +83,7 @@ struct RestirPush {
   float radius;           // spatial radius in pixels
   float m_cap;            // temporal M cap (absolute)
   float boiling_filter;   // boiling filter strength 0..1
-  uint pad0;
+  uint presample_tiles;   // light presampling tiles (0: candidates from the alias table directly)
   uint pad1;
   uint pad2;
   vec4 similarity;        // restir_surfaces_similar's thresholds: x max relative depth difference;

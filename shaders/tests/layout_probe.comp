@@ -43,6 +43,7 @@ layout(std430, binding = 14) buffer BvhHitProbe { BvhHit bvh_hits[]; };
 layout(std430, binding = 15) buffer RestirPushProbe { RestirPush restir_pushes[]; };
 layout(std430, binding = 16) buffer RestirSurfaceProbe { RestirSurface restir_surfaces[]; };
 layout(std430, binding = 17) buffer GpuEnvironmentProbe { GpuEnvironment gpu_environments[]; };
+layout(std430, binding = 18) buffer PresampledLightProbe { PresampledLight presampled_lights[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -64,4 +65,5 @@ void main() {
   restir_pushes[0] = restir_pushes[1];
   restir_surfaces[0] = restir_surfaces[1];
   gpu_environments[0] = gpu_environments[1];
+  presampled_lights[0] = presampled_lights[1];
 }

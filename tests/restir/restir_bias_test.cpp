@@ -31,6 +31,8 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "lighting/restir/restir_settings.h"
+#include "shared/restir.h"
 #include "shared/scene.h"
 #include "tests/restir/restir_test_support.h"
 #include "tests/runtime/gpu_test_support.h"
@@ -128,6 +130,18 @@ const char* kOccludersJson = R"({
   ],
   "camera": { "position": [0, 2.2, 3.4], "target": [0, 0.6, -0.6], "yfov_deg": 45 }
 })";
+
+// The occluded room with its sign split into 40 x 30 emissive quads (2400 triangles + 3 analytic
+// lights: more than one presampling tile, so restir.presample's tiles feed the light candidates).
+std::string many_lights_json() {
+  std::string json = kOccludersJson;
+  const std::string one = R"("u": [0.6, 0, 0], "v": [0, 0.3, 0], "counts": [1, 1],
+      "size": [0.5, 0.2])";
+  const std::string many = R"("u": [0.0125, 0, 0], "v": [0, 0.0067, 0], "counts": [40, 30],
+      "size": [0.0125, 0.0067])";
+  json.replace(json.find(one), one.size(), many);
+  return json;
+}
 
 // ReSTIR configurations: the balanced preset with these settings.
 struct Mode {
@@ -313,6 +327,17 @@ TEST_F(RestirBiasTest, CornellLightsLitSurfaces) {
 
 TEST_F(RestirBiasTest, OccludedRoomLitSurfaces) {
   study("occluders", test::level_from_json("bias_occluders", kOccludersJson));
+}
+
+TEST_F(RestirBiasTest, ManyLightsPresampledLitSurfaces) {
+  const auto level = test::level_from_json("bias_many_lights", many_lights_json());
+  std::size_t triangles = 0;
+  for (const Instance& inst : level->instances)
+    if (level->materials[inst.material].emissive())
+      triangles += level->meshes[inst.mesh].triangle_count();
+  ASSERT_GT(triangles, gpu::kRestirPresampleTileSize) << "presampling must be on";
+  ASSERT_GT(lighting::restir_preset("balanced").presample_tiles, 0u);
+  study("many_lights", level);
 }
 
 }  // namespace

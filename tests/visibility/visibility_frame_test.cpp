@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -45,7 +47,10 @@ class VisibilityFrameTest : public runtime::test::GpuTest,
  protected:
   VisibilityFrameTest() : GpuTest(sync_validated()) {}
 
-  Frames render(VisibilitySetting visibility) {
+  // `move_fixed`: the snapshot lifts the tall box (a fixed instance, merged into the BVH's
+  // world-space tree) a little more every frame, so the BVH takes it out of the merged tree
+  // (rebuild and re-upload of the BLAS part) on the first frame it moves.
+  Frames render(VisibilitySetting visibility, bool move_fixed = false) {
     lighting::SessionOptions o;
     o.integrator.name = GetParam();
     o.integrator.visibility = visibility;
@@ -59,7 +64,16 @@ class VisibilityFrameTest : public runtime::test::GpuTest,
     out.backend = session.renderer().scene().visibility();
     for (std::uint32_t f = 0; f < kFrames; ++f) {
       runtime::ImageRGBA32F image;
-      const lighting::FrameTiming t = session.render(session.step_world(), &image);
+      FrameSnapshot snapshot = session.step_world();
+      if (move_fixed) {
+        for (SnapshotInstance& inst : snapshot.instances) {
+          if (level_->instances[inst.stable_id].name != "tall_box") continue;
+          const glm::mat4 lift = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.05f * f, 0.0f));
+          inst.prev_object_to_world = inst.object_to_world;
+          inst.object_to_world = lift * inst.object_to_world;
+        }
+      }
+      const lighting::FrameTiming t = session.render(snapshot, &image);
       out.tlas_builds += std::any_of(t.passes.begin(), t.passes.end(),
                                      [](const auto& p) { return p.first == "scene.tlas_build"; });
       out.images.push_back(std::move(image));
@@ -119,6 +133,20 @@ TEST_P(VisibilityFrameTest, RayQueryRendersTheBvhImage) {
   // The box moved between the first and last frame, so a TLAS left at its first placement would
   // have shown (the comparison above can fail).
   EXPECT_LT(compare(rq.images.front(), rq.images.back()).equal_fraction, 0.999);
+}
+
+TEST_P(VisibilityFrameTest, FixedInstanceMovedOutOfTheMergedTreeRendersTheRayQueryImage) {
+  ASSERT_TRUE(device.caps().ray_query) << "lavapipe 25 has VK_KHR_ray_query (PLATFORM.md)";
+  const Frames bvh = render(VisibilitySetting::Bvh, true);
+  const Frames rq = render(VisibilitySetting::RayQuery, true);
+  for (std::uint32_t f = 0; f < kFrames; ++f) {
+    const Agreement g = compare(bvh.images[f], rq.images[f]);
+    EXPECT_GT(g.mean_luminance, 0.0) << "frame " << f << " is black: nothing compared";
+    EXPECT_LE(g.max_mean_rel, 1e-3) << "frame " << f;
+    EXPECT_GE(g.equal_fraction, 0.999) << "frame " << f;
+  }
+  // The lifted box changes the image (its shadow moves), so stale triangles would be seen.
+  EXPECT_LT(compare(bvh.images.front(), bvh.images.back()).equal_fraction, 0.99);
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, VisibilityFrameTest,

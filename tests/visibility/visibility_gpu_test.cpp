@@ -113,19 +113,26 @@ TEST_F(VisibilityGpuTest, InstancedSceneAgreesBeforeAndAfterATlasRebuild) {
                                               test::random_soup(150, 0.5f, 0.25f, 3)};
   SceneBvh bvh;
   for (const test::TestMesh& m : meshes) bvh.add_mesh(MeshBvh(m.positions, m.indices));
+  // Every other instance is fixed (merged into the world-space tree) and keeps its place; the
+  // others move with the seed.
+  std::vector<BvhInstanceDesc> descs;
   auto place = [&](std::uint32_t seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> pos(-6.0f, 6.0f), scale(0.5f, 2.0f), angle(0.0f, 6.28f);
-    std::vector<BvhInstanceDesc> descs;
+    const bool first = descs.empty();
+    descs.resize(48);
     for (std::uint32_t i = 0; i < 48; ++i) {
       glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(pos(rng), pos(rng), pos(rng)));
       m = glm::rotate(m, angle(rng), test::random_direction(rng));
       m = glm::scale(m, glm::vec3(scale(rng), scale(rng), scale(rng)));
-      descs.push_back({.mesh = i % 3, .object_to_world = m, .user_id = 100 + i});
+      const bool fixed = i % 2 == 0;
+      if (first || !fixed)
+        descs[i] = {.mesh = i % 3, .object_to_world = m, .user_id = 100 + i, .fixed = fixed};
     }
     bvh.set_instances(descs);
   };
   place(11);
+  EXPECT_EQ(bvh.merged_instance_count(), 24u);
   VisibilityScene bvh_scene(device, bvh, VisibilityBackend::Bvh);
   VisibilityScene rq_scene(device, bvh, VisibilityBackend::RayQuery);
 
@@ -150,7 +157,8 @@ TEST_F(VisibilityGpuTest, InstancedSceneAgreesBeforeAndAfterATlasRebuild) {
       {0.0f, 12.0f, 0.0f}, {9.0f, 3.0f, 9.0f}, {-8.0f, -2.0f, 6.0f}, {0.5f, 0.5f, 0.5f}};
   check_all_backends({&bvh_scene, &rq_scene}, bvh, primary, shadow_to_points(points), "frame0");
 
-  place(12);  // every instance moves: TLAS rebuilt on both backends
+  place(12);  // the instanced half moves: TLAS rebuilt on both backends
+  EXPECT_EQ(bvh.merged_instance_count(), 24u);
   bvh_scene.update(bvh);
   rq_scene.update(bvh);
   check_all_backends({&bvh_scene, &rq_scene}, bvh, primary, shadow_to_points(points), "frame1");

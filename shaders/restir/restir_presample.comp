@@ -1,0 +1,35 @@
+// restir.presample: light presampling (shared/restir.h). Entry e of tile t is a light drawn from
+// the power alias table with its own random numbers, stored with a copy of its record and its
+// density (selection pdf x point density), for restir.initial's light candidates.
+// Reads: frame constants, lights, alias table.
+// Writes: presampled_lights (push.presample_tiles x kRestirPresampleTileSize entries).
+// History: none.
+// Dispatch: one invocation per entry (64 per workgroup).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "restir/restir_common.glsl"
+#include "shared/alias_table.h"
+
+layout(std430, binding = PASS_BINDING(0)) writeonly buffer PresampledOut {
+  PresampledLight e[];
+} presampled_lights;
+
+void main() {
+  uint entry = gl_WorkGroupID.x * (kRestirTileSize * kRestirTileSize) + gl_LocalInvocationIndex;
+  uint light_count = restir_light_count();
+  if (entry >= push.presample_tiles * kRestirPresampleTileSize || light_count == 0u) return;
+  uint rng = frame_rng(uvec2(entry % kRestirPresampleTileSize, entry / kRestirPresampleTileSize),
+                       kRestirRngPresample);
+  float u0 = rng_next_float(rng);
+  float u1 = rng_next_float(rng);
+  uint slot = alias_slot(light_count, u0);
+  uint index = alias_select(u1, light_alias.e[slot], slot);
+  PresampledLight p;
+  p.light = scene_lights.l[index];
+  p.index = index;
+  p.pdf = light_alias.e[index].pdf * light_eval_point_pdf(p.light);
+  p.pad0 = 0u;
+  p.pad1 = 0u;
+  presampled_lights.e[entry] = p;
+}
