@@ -64,7 +64,7 @@ struct RestirSettings {
   // candidates are drawn from one tile per 8x8 workgroup instead of the whole list, which keeps
   // their reads in cache. 0 turns it off (the alias table directly: fewer correlated candidates,
   // slower with many lights). More tiles decorrelate neighbouring workgroups at more memory.
-  std::uint32_t presample_tiles = 128;
+  std::uint32_t presample_tiles = 32;
   // Shadow-test the initial pick and drop it when occluded: fewer occluded samples spread by
   // reuse (much less noise in shadowed areas), one more ray per pixel, slight darkening bias.
   bool initial_visibility = false;

@@ -82,12 +82,18 @@ uint draw_light(float u0, float u1, uint tile_base, out GpuLight light, out floa
   return index;
 }
 
-// First entry of the presampled tile this workgroup draws from this frame.
+// First entry of the presampled tile this workgroup draws from this frame. Runs of consecutive
+// workgroups share a tile: lavapipe hands each CPU thread a contiguous range of workgroups, so
+// the tile stays in that core's cache (a random tile per workgroup missed it: restir.initial
+// gained 10-18% instead of 40%). The workgroup -> screen tile shuffle (push.tile_stride) spreads
+// one run over the image, and the runs rotate every frame.
 uint presampled_tile_base() {
   if (push.presample_tiles == 0u) return 0u;
-  uint rng = frame_rng(uvec2(gl_WorkGroupID.x, 0u), kRestirRngPresampleTile);
-  uint tile = min(uint(rng_next_float(rng) * float(push.presample_tiles)), push.presample_tiles - 1u);
-  return tile * kRestirPresampleTileSize;
+  uint rng = frame_rng(uvec2(0u), kRestirRngPresampleTile);
+  uint rotation = rng_next_uint(rng);
+  // (workgroups x tiles < 2^32 up to 8K x 8K pixels with the 1024-tile maximum)
+  uint run = (gl_WorkGroupID.x * push.presample_tiles) / gl_NumWorkGroups.x;
+  return ((run + rotation) % push.presample_tiles) * kRestirPresampleTileSize;
 }
 
 // Light strategy density of environment direction l (solid angle).
