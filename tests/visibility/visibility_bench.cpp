@@ -205,7 +205,17 @@ int run(int argc, char** argv) {
       std::vector<glm::uvec4> cpu;
       const double cpu_ms = wall_ms([&] { cpu = test::cpu_probe(data.bvh, set.rays, set.mode); });
       ms[set.name]["cpu"].push_back(cpu_ms);
-      const test::TraversalCounts counts = test::count_traversal(data.bvh, set.rays, set.mode);
+      // Work per ray over the set, and apart for rays that hit / are blocked and those that miss /
+      // get through.
+      test::TraversalCounts counts, hit_counts, miss_counts;
+      for (const gpu::BvhRay& ray : set.rays) {
+        test::TraversalCounts one;
+        const bool hit = test::count_traversal(data.bvh, ray, set.mode, one);
+        for (test::TraversalCounts* c : {&counts, hit ? &hit_counts : &miss_counts}) {
+          c->rays += one.rays, c->tlas_nodes += one.tlas_nodes, c->blas_nodes += one.blas_nodes;
+          c->instances += one.instances, c->triangles += one.triangles, c->hits += one.hits;
+        }
+      }
       std::size_t cpu_hits = 0;
       for (const glm::uvec4& a : cpu) cpu_hits += set.mode == 0 ? a.x != ~0u : a.w == 0u;
       fmt::print(
@@ -218,6 +228,14 @@ int run(int argc, char** argv) {
           counts.per_ray(counts.triangles),
           counts.hits == cpu_hits ? "" : " (COUNTER DISAGREES WITH THE CPU TRAVERSAL)",
           set.note.empty() ? "" : "; " + set.note);
+      const auto nodes = [](const test::TraversalCounts& c) {
+        return c.per_ray(c.tlas_nodes + c.blas_nodes);
+      };
+      const char* hit_name = set.mode == 0 ? "hit" : "blocked";
+      const char* miss_name = set.mode == 0 ? "missed" : "clear";
+      fmt::print("  {:8s} {} rays {:.1f} nodes, {:.1f} instances; {} rays {:.1f} nodes, {:.1f} instances\n",
+                 "", hit_name, nodes(hit_counts), hit_counts.per_ray(hit_counts.instances),
+                 miss_name, nodes(miss_counts), miss_counts.per_ray(miss_counts.instances));
       const double n = static_cast<double>(set.rays.size());
       std::string line = fmt::format("  {:8s} Mrays/s:", "");
       for (const auto& [path, runs_ms] : ms[set.name])
