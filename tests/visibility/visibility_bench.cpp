@@ -8,6 +8,8 @@
 // two-level, single rays, --threads host threads), each project path's throughput as a ratio of
 // Embree flat, and Embree's hit/miss agreement with the CPU traversal. Without Embree at build
 // time the bench says so and runs the rest.
+// "texel flat" and "cpu flat": the same traversal over one BLAS of all world-space triangles
+// (tests/visibility/flat_scene_bvh.h), what flattening the static instances would give.
 // Shadow sets: "probe" (a light from the power alias table, every pick traced: the GPU test's
 // rays), "baseline" and "ris-8"/"ris-160" (made like integrators.baseline and restir.initial's
 // pick, tests/visibility/shading_ray_sets.h), each with its occluded fraction and work per ray
@@ -26,6 +28,7 @@
 #include "engine/level/level_loader.h"
 #include "lighting/scene/scene_data.h"
 #include "lighting/visibility/ray_query_scene.h"
+#include "tests/visibility/flat_scene_bvh.h"
 #include "tests/visibility/shading_ray_sets.h"
 #include "tests/visibility/traversal_counter.h"
 #include "tests/visibility/visibility_harness.h"
@@ -110,6 +113,11 @@ int run(int argc, char** argv) {
   runtime::Device device({.selector = "auto"});
   runtime::ShaderLibrary shaders;
   VisibilityScene bvh_scene(device, data.bvh, VisibilityBackend::Bvh);
+  SceneBvh flat_bvh;
+  const double flat_ms = wall_ms([&] { flat_bvh = test::flat_scene_bvh(level); });
+  VisibilityScene flat_scene(device, flat_bvh, VisibilityBackend::Bvh);
+  fmt::print("flat project BVH (all {} triangles in world space, one BLAS, one instance): build {:.1f} ms\n",
+             flat_bvh.triangles().size(), flat_ms);
   std::unique_ptr<VisibilityScene> rq_scene;
   if (device.caps().ray_query) {
     std::vector<double> rq_blas, rq_tlas, rq_tlas_write;
@@ -191,6 +199,9 @@ int run(int argc, char** argv) {
           probes[v]->run(scene, set.rays, set.mode, &t);
           if (r >= 0) ms[set.name][v].push_back(t);
         }
+        double flat_t = 0.0;
+        probes["texel"]->run(flat_scene, set.rays, set.mode, &flat_t);
+        if (r >= 0) ms[set.name]["texel flat"].push_back(flat_t);
 #ifdef LANTERN_HAVE_EMBREE
         for (const auto& anchor : anchors) {
           double t = 0.0;
@@ -205,6 +216,10 @@ int run(int argc, char** argv) {
       std::vector<glm::uvec4> cpu;
       const double cpu_ms = wall_ms([&] { cpu = test::cpu_probe(data.bvh, set.rays, set.mode); });
       ms[set.name]["cpu"].push_back(cpu_ms);
+      std::vector<glm::uvec4> cpu_flat;
+      ms[set.name]["cpu flat"].push_back(
+          wall_ms([&] { cpu_flat = test::cpu_probe(flat_bvh, set.rays, set.mode); }));
+      const test::TraversalCounts flat_counts = test::count_traversal(flat_bvh, set.rays, set.mode);
       // Work per ray over the set, and apart for rays that hit / are blocked and those that miss /
       // get through.
       test::TraversalCounts counts, hit_counts, miss_counts;
@@ -236,6 +251,14 @@ int run(int argc, char** argv) {
       fmt::print("  {:8s} {} rays {:.1f} nodes, {:.1f} instances; {} rays {:.1f} nodes, {:.1f} instances\n",
                  "", hit_name, nodes(hit_counts), hit_counts.per_ray(hit_counts.instances),
                  miss_name, nodes(miss_counts), miss_counts.per_ray(miss_counts.instances));
+      std::size_t flat_same = 0;
+      for (std::size_t i = 0; i < cpu.size(); ++i)
+        flat_same += set.mode == 0 ? (cpu[i].x == ~0u) == (cpu_flat[i].x == ~0u)
+                                   : cpu[i].w == cpu_flat[i].w;
+      fmt::print("  {:8s} flat layout: {:.1f} nodes, {:.1f} triangle tests per ray; agrees with the "
+                 "two-level CPU traversal on {:.4f}%\n",
+                 "", nodes(flat_counts), flat_counts.per_ray(flat_counts.triangles),
+                 100.0 * static_cast<double>(flat_same) / std::max<std::size_t>(cpu.size(), 1));
       const double n = static_cast<double>(set.rays.size());
       std::string line = fmt::format("  {:8s} Mrays/s:", "");
       for (const auto& [path, runs_ms] : ms[set.name])
@@ -244,8 +267,9 @@ int run(int argc, char** argv) {
 #ifdef LANTERN_HAVE_EMBREE
       const double flat = median(ms[set.name]["embree flat"]);
       std::string ratios = fmt::format("  {:8s} vs embree flat:", "");
-      for (const std::string& path : {std::string("texel"), std::string("rayquery"),
-                                      std::string("cpu"), std::string("embree two-level")})
+      for (const std::string& path :
+           {std::string("texel"), std::string("texel flat"), std::string("rayquery"),
+            std::string("cpu"), std::string("cpu flat"), std::string("embree two-level")})
         if (ms[set.name].count(path))
           ratios += fmt::format(" {} {:.3f}x |", path, flat / median(ms[set.name][path]));
       std::string agree = " agreement with cpu:";
