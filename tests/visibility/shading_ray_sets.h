@@ -10,10 +10,12 @@
 // facing away) traces no ray. Emitters only: the environment's share is not drawn.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <random>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "engine/scene/level.h"
@@ -89,6 +91,38 @@ inline ShadingRaySet shading_shadow_rays(const Level& level, const SceneData& da
     set.rays.push_back(gpu::bvh_make_ray(x, y - x, 0.0f, 1.0f));
   }
   return set;
+}
+
+// 10 bits per axis of p in the box [lo, hi], interleaved (Morton order).
+inline std::uint32_t morton30(glm::vec3 p, glm::vec3 lo, glm::vec3 hi) {
+  const glm::vec3 q = glm::clamp((p - lo) / glm::max(hi - lo, glm::vec3(1e-6f)), 0.0f, 1.0f);
+  const auto spread = [](std::uint32_t v) {
+    v = (v * 0x00010001u) & 0xFF0000FFu;
+    v = (v * 0x00000101u) & 0x0F00F00Fu;
+    v = (v * 0x00000011u) & 0xC30C30C3u;
+    v = (v * 0x00000005u) & 0x49249249u;
+    return v;
+  };
+  const glm::uvec3 c = glm::uvec3(q * 1023.0f);
+  return (spread(c.x) << 2) | (spread(c.y) << 1) | spread(c.z);
+}
+
+// The same segments reordered so that neighbours (one probe workgroup, one SIMD batch) share
+// their target region, then their origin region: Morton order of the target, then of the origin,
+// within the scene box. Measures what ray sorting would give shadow rays.
+inline std::vector<gpu::BvhRay> sorted_by_target(std::vector<gpu::BvhRay> rays, glm::vec3 lo,
+                                                 glm::vec3 hi) {
+  std::vector<std::pair<std::uint64_t, std::size_t>> keys;
+  keys.reserve(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const glm::vec3 o(rays[i].origin), t = o + glm::vec3(rays[i].direction);
+    keys.push_back({(std::uint64_t{morton30(t, lo, hi)} << 30) | morton30(o, lo, hi), i});
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<gpu::BvhRay> out;
+  out.reserve(rays.size());
+  for (const auto& k : keys) out.push_back(rays[k.second]);
+  return out;
 }
 
 }  // namespace lantern::lighting::test

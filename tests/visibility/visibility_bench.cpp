@@ -10,6 +10,7 @@
 // time the bench says so and runs the rest.
 // "texel flat" and "cpu flat": the same traversal over one BLAS of all world-space triangles
 // (tests/visibility/flat_scene_bvh.h), what flattening the static instances would give.
+// "ris-160 sorted": the ris-160 rays reordered by target then origin (what ray sorting gives).
 // Shadow sets: "probe" (a light from the power alias table, every pick traced: the GPU test's
 // rays), "baseline" and "ris-8"/"ris-160" (made like integrators.baseline and restir.initial's
 // pick, tests/visibility/shading_ray_sets.h), each with its occluded fraction and work per ray
@@ -188,6 +189,9 @@ int run(int argc, char** argv) {
                       fmt::format("{} of {} picks light nothing (no ray)", s.zero_contribution,
                                   s.surface_points)});
     }
+    sets.push_back({"ris-160 sorted", 1,
+                    test::sorted_by_target(sets.back().rays, data.bounds_min, data.bounds_max),
+                    "the ris-160 rays in Morton order of target, then origin"});
 
     // Timings, interleaved: run -1 warms up (JIT at first dispatch).
     std::map<std::string, std::map<std::string, std::vector<double>>> ms;  // set -> path -> runs
