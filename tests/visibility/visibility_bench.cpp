@@ -10,7 +10,8 @@
 // time the bench says so and runs the rest.
 // "texel flat" and "cpu flat": the same traversal over one BLAS of all world-space triangles
 // (tests/visibility/flat_scene_bvh.h), what flattening the static instances would give.
-// "ris-160 sorted": the ris-160 rays reordered by target then origin (what ray sorting gives).
+// "ris-160 sorted": the ris-160 rays reordered by target then origin (what ray sorting gives);
+// "ris-160 by work": ordered by each ray's node count (an oracle: how much SIMD divergence costs).
 // Shadow sets: "probe" (a light from the power alias table, every pick traced: the GPU test's
 // rays), "baseline" and "ris-8"/"ris-160" (made like integrators.baseline and restir.initial's
 // pick, tests/visibility/shading_ray_sets.h), each with its occluded fraction and work per ray
@@ -192,6 +193,22 @@ int run(int argc, char** argv) {
     sets.push_back({"ris-160 sorted", 1,
                     test::sorted_by_target(sets.back().rays, data.bounds_min, data.bounds_max),
                     "the ris-160 rays in Morton order of target, then origin"});
+    {
+      // Diagnostic, not realizable: the ris-160 rays ordered by the nodes the flat traversal
+      // visits for each, so SIMD neighbours do the same amount of work (no divergence left).
+      const std::vector<gpu::BvhRay>& rays = sets[sets.size() - 2].rays;
+      std::vector<std::pair<std::uint64_t, std::size_t>> work;
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        test::TraversalCounts one;
+        (void)test::count_traversal(flat_bvh, rays[i], 1, one);
+        work.push_back({one.tlas_nodes + one.blas_nodes, i});
+      }
+      std::sort(work.begin(), work.end());
+      std::vector<gpu::BvhRay> by_work;
+      for (const auto& [nodes, i] : work) by_work.push_back(rays[i]);
+      sets.push_back({"ris-160 by work", 1, std::move(by_work),
+                      "the ris-160 rays ordered by their flat-layout node count (oracle)"});
+    }
 
     // Timings, interleaved: run -1 warms up (JIT at first dispatch).
     std::map<std::string, std::map<std::string, std::vector<double>>> ms;  // set -> path -> runs
