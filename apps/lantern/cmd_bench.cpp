@@ -24,9 +24,9 @@
 #include "engine/perf/budget.h"
 #include "engine/perf/chrome_trace.h"
 #include "engine/perf/statistics.h"
+#include "engine/world/world.h"
 #include "lighting/bvh/scene_bvh.h"
 #include "lighting/frame/frame_renderer.h"
-#include "engine/world/world.h"
 #include "lighting/frame/headless_session.h"
 #include "lighting/integrators/integrator_registry.h"
 #include "lighting/scene/gpu_scene.h"
@@ -66,8 +66,8 @@ double ms_between(Clock::time_point a, Clock::time_point b) {
 // the same device (so with warm in-process caches): the GPU scene (build_scene_data, of which
 // the BVH, then uploads), the integrator's pipelines, the world.
 struct StartupTimes {
-  double level_ms = 0.0, device_ms = 0.0, calibration_ms = 0.0, session_ms = 0.0,
-         warm_up_ms = 0.0, first_frame_ms = 0.0;
+  double level_ms = 0.0, device_ms = 0.0, calibration_ms = 0.0, session_ms = 0.0, warm_up_ms = 0.0,
+         first_frame_ms = 0.0;
   double scene_build_ms = 0.0, bvh_ms = 0.0, gpu_scene_ms = 0.0, integrator_ms = 0.0,
          world_ms = 0.0;
   double total_ms() const {  // calibration is the bench's own: not part of a game's start-up
@@ -101,9 +101,11 @@ void measure_session_parts(runtime::Device& device, runtime::ShaderLibrary& shad
   const Clock::time_point b = Clock::now();
   lighting::SceneBvh bvh;
   std::vector<lighting::BvhInstanceDesc> descs;
-  for (const Mesh& mesh : level.meshes) bvh.add_mesh(lighting::MeshBvh(mesh.positions, mesh.indices));
+  for (const Mesh& mesh : level.meshes)
+    bvh.add_mesh(lighting::MeshBvh(mesh.positions, mesh.indices));
   for (std::size_t i = 0; i < level.instances.size(); ++i)
-    descs.push_back({level.instances[i].mesh, level.instances[i].world, static_cast<std::uint32_t>(i)});
+    descs.push_back(
+        {level.instances[i].mesh, level.instances[i].world, static_cast<std::uint32_t>(i)});
   bvh.set_instances(descs);
   t.scene_build_ms = ms_between(a, b);
   t.bvh_ms = ms_between(b, Clock::now());
@@ -126,9 +128,10 @@ void print_startup(const StartupTimes& t) {
   std::printf("  %-46s %9.1f\n", "pipeline warm-up (lavapipe JIT)", t.warm_up_ms);
   std::printf("  %-46s %9.1f\n", "first frame (step + render, wall)", t.first_frame_ms);
   std::printf("  %-46s %9.1f\n", "first frame ready", t.total_ms());
-  std::printf("  (bench only, not counted: calibration workload %.1f ms; * measured again after "
-              "the frames, each alone)\n",
-              t.calibration_ms);
+  std::printf(
+      "  (bench only, not counted: calibration workload %.1f ms; * measured again after "
+      "the frames, each alone)\n",
+      t.calibration_ms);
 }
 
 nlohmann::json summary_json(const perf::Summary& s) {

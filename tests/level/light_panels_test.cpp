@@ -1,13 +1,15 @@
 // The light_panels generator (goal 3's scaling level): every emitter count is exact, carries the
 // same total emitted power over the same emitting surface, and leaves the rest of the level
-// (occluders, floor, camera path) bit-identical; a count the panels cannot split is one named error.
+// (occluders, floor, camera path) bit-identical; a count the panels cannot split is one named
+// error.
+#include "engine/level/generators/light_panels.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/glm.hpp>
 #include <string>
 
 #include "engine/core/error.h"
-#include "engine/level/generators/light_panels.h"
 #include "engine/level/level_loader.h"
 #include "engine/scene/level_summary.h"
 #include "tests/level/test_files.h"
@@ -17,8 +19,9 @@ namespace {
 
 Level panels_with(int triangles) {
   const auto file = test::scratch("panels_" + std::to_string(triangles) + ".json");
-  test::write_text(file, R"({"generators": [{"type": "light_panels", "seed": 4, "emitter_triangles": )" +
-                             std::to_string(triangles) + "}]}");
+  test::write_text(file,
+                   R"({"generators": [{"type": "light_panels", "seed": 4, "emitter_triangles": )" +
+                       std::to_string(triangles) + "}]}");
   return load_level(file);
 }
 
@@ -88,7 +91,8 @@ TEST(LightPanels, GridCellsAreAsSquareAsTheCountAllows) {
 
 TEST(LightPanels, ACountThePanelsCannotSplitIsNamed) {
   const auto file = test::scratch("panels_bad.json");
-  test::write_text(file, R"({"generators": [{"type": "light_panels", "emitter_triangles": 1001}]})");
+  test::write_text(file,
+                   R"({"generators": [{"type": "light_panels", "emitter_triangles": 1001}]})");
   try {
     load_level(file);
     FAIL() << "expected an InputError";

@@ -1,12 +1,12 @@
 #include "tests/visibility/embree_anchor.h"
 
 #include <embree3/rtcore.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <fmt/format.h>
 #include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
 #include <thread>
@@ -34,20 +34,20 @@ struct EmbreeAnchor::Impl {
   void check(const char* what) const {
     const RTCError error = rtcGetDeviceError(device);
     if (error != RTC_ERROR_NONE)
-      throw std::runtime_error(fmt::format("embree: {} failed (RTCError {})", what,
-                                           static_cast<int>(error)));
+      throw std::runtime_error(
+          fmt::format("embree: {} failed (RTCError {})", what, static_cast<int>(error)));
   }
 
   // One triangle geometry over `mesh`, its vertices mapped by `to_world` (identity for object
   // space), attached to `target` as geometry `id` (= triangle ids are the mesh's).
   void attach_mesh(RTCScene target, const Mesh& mesh, const glm::mat4& to_world, unsigned id) {
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-        mesh.positions.size()));
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-        mesh.triangle_count()));
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.positions.size()));
+    auto* indices = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(unsigned), mesh.triangle_count()));
     check("geometry buffers");
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
       const glm::vec3 p = glm::vec3(to_world * glm::vec4(mesh.positions[i], 1.0f));

@@ -3,11 +3,12 @@
 // rays): Embree flat and two-level agree on >= 99.9% of rays (hit/miss; the bar for every
 // visibility path), and the traversal counter's hit/miss equals SceneBvh's on every ray (its
 // counts belong to the same traversal).
+#include "tests/visibility/embree_anchor.h"
+
 #include <gtest/gtest.h>
 
 #include "engine/level/level_loader.h"
 #include "lighting/scene/scene_data.h"
-#include "tests/visibility/embree_anchor.h"
 #include "tests/visibility/shading_ray_sets.h"
 #include "tests/visibility/traversal_counter.h"
 #include "tests/visibility/visibility_harness.h"
@@ -49,8 +50,8 @@ TEST(EmbreeAnchor, PrimaryRaysAgreeWithTheCpuTraversal) {
 
 TEST(EmbreeAnchor, ProbeShadowRaysAgreeWithTheCpuTraversal) {
   const Fixture& f = fixture();
-  expect_agreement(
-      shadow_rays(f.data.bvh, f.primary, f.data.lights, f.data.scene_radius(), {}, 7), 1);
+  expect_agreement(shadow_rays(f.data.bvh, f.primary, f.data.lights, f.data.scene_radius(), {}, 7),
+                   1);
 }
 
 TEST(EmbreeAnchor, RisShadowRaysAgreeWithTheCpuTraversal) {

@@ -19,7 +19,8 @@ inline SceneBvh flat_scene_bvh(const Level& level) {
   for (const Instance& inst : level.instances) {
     const Mesh& mesh = level.meshes.at(inst.mesh);
     const auto base = static_cast<std::uint32_t>(positions.size());
-    for (const glm::vec3& p : mesh.positions) positions.push_back(glm::vec3(inst.world * glm::vec4(p, 1.0f)));
+    for (const glm::vec3& p : mesh.positions)
+      positions.push_back(glm::vec3(inst.world * glm::vec4(p, 1.0f)));
     for (const std::uint32_t i : mesh.indices) indices.push_back(base + i);
   }
   SceneBvh bvh;

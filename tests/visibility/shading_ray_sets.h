@@ -25,8 +25,8 @@
 namespace lantern::lighting::test {
 
 struct ShadingRaySet {
-  std::vector<gpu::BvhRay> rays;  // origin -> light point segments (probe mode 1)
-  std::size_t surface_points = 0;  // primary hits
+  std::vector<gpu::BvhRay> rays;      // origin -> light point segments (probe mode 1)
+  std::size_t surface_points = 0;     // primary hits
   std::size_t zero_contribution = 0;  // picks that light nothing: no ray
 };
 
@@ -49,7 +49,8 @@ inline ShadingRaySet shading_shadow_rays(const Level& level, const SceneData& da
     const Mesh& mesh = level.meshes[inst.mesh];
     glm::vec3 v[3];
     for (int k = 0; k < 3; ++k)
-      v[k] = glm::vec3(inst.world * glm::vec4(mesh.positions[mesh.indices[3 * hit.primitive + k]], 1.0f));
+      v[k] = glm::vec3(inst.world *
+                       glm::vec4(mesh.positions[mesh.indices[3 * hit.primitive + k]], 1.0f));
     const glm::vec3 dir(ray.direction);
     const glm::vec3 x = glm::vec3(ray.origin) + hit.t * dir;
     glm::vec3 ng = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
@@ -58,8 +59,8 @@ inline ShadingRaySet shading_shadow_rays(const Level& level, const SceneData& da
     const gpu::GpuMaterial& mat = data.materials[data.instances[hit.instance].geometry.x];
     const auto contribution = [&](std::uint32_t index, glm::vec3 y) {
       return gpu::light_eval_contribution_at(lights[index], y, x, ng, ng, view,
-                                             glm::vec3(mat.base_color), mat.params.x,
-                                             mat.params.y, mat.params.z);
+                                             glm::vec3(mat.base_color), mat.params.x, mat.params.y,
+                                             mat.params.z);
     };
     const auto draw = [&](std::uint32_t& index, glm::vec3& y) {
       const float u0 = u(rng), u1 = u(rng);

@@ -31,8 +31,8 @@ namespace detail {
 // leaf's primitives, may lower t_max, and returns whether it found a hit. Stops at the first hit
 // when any_hit. Returns whether any leaf found a hit.
 template <class Leaf>
-bool counted_walk(const gpu::BvhNode* nodes, glm::vec3 origin, glm::vec3 inv_direction,
-                  float t_min, float& t_max, bool any_hit, std::uint64_t& entered, Leaf&& leaf) {
+bool counted_walk(const gpu::BvhNode* nodes, glm::vec3 origin, glm::vec3 inv_direction, float t_min,
+                  float& t_max, bool any_hit, std::uint64_t& entered, Leaf&& leaf) {
   using gpu::kBvhMiss;
   const auto box = [&](const gpu::BvhNode& n) {
     return gpu::bvh_ray_box(origin, inv_direction, t_min, t_max, glm::vec3(n.bounds_min),

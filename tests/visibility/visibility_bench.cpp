@@ -118,8 +118,10 @@ int run(int argc, char** argv) {
   SceneBvh flat_bvh;
   const double flat_ms = wall_ms([&] { flat_bvh = test::flat_scene_bvh(level); });
   VisibilityScene flat_scene(device, flat_bvh, VisibilityBackend::Bvh);
-  fmt::print("flat project BVH (all {} triangles in world space, one BLAS, one instance): build {:.1f} ms\n",
-             flat_bvh.triangles().size(), flat_ms);
+  fmt::print(
+      "flat project BVH (all {} triangles in world space, one BLAS, one instance): build {:.1f} "
+      "ms\n",
+      flat_bvh.triangles().size(), flat_ms);
   std::unique_ptr<VisibilityScene> rq_scene;
   if (device.caps().ray_query) {
     std::vector<double> rq_blas, rq_tlas, rq_tlas_write;
@@ -181,9 +183,9 @@ int run(int argc, char** argv) {
     const std::vector<gpu::BvhRay> primary = test::camera_rays(level.camera, w, h);
     std::vector<RaySet> sets;
     sets.push_back({"primary", 0, primary, ""});
-    sets.push_back({"probe", 1,
-                    test::shadow_rays(data.bvh, primary, data.lights, data.scene_radius(), {}, 1234),
-                    ""});
+    sets.push_back(
+        {"probe", 1,
+         test::shadow_rays(data.bvh, primary, data.lights, data.scene_radius(), {}, 1234), ""});
     for (const std::uint32_t m : {0u, 8u, 160u}) {
       test::ShadingRaySet s = test::shading_shadow_rays(level, data, primary, m, 4321 + m);
       sets.push_back({m == 0 ? "baseline" : fmt::format("ris-{}", m), 1, std::move(s.rays),
@@ -269,17 +271,20 @@ int run(int argc, char** argv) {
       };
       const char* hit_name = set.mode == 0 ? "hit" : "blocked";
       const char* miss_name = set.mode == 0 ? "missed" : "clear";
-      fmt::print("  {:8s} {} rays {:.1f} nodes, {:.1f} instances; {} rays {:.1f} nodes, {:.1f} instances\n",
-                 "", hit_name, nodes(hit_counts), hit_counts.per_ray(hit_counts.instances),
-                 miss_name, nodes(miss_counts), miss_counts.per_ray(miss_counts.instances));
+      fmt::print(
+          "  {:8s} {} rays {:.1f} nodes, {:.1f} instances; {} rays {:.1f} nodes, {:.1f} "
+          "instances\n",
+          "", hit_name, nodes(hit_counts), hit_counts.per_ray(hit_counts.instances), miss_name,
+          nodes(miss_counts), miss_counts.per_ray(miss_counts.instances));
       std::size_t flat_same = 0;
       for (std::size_t i = 0; i < cpu.size(); ++i)
-        flat_same += set.mode == 0 ? (cpu[i].x == ~0u) == (cpu_flat[i].x == ~0u)
-                                   : cpu[i].w == cpu_flat[i].w;
-      fmt::print("  {:8s} flat layout: {:.1f} nodes, {:.1f} triangle tests per ray; agrees with the "
-                 "two-level CPU traversal on {:.4f}%\n",
-                 "", nodes(flat_counts), flat_counts.per_ray(flat_counts.triangles),
-                 100.0 * static_cast<double>(flat_same) / std::max<std::size_t>(cpu.size(), 1));
+        flat_same +=
+            set.mode == 0 ? (cpu[i].x == ~0u) == (cpu_flat[i].x == ~0u) : cpu[i].w == cpu_flat[i].w;
+      fmt::print(
+          "  {:8s} flat layout: {:.1f} nodes, {:.1f} triangle tests per ray; agrees with the "
+          "two-level CPU traversal on {:.4f}%\n",
+          "", nodes(flat_counts), flat_counts.per_ray(flat_counts.triangles),
+          100.0 * static_cast<double>(flat_same) / std::max<std::size_t>(cpu.size(), 1));
       const double n = static_cast<double>(set.rays.size());
       std::string line = fmt::format("  {:8s} Mrays/s:", "");
       for (const auto& [path, runs_ms] : ms[set.name])
@@ -295,9 +300,9 @@ int run(int argc, char** argv) {
           ratios += fmt::format(" {} {:.3f}x |", path, flat / median(ms[set.name][path]));
       std::string agree = " agreement with cpu:";
       for (const auto& anchor : anchors)
-        agree += fmt::format(" {} {:.4f}%", anchor_name(*anchor),
-                             100.0 * test::probe_agreement(anchor->run(set.rays, set.mode), cpu,
-                                                           set.mode));
+        agree += fmt::format(
+            " {} {:.4f}%", anchor_name(*anchor),
+            100.0 * test::probe_agreement(anchor->run(set.rays, set.mode), cpu, set.mode));
       fmt::print("{}{}\n", ratios.substr(0, ratios.size() - 2), agree);
 #endif
     }

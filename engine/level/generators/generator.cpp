@@ -93,9 +93,9 @@ void run_generator(JsonObject& params, JsonLevelReader& reader) {
                           fmt::format("{}: {}", reader.file().string(), params.pointer()));
     return;
   }
-  params.fail("type", fmt::format(
-                          "unknown generator type '{}' (night_market, light_field, light_panels)",
-                          type));
+  params.fail(
+      "type",
+      fmt::format("unknown generator type '{}' (night_market, light_field, light_panels)", type));
 }
 
 void use_generated_camera_path(Level& level, const std::string& path_name) {

@@ -47,8 +47,8 @@ glm::uvec2 light_panel_grid(std::uint32_t cells, glm::vec2 size) {
     if (cells % nx != 0) continue;
     const std::uint32_t ny = cells / nx;
     // Cell aspect (size.x / nx) / (size.y / ny); 0 in log = square.
-    const float error = std::abs(std::log((size.x * static_cast<float>(ny)) /
-                                          (size.y * static_cast<float>(nx))));
+    const float error =
+        std::abs(std::log((size.x * static_cast<float>(ny)) / (size.y * static_cast<float>(nx))));
     if (error < best_error) best_error = error, best = glm::uvec2(nx, ny);
   }
   return best;
@@ -57,9 +57,9 @@ glm::uvec2 light_panel_grid(std::uint32_t cells, glm::vec2 size) {
 void generate_light_panels(const LightPanelsParams& p, LevelBuilder& builder,
                            const std::string& where) {
   if (p.panels == 0 || p.emitter_triangles % (2 * p.panels) != 0)
-    throw InputError(fmt::format(
-        "{}: emitter_triangles {} must be a positive multiple of 2 x panels = {}", where,
-        p.emitter_triangles, 2 * p.panels));
+    throw InputError(
+        fmt::format("{}: emitter_triangles {} must be a positive multiple of 2 x panels = {}",
+                    where, p.emitter_triangles, 2 * p.panels));
   SplitMix rng(p.seed ^ 0x70616e656c73ull);  // "panels"
   const float half = 0.5f * p.extent;
   const glm::uvec2 grid = light_panel_grid(p.emitter_triangles / (2 * p.panels), p.panel_size);
@@ -68,12 +68,11 @@ void generate_light_panels(const LightPanelsParams& p, LevelBuilder& builder,
   const auto side = static_cast<std::uint32_t>(std::ceil(std::sqrt(double(p.panels))));
   const float pitch = 0.7f * p.extent / static_cast<float>(side);
   for (std::uint32_t i = 0; i < p.panels; ++i) {
-    const glm::vec3 centre(
-        (static_cast<float>(i % side) + 0.5f) * pitch - 0.35f * p.extent +
-            rng.uniform(-0.15f, 0.15f) * pitch,
-        p.height + rng.uniform(-0.5f, 0.5f),
-        (static_cast<float>(i / side) + 0.5f) * pitch - 0.35f * p.extent +
-            rng.uniform(-0.15f, 0.15f) * pitch);
+    const glm::vec3 centre((static_cast<float>(i % side) + 0.5f) * pitch - 0.35f * p.extent +
+                               rng.uniform(-0.15f, 0.15f) * pitch,
+                           p.height + rng.uniform(-0.5f, 0.5f),
+                           (static_cast<float>(i / side) + 0.5f) * pitch - 0.35f * p.extent +
+                               rng.uniform(-0.15f, 0.15f) * pitch);
     const float radiance = p.radiance.x * std::pow(p.radiance.y / p.radiance.x, rng.uniform());
     const glm::vec3 color(rng.uniform(0.6f, 1.0f), rng.uniform(0.6f, 1.0f),
                           rng.uniform(0.6f, 1.0f));
@@ -95,9 +94,9 @@ void generate_light_panels(const LightPanelsParams& p, LevelBuilder& builder,
       e.emissive_strength = bin.radiance;
       bin.mesh.name = e.name;
       const std::uint32_t mat = builder.add_material(e);
-      builder.add_instance(e.name,
-                           builder.add_mesh(std::move(bin.mesh), fmt::format("{}: panel {}", where, i)),
-                           mat, Transform{});
+      builder.add_instance(
+          e.name, builder.add_mesh(std::move(bin.mesh), fmt::format("{}: panel {}", where, i)), mat,
+          Transform{});
     }
   }
 

@@ -20,10 +20,10 @@ struct LightPanelsParams {
   std::uint64_t seed = 1;
   std::uint32_t emitter_triangles = 1000;  // a multiple of 2 x panels
   std::uint32_t panels = 20;
-  glm::vec2 panel_size{2.4f, 1.2f};  // metres along x and z
-  float extent = 40.0f;              // the floor is extent x extent metres
-  std::uint32_t pillars = 36;        // occluders on a jittered grid, 0.8 x 4 x 0.8 m
-  std::uint32_t awnings = 16;        // occluding slabs at 2.5..3.5 m, 3 x 0.1 x 1.5 m
+  glm::vec2 panel_size{2.4f, 1.2f};   // metres along x and z
+  float extent = 40.0f;               // the floor is extent x extent metres
+  std::uint32_t pillars = 36;         // occluders on a jittered grid, 0.8 x 4 x 0.8 m
+  std::uint32_t awnings = 16;         // occluding slabs at 2.5..3.5 m, 3 x 0.1 x 1.5 m
   glm::vec2 radiance{20.0f, 200.0f};  // W/(sr·m²), log-uniform per panel
   float height = 5.0f;                // panel height, metres
   std::string path_name = "walk";
