@@ -12,6 +12,7 @@ packages=(
   libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev
   libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev spirv-headers
   libgtest-dev libgmock-dev libbenchmark-dev
+  libembree-dev  # visibility_bench only: the Embree anchor (optional at configure time)
   xvfb xauth ffmpeg fonts-dejavu-core
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer
 )

@@ -3,7 +3,9 @@
 // frames; prints per-pass and frame statistics (median, p95, p99, max), writes them as JSON, a
 // Chrome trace (CPU systems and GPU passes per frame), and checks a budget file (exit 3 naming
 // every pass over budget). A calibration workload is timed in the same run, interleaved with
-// the frames, so budgets can be relative to it (engine/perf/budget.h).
+// the frames, so budgets can be relative to it (engine/perf/budget.h). `--startup` prints where
+// the time to the first frame goes (level load, device, scene build and BVH, uploads and
+// pipeline objects, pipeline JIT warm-up, first frame).
 #include <fmt/format.h>
 
 #include <chrono>
@@ -22,8 +24,13 @@
 #include "engine/perf/budget.h"
 #include "engine/perf/chrome_trace.h"
 #include "engine/perf/statistics.h"
+#include "engine/world/world.h"
+#include "lighting/bvh/scene_bvh.h"
 #include "lighting/frame/frame_renderer.h"
 #include "lighting/frame/headless_session.h"
+#include "lighting/integrators/integrator_registry.h"
+#include "lighting/scene/gpu_scene.h"
+#include "lighting/scene/scene_data.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/perf/calibration_workload.h"
@@ -40,6 +47,7 @@ struct BenchOptions {
   std::string json;
   std::string trace;
   std::string budget;
+  bool startup = false;
 };
 
 // Calibration runs: one before the frames, then one every kCalibrationEvery frames.
@@ -47,6 +55,83 @@ constexpr int kCalibrationEvery = 8;
 
 double us_between(Clock::time_point origin, Clock::time_point t) {
   return std::chrono::duration<double, std::micro>(t - origin).count();
+}
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Time to the first frame, step by step, in the order the bench runs them. The parts of the
+// session's construction are measured again after the frames, each alone on the loaded level and
+// the same device (so with warm in-process caches): the GPU scene (build_scene_data, of which
+// the BVH, then uploads), the integrator's pipelines, the world.
+struct StartupTimes {
+  double level_ms = 0.0, device_ms = 0.0, calibration_ms = 0.0, session_ms = 0.0, warm_up_ms = 0.0,
+         first_frame_ms = 0.0;
+  double scene_build_ms = 0.0, bvh_ms = 0.0, gpu_scene_ms = 0.0, integrator_ms = 0.0,
+         world_ms = 0.0;
+  double total_ms() const {  // calibration is the bench's own: not part of a game's start-up
+    return level_ms + device_ms + session_ms + warm_up_ms + first_frame_ms;
+  }
+};
+
+void measure_session_parts(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                           const std::shared_ptr<const Level>& level_ptr,
+                           const lighting::IntegratorConfig& config,
+                           const lighting::SessionOptions& options, StartupTimes& t) {
+  const Level& level = *level_ptr;
+  Clock::time_point start = Clock::now();
+  const std::unique_ptr<lighting::Integrator> integrator =
+      lighting::make_integrator(device, shaders, config);
+  t.integrator_ms = ms_between(start, Clock::now());
+  start = Clock::now();
+  { const lighting::GpuScene scene(device, level_ptr, integrator->visibility()); }
+  t.gpu_scene_ms = ms_between(start, Clock::now());
+  start = Clock::now();
+  {
+    const World world(level_ptr, {.threads = options.world_threads,
+                                  .seed = options.seed,
+                                  .fixed_dt = options.fixed_dt,
+                                  .aspect = static_cast<float>(options.width) /
+                                            static_cast<float>(options.height)});
+  }
+  t.world_ms = ms_between(start, Clock::now());
+  const Clock::time_point a = Clock::now();
+  (void)lighting::build_scene_data(level);
+  const Clock::time_point b = Clock::now();
+  lighting::SceneBvh bvh;
+  std::vector<lighting::BvhInstanceDesc> descs;
+  for (const Mesh& mesh : level.meshes)
+    bvh.add_mesh(lighting::MeshBvh(mesh.positions, mesh.indices));
+  for (std::size_t i = 0; i < level.instances.size(); ++i)
+    descs.push_back(
+        {level.instances[i].mesh, level.instances[i].world, static_cast<std::uint32_t>(i)});
+  bvh.set_instances(descs);
+  t.scene_build_ms = ms_between(a, b);
+  t.bvh_ms = ms_between(b, Clock::now());
+}
+
+void print_startup(const StartupTimes& t) {
+  const double rest = t.session_ms - t.gpu_scene_ms - t.integrator_ms - t.world_ms;
+  std::printf("start-up (wall ms, in order):\n");
+  std::printf("  %-46s %9.1f\n", "level load (parse + generators)", t.level_ms);
+  std::printf("  %-46s %9.1f\n", "device (instance, device, pipeline cache)", t.device_ms);
+  std::printf("  %-46s %9.1f\n", "session (scene, G-buffer, integrator, world)", t.session_ms);
+  std::printf("  %-46s %9.1f\n", "  GPU scene*", t.gpu_scene_ms);
+  std::printf("  %-46s %9.1f\n", "    scene build (build_scene_data)*", t.scene_build_ms);
+  std::printf("  %-46s %9.1f\n", "      of which BVH (all BLASes + TLAS)*", t.bvh_ms);
+  std::printf("  %-46s %9.1f\n", "    uploads (GPU scene - scene build)*",
+              t.gpu_scene_ms - t.scene_build_ms);
+  std::printf("  %-46s %9.1f\n", "  integrator pipeline objects*", t.integrator_ms);
+  std::printf("  %-46s %9.1f\n", "  world (ECS, systems)*", t.world_ms);
+  std::printf("  %-46s %9.1f\n", "  rest (G-buffer, output, target; session - *)", rest);
+  std::printf("  %-46s %9.1f\n", "pipeline warm-up (lavapipe JIT)", t.warm_up_ms);
+  std::printf("  %-46s %9.1f\n", "first frame (step + render, wall)", t.first_frame_ms);
+  std::printf("  %-46s %9.1f\n", "first frame ready", t.total_ms());
+  std::printf(
+      "  (bench only, not counted: calibration workload %.1f ms; * measured again after "
+      "the frames, each alone)\n",
+      t.calibration_ms);
 }
 
 nlohmann::json summary_json(const perf::Summary& s) {
@@ -74,19 +159,35 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
   if (o.warmup < 0 || o.warmup > 100000) {
     throw InputError(fmt::format("--warmup {}: expected 0..100000", o.warmup));
   }
+  if (o.startup && o.warmup == 0) {
+    throw InputError("--startup times the first warm-up frame: use --warmup 1 or more");
+  }
   // Refuse a bad budget before any work.
   std::optional<perf::Budget> budget;
   if (!o.budget.empty()) budget = perf::load_budget(o.budget);
+  StartupTimes startup;
+  Clock::time_point mark = Clock::now();
+  const auto lap = [&mark] {
+    const Clock::time_point now = Clock::now();
+    const double ms = ms_between(mark, now);
+    mark = now;
+    return ms;
+  };
   const auto level = std::make_shared<const Level>(load_level_argument(o.level));
   const lighting::IntegratorConfig config = integrator_config(o.integrator, common, *level);
+  startup.level_ms = lap();
 
   runtime::Device device({.selector = common.device});
   runtime::ShaderLibrary shaders;
+  startup.device_ms = lap();
   runtime::CalibrationWorkload calibration(device, shaders);
-  lighting::HeadlessSession session(
-      device, shaders, level,
-      {.integrator = config, .width = width, .height = height, .seed = common.seed});
+  startup.calibration_ms = lap();
+  const lighting::SessionOptions session_options{
+      .integrator = config, .width = width, .height = height, .seed = common.seed};
+  lighting::HeadlessSession session(device, shaders, level, session_options);
+  startup.session_ms = lap();
   session.warm_up();
+  startup.warm_up_ms = lap();
   const std::string integrator = config.name;
   const lighting::VisibilityChoice visibility =
       lighting::choose_visibility(device.info(), config.visibility);
@@ -95,7 +196,10 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
             device.info().name, lighting::visibility_backend_name(visibility.backend),
             visibility.why);
 
-  for (int k = 0; k < o.warmup; ++k) session.render(session.step_world());
+  for (int k = 0; k < o.warmup; ++k) {
+    session.render(session.step_world());
+    if (k == 0) startup.first_frame_ms = lap();
+  }
 
   std::vector<double> calibration_ms = {calibration.run_ms()};
   std::vector<double> frame_ms, wall_ms, update_ms;
@@ -183,6 +287,11 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
               shadow_rps,
               std::string(lighting::visibility_backend_name(visibility.backend)).c_str());
 
+  if (o.startup) {
+    measure_session_parts(device, shaders, level, config, session_options, startup);
+    print_startup(startup);
+  }
+
   if (!o.json.empty()) {
     nlohmann::json passes = nlohmann::json::object();
     for (const auto& [name, s] : m.passes) passes[name] = summary_json(s);
@@ -210,7 +319,21 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"calibration_ms", m.calibration_ms},
         {"rays_per_second", {{"primary", primary_rps}, {"shadow", shadow_rps}}},
     };
-    write_text_atomic(o.json, j.dump(2) + "\n");
+    nlohmann::json out = j;
+    if (o.startup) {
+      out["startup_ms"] = {{"level", startup.level_ms},
+                           {"device", startup.device_ms},
+                           {"session", startup.session_ms},
+                           {"gpu_scene", startup.gpu_scene_ms},
+                           {"scene_build", startup.scene_build_ms},
+                           {"bvh", startup.bvh_ms},
+                           {"integrator", startup.integrator_ms},
+                           {"world", startup.world_ms},
+                           {"warm_up", startup.warm_up_ms},
+                           {"first_frame", startup.first_frame_ms},
+                           {"total", startup.total_ms()}};
+    }
+    write_text_atomic(o.json, out.dump(2) + "\n");
   }
   if (!o.trace.empty()) trace.write(o.trace);
   if (device.validation_enabled() && device.validation_errors() > 0) {
@@ -247,6 +370,9 @@ void add_bench_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("--json", opts->json, "Write the statistics as JSON to FILE");
   cmd->add_option("--trace", opts->trace,
                   "Write a Chrome trace (chrome://tracing, ui.perfetto.dev) to FILE");
+  cmd->add_flag("--startup", opts->startup,
+                "Print the time to the first frame step by step (level, device, scene and BVH, "
+                "pipelines, first frame)");
   cmd->add_option("--budget", opts->budget,
                   "Check a budget file (see docs/budgets.md); exit 3 when over budget");
   cmd->callback([opts, &options] { run_bench(*opts, options); });

@@ -1,11 +1,22 @@
 // Visibility benchmark (not a test): on a level (default night_market) at 320x180 and 640x360,
-// Mrays/s of primary rays (one per pixel from the level camera) and shadow rays (from each primary
-// hit towards a light drawn from the power alias table) for each GPU variant -- compute BVH with
-// texel-buffer fetches ("texel", the default), with storage-buffer fetches ("storage"), ray query
-// ("rayquery") --
-// interleaved run by run, medians of --runs runs; plus CPU BVH build ms (all BLASes, the per-frame
-// TLAS rebuild) and lavapipe BLAS/TLAS build ms (GPU timestamps).
-// Usage: visibility_bench [--level NAME] [--runs N] [--sizes 320x180,640x360]
+// Mrays/s of primary rays (one per pixel from the level camera) and of shadow-ray sets from the
+// primary hits for each GPU variant -- compute BVH with texel-buffer fetches ("texel", the
+// default), with storage-buffer fetches ("storage"), ray query ("rayquery") -- and the same
+// traversal on one CPU thread, interleaved run by run, medians of --runs runs; plus CPU BVH build
+// ms (all BLASes, the per-frame TLAS rebuild) and lavapipe BLAS/TLAS build ms (GPU timestamps).
+// The anchor: Intel Embree 3 on the same rays (tests/visibility/embree_anchor.h; flat and
+// two-level, single rays, --threads host threads), each project path's throughput as a ratio of
+// Embree flat, and Embree's hit/miss agreement with the CPU traversal. Without Embree at build
+// time the bench says so and runs the rest.
+// "texel flat" and "cpu flat": the same traversal over one BLAS of all world-space triangles
+// (tests/visibility/flat_scene_bvh.h), what flattening the static instances would give.
+// "ris-160 sorted": the ris-160 rays reordered by target then origin (what ray sorting gives);
+// "ris-160 by work": ordered by each ray's node count (an oracle: how much SIMD divergence costs).
+// Shadow sets: "probe" (a light from the power alias table, every pick traced: the GPU test's
+// rays), "baseline" and "ris-8"/"ris-160" (made like integrators.baseline and restir.initial's
+// pick, tests/visibility/shading_ray_sets.h), each with its occluded fraction and work per ray
+// (nodes entered, instances entered, triangle tests: tests/visibility/traversal_counter.h).
+// Usage: visibility_bench [--level NAME] [--runs N] [--sizes 320x180,640x360] [--threads N]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -19,7 +30,13 @@
 #include "engine/level/level_loader.h"
 #include "lighting/scene/scene_data.h"
 #include "lighting/visibility/ray_query_scene.h"
+#include "tests/visibility/flat_scene_bvh.h"
+#include "tests/visibility/shading_ray_sets.h"
+#include "tests/visibility/traversal_counter.h"
 #include "tests/visibility/visibility_harness.h"
+#ifdef LANTERN_HAVE_EMBREE
+#include "tests/visibility/embree_anchor.h"
+#endif
 
 namespace lantern::lighting {
 namespace {
@@ -28,6 +45,12 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
+
+#ifdef LANTERN_HAVE_EMBREE
+std::string anchor_name(const test::EmbreeAnchor& anchor) {
+  return std::string(test::embree_layout_name(anchor.layout()));
+}
+#endif
 
 template <class F>
 double wall_ms(F&& f) {
@@ -39,10 +62,13 @@ double wall_ms(F&& f) {
 int run(int argc, char** argv) {
   std::string level_name = "night_market";
   int runs = 5;
+  unsigned threads = 2;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> sizes = {{320, 180}, {640, 360}};
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--level") == 0) level_name = argv[i + 1];
     if (std::strcmp(argv[i], "--runs") == 0) runs = std::max(1, std::atoi(argv[i + 1]));
+    if (std::strcmp(argv[i], "--threads") == 0)
+      threads = static_cast<unsigned>(std::max(1, std::atoi(argv[i + 1])));
     if (std::strcmp(argv[i], "--sizes") == 0) {
       sizes.clear();
       std::string s = argv[i + 1];
@@ -89,6 +115,13 @@ int run(int argc, char** argv) {
   runtime::Device device({.selector = "auto"});
   runtime::ShaderLibrary shaders;
   VisibilityScene bvh_scene(device, data.bvh, VisibilityBackend::Bvh);
+  SceneBvh flat_bvh;
+  const double flat_ms = wall_ms([&] { flat_bvh = test::flat_scene_bvh(level); });
+  VisibilityScene flat_scene(device, flat_bvh, VisibilityBackend::Bvh);
+  fmt::print(
+      "flat project BVH (all {} triangles in world space, one BLAS, one instance): build {:.1f} "
+      "ms\n",
+      flat_bvh.triangles().size(), flat_ms);
   std::unique_ptr<VisibilityScene> rq_scene;
   if (device.caps().ray_query) {
     std::vector<double> rq_blas, rq_tlas, rq_tlas_write;
@@ -122,41 +155,160 @@ int run(int argc, char** argv) {
         rq.blas_count(), median(rq_blas), median(rq_tlas), median(rq_tlas_write), create_ms);
   }
 
+#ifdef LANTERN_HAVE_EMBREE
+  std::vector<std::unique_ptr<test::EmbreeAnchor>> anchors;
+  for (const test::EmbreeLayout layout : {test::EmbreeLayout::Flat, test::EmbreeLayout::TwoLevel})
+    anchors.push_back(std::make_unique<test::EmbreeAnchor>(level, layout, threads));
+  fmt::print("embree {} ({} threads): build flat {:.1f} ms, two-level {:.1f} ms\n",
+             anchors[0]->version(), threads, anchors[0]->build_ms(), anchors[1]->build_ms());
+#else
+  fmt::print(
+      "embree: NOT BUILT IN (Embree 3 was not found at configure time; install libembree-dev and "
+      "reconfigure): no anchor, no ratios\n");
+#endif
+
   std::vector<std::string> variants = {"texel", "storage"};
   if (rq_scene) variants.push_back("rayquery");
   std::map<std::string, std::unique_ptr<test::Probe>> probes;
   for (const std::string& v : variants)
     probes[v] = std::make_unique<test::Probe>(device, shaders, v == "texel" ? "" : v);
 
+  struct RaySet {
+    std::string name;
+    std::uint32_t mode;
+    std::vector<gpu::BvhRay> rays;
+    std::string note;
+  };
   for (const auto& [w, h] : sizes) {
     const std::vector<gpu::BvhRay> primary = test::camera_rays(level.camera, w, h);
-    const std::vector<gpu::BvhRay> shadow =
-        test::shadow_rays(data.bvh, primary, data.lights, data.scene_radius(), {}, 1234);
-    std::map<std::string, std::vector<double>> primary_ms, shadow_ms;
-    for (int r = -1; r < runs; ++r) {  // run -1 warms up (JIT at first dispatch)
-      for (const std::string& v : variants) {
-        const VisibilityScene& scene = v == "rayquery" ? *rq_scene : bvh_scene;
-        double ms = 0.0;
-        probes[v]->run(scene, primary, 0, &ms);
-        if (r >= 0) primary_ms[v].push_back(ms);
-        probes[v]->run(scene, shadow, 1, &ms);
-        if (r >= 0) shadow_ms[v].push_back(ms);
+    std::vector<RaySet> sets;
+    sets.push_back({"primary", 0, primary, ""});
+    sets.push_back(
+        {"probe", 1,
+         test::shadow_rays(data.bvh, primary, data.lights, data.scene_radius(), {}, 1234), ""});
+    for (const std::uint32_t m : {0u, 8u, 160u}) {
+      test::ShadingRaySet s = test::shading_shadow_rays(level, data, primary, m, 4321 + m);
+      sets.push_back({m == 0 ? "baseline" : fmt::format("ris-{}", m), 1, std::move(s.rays),
+                      fmt::format("{} of {} picks light nothing (no ray)", s.zero_contribution,
+                                  s.surface_points)});
+    }
+    sets.push_back({"ris-160 sorted", 1,
+                    test::sorted_by_target(sets.back().rays, data.bounds_min, data.bounds_max),
+                    "the ris-160 rays in Morton order of target, then origin"});
+    {
+      // Diagnostic, not realizable: the ris-160 rays ordered by the nodes the flat traversal
+      // visits for each, so SIMD neighbours do the same amount of work (no divergence left).
+      const std::vector<gpu::BvhRay>& rays = sets[sets.size() - 2].rays;
+      std::vector<std::pair<std::uint64_t, std::size_t>> work;
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        test::TraversalCounts one;
+        (void)test::count_traversal(flat_bvh, rays[i], 1, one);
+        work.push_back({one.tlas_nodes + one.blas_nodes, i});
+      }
+      std::sort(work.begin(), work.end());
+      std::vector<gpu::BvhRay> by_work;
+      for (const auto& [nodes, i] : work) by_work.push_back(rays[i]);
+      sets.push_back({"ris-160 by work", 1, std::move(by_work),
+                      "the ris-160 rays ordered by their flat-layout node count (oracle)"});
+    }
+
+    // Timings, interleaved: run -1 warms up (JIT at first dispatch).
+    std::map<std::string, std::map<std::string, std::vector<double>>> ms;  // set -> path -> runs
+    for (int r = -1; r < runs; ++r) {
+      for (const RaySet& set : sets) {
+        for (const std::string& v : variants) {
+          const VisibilityScene& scene = v == "rayquery" ? *rq_scene : bvh_scene;
+          double t = 0.0;
+          probes[v]->run(scene, set.rays, set.mode, &t);
+          if (r >= 0) ms[set.name][v].push_back(t);
+        }
+        double flat_t = 0.0;
+        probes["texel"]->run(flat_scene, set.rays, set.mode, &flat_t);
+        if (r >= 0) ms[set.name]["texel flat"].push_back(flat_t);
+#ifdef LANTERN_HAVE_EMBREE
+        for (const auto& anchor : anchors) {
+          double t = 0.0;
+          (void)anchor->run(set.rays, set.mode, &t);
+          if (r >= 0) ms[set.name][fmt::format("embree {}", anchor_name(*anchor))].push_back(t);
+        }
+#endif
       }
     }
-    std::vector<double> cpu_ms;
-    cpu_ms.push_back(wall_ms([&] { (void)test::cpu_probe(data.bvh, primary, 0); }));
-    fmt::print("{}x{}: {} primary rays, {} shadow rays (medians of {} interleaved runs)\n", w, h,
-               primary.size(), shadow.size(), runs);
-    for (const std::string& v : variants) {
-      const double p = median(primary_ms[v]), s = median(shadow_ms[v]);
-      fmt::print("  {:9s} primary {:7.2f} ms {:6.2f} Mrays/s | shadow {:7.2f} ms {:6.2f} Mrays/s\n",
-                 v, p, primary.size() / p / 1e3, s, shadow.size() / s / 1e3);
+    fmt::print("{}x{} (medians of {} interleaved runs; cpu: 1 thread, one run)\n", w, h, runs);
+    for (const RaySet& set : sets) {
+      std::vector<glm::uvec4> cpu;
+      const double cpu_ms = wall_ms([&] { cpu = test::cpu_probe(data.bvh, set.rays, set.mode); });
+      ms[set.name]["cpu"].push_back(cpu_ms);
+      std::vector<glm::uvec4> cpu_flat;
+      ms[set.name]["cpu flat"].push_back(
+          wall_ms([&] { cpu_flat = test::cpu_probe(flat_bvh, set.rays, set.mode); }));
+      const test::TraversalCounts flat_counts = test::count_traversal(flat_bvh, set.rays, set.mode);
+      // Work per ray over the set, and apart for rays that hit / are blocked and those that miss /
+      // get through.
+      test::TraversalCounts counts, hit_counts, miss_counts;
+      for (const gpu::BvhRay& ray : set.rays) {
+        test::TraversalCounts one;
+        const bool hit = test::count_traversal(data.bvh, ray, set.mode, one);
+        for (test::TraversalCounts* c : {&counts, hit ? &hit_counts : &miss_counts}) {
+          c->rays += one.rays, c->tlas_nodes += one.tlas_nodes, c->blas_nodes += one.blas_nodes;
+          c->instances += one.instances, c->triangles += one.triangles, c->hits += one.hits;
+        }
+      }
+      std::size_t cpu_hits = 0;
+      for (const glm::uvec4& a : cpu) cpu_hits += set.mode == 0 ? a.x != ~0u : a.w == 0u;
+      fmt::print(
+          "  {:8s} {:7d} rays, {:5.1f}% {} | per ray: {:5.1f} TLAS + {:6.1f} BLAS nodes, "
+          "{:5.1f} instances, {:6.1f} triangle tests{}{}\n",
+          set.name, set.rays.size(),
+          100.0 * static_cast<double>(cpu_hits) / std::max<std::size_t>(set.rays.size(), 1),
+          set.mode == 0 ? "hit" : "occluded", counts.per_ray(counts.tlas_nodes),
+          counts.per_ray(counts.blas_nodes), counts.per_ray(counts.instances),
+          counts.per_ray(counts.triangles),
+          counts.hits == cpu_hits ? "" : " (COUNTER DISAGREES WITH THE CPU TRAVERSAL)",
+          set.note.empty() ? "" : "; " + set.note);
+      const auto nodes = [](const test::TraversalCounts& c) {
+        return c.per_ray(c.tlas_nodes + c.blas_nodes);
+      };
+      const char* hit_name = set.mode == 0 ? "hit" : "blocked";
+      const char* miss_name = set.mode == 0 ? "missed" : "clear";
+      fmt::print(
+          "  {:8s} {} rays {:.1f} nodes, {:.1f} instances; {} rays {:.1f} nodes, {:.1f} "
+          "instances\n",
+          "", hit_name, nodes(hit_counts), hit_counts.per_ray(hit_counts.instances), miss_name,
+          nodes(miss_counts), miss_counts.per_ray(miss_counts.instances));
+      std::size_t flat_same = 0;
+      for (std::size_t i = 0; i < cpu.size(); ++i)
+        flat_same +=
+            set.mode == 0 ? (cpu[i].x == ~0u) == (cpu_flat[i].x == ~0u) : cpu[i].w == cpu_flat[i].w;
+      fmt::print(
+          "  {:8s} flat layout: {:.1f} nodes, {:.1f} triangle tests per ray; agrees with the "
+          "two-level CPU traversal on {:.4f}%\n",
+          "", nodes(flat_counts), flat_counts.per_ray(flat_counts.triangles),
+          100.0 * static_cast<double>(flat_same) / std::max<std::size_t>(cpu.size(), 1));
+      const double n = static_cast<double>(set.rays.size());
+      std::string line = fmt::format("  {:8s} Mrays/s:", "");
+      for (const auto& [path, runs_ms] : ms[set.name])
+        line += fmt::format(" {} {:.2f} |", path, n / median(runs_ms) / 1e3);
+      fmt::print("{}\n", line.substr(0, line.size() - 2));
+#ifdef LANTERN_HAVE_EMBREE
+      const double flat = median(ms[set.name]["embree flat"]);
+      std::string ratios = fmt::format("  {:8s} vs embree flat:", "");
+      for (const std::string& path :
+           {std::string("texel"), std::string("texel flat"), std::string("rayquery"),
+            std::string("cpu"), std::string("cpu flat"), std::string("embree two-level")})
+        if (ms[set.name].count(path))
+          ratios += fmt::format(" {} {:.3f}x |", path, flat / median(ms[set.name][path]));
+      std::string agree = " agreement with cpu:";
+      for (const auto& anchor : anchors)
+        agree += fmt::format(
+            " {} {:.4f}%", anchor_name(*anchor),
+            100.0 * test::probe_agreement(anchor->run(set.rays, set.mode), cpu, set.mode));
+      fmt::print("{}{}\n", ratios.substr(0, ratios.size() - 2), agree);
+#endif
     }
-    fmt::print("  texel vs storage speed-up: primary {:.2f}x, shadow {:.2f}x\n",
-               median(primary_ms["storage"]) / median(primary_ms["texel"]),
-               median(shadow_ms["storage"]) / median(shadow_ms["texel"]));
-    fmt::print("  cpu (1 thread, same traversal) primary {:.2f} Mrays/s\n",
-               primary.size() / median(cpu_ms) / 1e3);
+    fmt::print("  texel vs storage speed-up: primary {:.2f}x, probe shadow {:.2f}x\n",
+               median(ms["primary"]["storage"]) / median(ms["primary"]["texel"]),
+               median(ms["probe"]["storage"]) / median(ms["probe"]["texel"]));
   }
   return 0;
 }

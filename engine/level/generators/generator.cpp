@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "engine/level/generators/light_field.h"
+#include "engine/level/generators/light_panels.h"
 #include "engine/level/generators/night_market.h"
 #include "engine/level/json_level_reader.h"
 #include "engine/scene/level.h"
@@ -63,8 +64,38 @@ void run_generator(JsonObject& params, JsonLevelReader& reader) {
                          fmt::format("{}: {}", reader.file().string(), params.pointer()));
     return;
   }
-  params.fail("type",
-              fmt::format("unknown generator type '{}' (night_market, light_field)", type));
+  if (type == "light_panels") {
+    LightPanelsParams p;
+    p.seed = static_cast<std::uint64_t>(params.integer("seed", 1, 0, 0x7FFFFFFFFFFFFFFFll));
+    p.panels = static_cast<std::uint32_t>(params.integer("panels", p.panels, 1, 1000));
+    p.emitter_triangles = static_cast<std::uint32_t>(
+        params.integer("emitter_triangles", p.emitter_triangles, 2, 4000000));
+    p.panel_size = params.vec2("panel_size", p.panel_size);
+    p.extent = params.number("extent", p.extent);
+    p.pillars = static_cast<std::uint32_t>(params.integer("pillars", p.pillars, 0, 10000));
+    p.awnings = static_cast<std::uint32_t>(params.integer("awnings", p.awnings, 0, 10000));
+    p.radiance = params.vec2("radiance", p.radiance);
+    p.height = params.number("height", p.height);
+    p.path_name = params.string("path", p.path_name);
+    p.path_duration = params.number("path_duration", p.path_duration);
+    if (p.emitter_triangles % (2 * p.panels) != 0)
+      params.fail("emitter_triangles",
+                  fmt::format("must be a multiple of 2 x panels = {}", 2 * p.panels));
+    if (!(p.extent >= 4.0f && p.extent <= 10000.0f)) params.fail("extent", "must be in [4, 10000]");
+    if (!(p.panel_size.x > 0.0f && p.panel_size.y > 0.0f && p.panel_size.x <= p.extent &&
+          p.panel_size.y <= p.extent))
+      params.fail("panel_size", "need 0 < size <= extent");
+    if (!(p.height > 0.5f && p.height < 1000.0f)) params.fail("height", "must be in (0.5, 1000)");
+    if (!(p.radiance.x > 0.0f && p.radiance.y >= p.radiance.x && p.radiance.y < 1e9f))
+      params.fail("radiance", "need 0 < min <= max < 1e9");
+    if (p.path_duration <= 0.0f) params.fail("path_duration", "must be > 0");
+    generate_light_panels(p, reader.builder(),
+                          fmt::format("{}: {}", reader.file().string(), params.pointer()));
+    return;
+  }
+  params.fail(
+      "type",
+      fmt::format("unknown generator type '{}' (night_market, light_field, light_panels)", type));
 }
 
 void use_generated_camera_path(Level& level, const std::string& path_name) {
