@@ -8,8 +8,9 @@
 // two-level, single rays, --threads host threads), each project path's throughput as a ratio of
 // Embree flat, and Embree's hit/miss agreement with the CPU traversal. Without Embree at build
 // time the bench says so and runs the rest.
-// "texel flat" and "cpu flat": the same traversal over one BLAS of all world-space triangles
-// (tests/visibility/flat_scene_bvh.h), what flattening the static instances would give.
+// "texel" and "cpu" trace the renderer's layout (lighting/bvh/scene_bvh.h: the fixed instances
+// merged into one world-space tree, movers instanced); "texel two-level" and "cpu two-level" the
+// same scene with every instance under the TLAS (the layout before the merge).
 // "ris-160 sorted": the ris-160 rays reordered by target then origin (what ray sorting gives);
 // "ris-160 by work": ordered by each ray's node count (an oracle: how much SIMD divergence costs).
 // Shadow sets: "probe" (a light from the power alias table, every pick traced: the GPU test's
@@ -30,7 +31,6 @@
 #include "engine/level/level_loader.h"
 #include "lighting/scene/scene_data.h"
 #include "lighting/visibility/ray_query_scene.h"
-#include "tests/visibility/flat_scene_bvh.h"
 #include "tests/visibility/shading_ray_sets.h"
 #include "tests/visibility/traversal_counter.h"
 #include "tests/visibility/visibility_harness.h"
@@ -96,10 +96,7 @@ int run(int argc, char** argv) {
 
   // CPU BVH build times.
   std::vector<double> blas_ms, tlas_ms;
-  std::vector<BvhInstanceDesc> descs;
-  for (std::size_t i = 0; i < level.instances.size(); ++i)
-    descs.push_back(
-        {level.instances[i].mesh, level.instances[i].world, static_cast<std::uint32_t>(i)});
+  const std::vector<BvhInstanceDesc> descs = bvh_instance_descs(level);
   for (int r = 0; r < 3; ++r) {
     SceneBvh bvh;
     blas_ms.push_back(wall_ms([&] {
@@ -115,13 +112,21 @@ int run(int argc, char** argv) {
   runtime::Device device({.selector = "auto"});
   runtime::ShaderLibrary shaders;
   VisibilityScene bvh_scene(device, data.bvh, VisibilityBackend::Bvh);
-  SceneBvh flat_bvh;
-  const double flat_ms = wall_ms([&] { flat_bvh = test::flat_scene_bvh(level); });
-  VisibilityScene flat_scene(device, flat_bvh, VisibilityBackend::Bvh);
+  // The two-level layout: the same instances, none declared fixed.
+  SceneBvh two_level_bvh;
+  std::vector<BvhInstanceDesc> instanced = descs;
+  for (BvhInstanceDesc& d : instanced) d.fixed = false;
+  const double two_level_ms = wall_ms([&] {
+    for (const Mesh& mesh : level.meshes)
+      two_level_bvh.add_mesh(MeshBvh(mesh.positions, mesh.indices));
+    two_level_bvh.set_instances(instanced);
+  });
+  VisibilityScene two_level_scene(device, two_level_bvh, VisibilityBackend::Bvh);
   fmt::print(
-      "flat project BVH (all {} triangles in world space, one BLAS, one instance): build {:.1f} "
-      "ms\n",
-      flat_bvh.triangles().size(), flat_ms);
+      "renderer BVH: {} of {} instances merged ({} world-space triangles); two-level BVH (every "
+      "instance under the TLAS): build {:.1f} ms\n",
+      data.bvh.merged_instance_count(), data.bvh.instance_count(), data.bvh.merged_triangle_count(),
+      two_level_ms);
   std::unique_ptr<VisibilityScene> rq_scene;
   if (device.caps().ray_query) {
     std::vector<double> rq_blas, rq_tlas, rq_tlas_write;
@@ -196,20 +201,20 @@ int run(int argc, char** argv) {
                     test::sorted_by_target(sets.back().rays, data.bounds_min, data.bounds_max),
                     "the ris-160 rays in Morton order of target, then origin"});
     {
-      // Diagnostic, not realizable: the ris-160 rays ordered by the nodes the flat traversal
+      // Diagnostic, not realizable: the ris-160 rays ordered by the nodes the renderer's traversal
       // visits for each, so SIMD neighbours do the same amount of work (no divergence left).
       const std::vector<gpu::BvhRay>& rays = sets[sets.size() - 2].rays;
       std::vector<std::pair<std::uint64_t, std::size_t>> work;
       for (std::size_t i = 0; i < rays.size(); ++i) {
         test::TraversalCounts one;
-        (void)test::count_traversal(flat_bvh, rays[i], 1, one);
+        (void)test::count_traversal(data.bvh, rays[i], 1, one);
         work.push_back({one.tlas_nodes + one.blas_nodes, i});
       }
       std::sort(work.begin(), work.end());
       std::vector<gpu::BvhRay> by_work;
       for (const auto& [nodes, i] : work) by_work.push_back(rays[i]);
       sets.push_back({"ris-160 by work", 1, std::move(by_work),
-                      "the ris-160 rays ordered by their flat-layout node count (oracle)"});
+                      "the ris-160 rays ordered by their renderer-layout node count (oracle)"});
     }
 
     // Timings, interleaved: run -1 warms up (JIT at first dispatch).
@@ -222,9 +227,9 @@ int run(int argc, char** argv) {
           probes[v]->run(scene, set.rays, set.mode, &t);
           if (r >= 0) ms[set.name][v].push_back(t);
         }
-        double flat_t = 0.0;
-        probes["texel"]->run(flat_scene, set.rays, set.mode, &flat_t);
-        if (r >= 0) ms[set.name]["texel flat"].push_back(flat_t);
+        double two_level_t = 0.0;
+        probes["texel"]->run(two_level_scene, set.rays, set.mode, &two_level_t);
+        if (r >= 0) ms[set.name]["texel two-level"].push_back(two_level_t);
 #ifdef LANTERN_HAVE_EMBREE
         for (const auto& anchor : anchors) {
           double t = 0.0;
@@ -239,10 +244,11 @@ int run(int argc, char** argv) {
       std::vector<glm::uvec4> cpu;
       const double cpu_ms = wall_ms([&] { cpu = test::cpu_probe(data.bvh, set.rays, set.mode); });
       ms[set.name]["cpu"].push_back(cpu_ms);
-      std::vector<glm::uvec4> cpu_flat;
-      ms[set.name]["cpu flat"].push_back(
-          wall_ms([&] { cpu_flat = test::cpu_probe(flat_bvh, set.rays, set.mode); }));
-      const test::TraversalCounts flat_counts = test::count_traversal(flat_bvh, set.rays, set.mode);
+      std::vector<glm::uvec4> cpu_two_level;
+      ms[set.name]["cpu two-level"].push_back(
+          wall_ms([&] { cpu_two_level = test::cpu_probe(two_level_bvh, set.rays, set.mode); }));
+      const test::TraversalCounts two_level_counts =
+          test::count_traversal(two_level_bvh, set.rays, set.mode);
       // Work per ray over the set, and apart for rays that hit / are blocked and those that miss /
       // get through.
       test::TraversalCounts counts, hit_counts, miss_counts;
@@ -276,15 +282,15 @@ int run(int argc, char** argv) {
           "instances\n",
           "", hit_name, nodes(hit_counts), hit_counts.per_ray(hit_counts.instances), miss_name,
           nodes(miss_counts), miss_counts.per_ray(miss_counts.instances));
-      std::size_t flat_same = 0;
+      std::size_t two_level_same = 0;
       for (std::size_t i = 0; i < cpu.size(); ++i)
-        flat_same +=
-            set.mode == 0 ? (cpu[i].x == ~0u) == (cpu_flat[i].x == ~0u) : cpu[i].w == cpu_flat[i].w;
+        two_level_same += set.mode == 0 ? (cpu[i].x == ~0u) == (cpu_two_level[i].x == ~0u)
+                                        : cpu[i].w == cpu_two_level[i].w;
       fmt::print(
-          "  {:8s} flat layout: {:.1f} nodes, {:.1f} triangle tests per ray; agrees with the "
-          "two-level CPU traversal on {:.4f}%\n",
-          "", nodes(flat_counts), flat_counts.per_ray(flat_counts.triangles),
-          100.0 * static_cast<double>(flat_same) / std::max<std::size_t>(cpu.size(), 1));
+          "  {:8s} two-level layout: {:.1f} nodes, {:.1f} triangle tests per ray; agrees with the "
+          "renderer layout's CPU traversal on {:.4f}%\n",
+          "", nodes(two_level_counts), two_level_counts.per_ray(two_level_counts.triangles),
+          100.0 * static_cast<double>(two_level_same) / std::max<std::size_t>(cpu.size(), 1));
       const double n = static_cast<double>(set.rays.size());
       std::string line = fmt::format("  {:8s} Mrays/s:", "");
       for (const auto& [path, runs_ms] : ms[set.name])
@@ -294,8 +300,8 @@ int run(int argc, char** argv) {
       const double flat = median(ms[set.name]["embree flat"]);
       std::string ratios = fmt::format("  {:8s} vs embree flat:", "");
       for (const std::string& path :
-           {std::string("texel"), std::string("texel flat"), std::string("rayquery"),
-            std::string("cpu"), std::string("cpu flat"), std::string("embree two-level")})
+           {std::string("texel"), std::string("texel two-level"), std::string("rayquery"),
+            std::string("cpu"), std::string("cpu two-level"), std::string("embree two-level")})
         if (ms[set.name].count(path))
           ratios += fmt::format(" {} {:.3f}x |", path, flat / median(ms[set.name][path]));
       std::string agree = " agreement with cpu:";
