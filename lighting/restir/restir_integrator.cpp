@@ -68,6 +68,7 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   p.boiling_filter = s.boiling_filter;
   // Presampling pays off only when the tiles are smaller than the light list.
   p.presample_tiles = inputs.light_count > gpu::kRestirPresampleTileSize ? s.presample_tiles : 0u;
+  p.visibility_reuse = s.temporal ? s.visibility_reuse : 0u;
   p.similarity = {s.depth_threshold, s.normal_threshold, 0.25f, 0.0f};
   return p;
 }
@@ -216,13 +217,18 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
           // No temporal pass: every pixel is "no history" for the disocclusion view.
           status = clear_buffer(graph, "restir.clear_status", status, gpu::kRestirStatusNoHistory);
         }
-        // restir.shade: one visibility ray towards the final reservoir's sample per pixel:
-        // emission + BRDF x Le x G x W (or a debug view) into hdr.
-        hdr = shade_.add(graph, inputs, push,
-                         {{"restir_surfaces", surfaces},
-                          {"reservoirs_in", handle(step.read)},
-                          {"temporal_status", status},
-                          {"hdr", hdr, RestirPass::Buffer::Write}})[0];
+        // restir.shade: one visibility ray towards the final reservoir's sample per pixel (none
+        // where visibility reuse trusts the history's verdict): emission + BRDF x Le x G x W (or
+        // a debug view) into hdr. It writes each verdict back into the final reservoirs (the
+        // next frame's history).
+        const std::vector<BufferHandle> out =
+            shade_.add(graph, inputs, push,
+                       {{"restir_surfaces", surfaces},
+                        {"reservoirs_in", handle(step.read), RestirPass::Buffer::ReadWrite},
+                        {"temporal_status", status},
+                        {"hdr", hdr, RestirPass::Buffer::Write}});
+        handle(step.read) = out[0];
+        hdr = out[1];
         break;
       }
     }

@@ -41,6 +41,8 @@ std::vector<BufferHandle> RestirPass::add(runtime::graph::RenderGraph& graph,
         for (Buffer buffer : buffers) {
           if (buffer.use == Buffer::Write) {
             buffer.handle = b.write(buffer.handle, Access::StorageWrite);
+          } else if (buffer.use == Buffer::ReadWrite) {
+            buffer.handle = b.write(buffer.handle, Access::StorageReadWrite);
           } else if (std::none_of(d.buffers.begin(), d.buffers.end(), [&](const Buffer& o) {
                        return o.use == Buffer::Read && o.handle == buffer.handle;
                      })) {

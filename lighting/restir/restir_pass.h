@@ -25,7 +25,8 @@ class RestirPass {
   struct Buffer {
     const char* name;
     runtime::graph::BufferHandle handle;
-    enum Use { Read, Write } use = Read;  // Write: every pixel written, nothing read
+    // Write: every pixel written, nothing read; ReadWrite: read and updated in place.
+    enum Use { Read, Write, ReadWrite } use = Read;
   };
 
   // `stage`: "presample", "initial", "temporal", "spatial" or "shade"; `visibility` picks the

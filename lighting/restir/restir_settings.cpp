@@ -157,6 +157,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.bias_correction = parse_choice(key, value, kBiasCorrections, "a bias correction");
   } else if (key == "presample_tiles") {
     s.presample_tiles = parse_uint(key, value, 0, gpu::kRestirMaxPresampleTiles);
+  } else if (key == "visibility_reuse") {
+    s.visibility_reuse = parse_uint(key, value, 0, 64);
   } else if (key == "initial_visibility") {
     s.initial_visibility = parse_bool(key, value);
   } else if (key == "boiling_filter") {
@@ -193,6 +195,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"disocclusion_boost", std::to_string(s.disocclusion_boost)},
       {"radius", format_float(s.radius)},
       {"presample_tiles", std::to_string(s.presample_tiles)},
+      {"visibility_reuse", std::to_string(s.visibility_reuse)},
       {"bias_correction", choice_name(kBiasCorrections, s.bias_correction)},
       {"initial_visibility", flag(s.initial_visibility)},
       {"boiling_filter", format_float(s.boiling_filter)},

@@ -18,7 +18,7 @@ layout(binding = PASS_BINDING(1), rgba32f) readonly uniform image2D gbuffer_moti
 layout(std430, binding = PASS_BINDING(2)) readonly buffer SurfaceIn {
   RestirSurface s[];
 } restir_surfaces;
-layout(std430, binding = PASS_BINDING(3)) readonly buffer ReservoirIn {
+layout(std430, binding = PASS_BINDING(3)) buffer ReservoirInOut {
   PackedReservoir r[];
 } reservoirs_in;
 layout(std430, binding = PASS_BINDING(4)) readonly buffer StatusIn {
@@ -34,7 +34,9 @@ vec3 hash_colour(uint x) {
 vec3 debug_view(uint view, uvec2 pixel, uint index, Reservoir r, bool surface) {
   if (view == kRestirDebugW) return vec3(r.W / (1.0 + r.W));
   if (view == kRestirDebugM) return vec3(safe_ratio(r.M, push.m_cap));
-  if (view == kRestirDebugAge) return vec3(reservoir_has_sample(r) ? float(r.age) / 32.0 : 0.0);
+  if (view == kRestirDebugAge) {
+    return vec3(reservoir_has_sample(r) ? float(reservoir_age(r)) / 32.0 : 0.0);
+  }
   if (view == kRestirDebugLight) {
     return reservoir_has_sample(r) ? hash_colour(r.selected.light_index) : vec3(0.0);
   }
@@ -49,6 +51,19 @@ vec3 debug_view(uint view, uvec2 pixel, uint index, Reservoir r, bool surface) {
     return vec3(0.5 + motion / 16.0, 0.5);
   }
   return vec3(0.0);
+}
+
+// Visibility reuse (push.visibility_reuse = N > 0): a sample whose visibility this pixel's
+// history tested is shaded with that verdict and no shadow ray, except on every N-th frame
+// (staggered over the tiles), when it is tested again. Biased where occluders or the surface
+// point moved since the last test (at most N frames ago); exact for a still camera over still
+// geometry.
+bool reuse_visibility(Reservoir r) {
+  if (push.visibility_reuse == 0u || !reservoir_visibility_known(r)) return false;
+  // One phase per 8x8 tile: lanes of a SIMD batch re-test together (a per-pixel phase left a
+  // lane tracing in nearly every batch, and lavapipe's batch then ran the whole traversal).
+  uint phase = pcg_hash(gl_WorkGroupID.x) % push.visibility_reuse;
+  return (frame_constants.frame.frame.z + phase) % push.visibility_reuse != 0u;
 }
 
 void main() {
@@ -70,8 +85,19 @@ void main() {
       vec2 uv = vec2(r.selected.u, r.selected.v);
       vec3 c = restir_contribution(p, r.selected.light_index, uv);
       if (c != vec3(0.0)) {
-        vec3 y = restir_light_position(p, r.selected.light_index, uv);
-        if (vis_visible(p.x, y)) value += c * r.W;
+        bool visible;
+        if (reuse_visibility(r)) {
+          visible = reservoir_known_visible(r);
+        } else {
+          vec3 y = restir_light_position(p, r.selected.light_index, uv);
+          visible = vis_visible(p.x, y);
+          if (push.visibility_reuse > 0u) {
+            // The verdict travels with the sample into the next frame's history.
+            reservoir_set_visibility(r, true, visible);
+            reservoirs_in.r[index] = reservoir_pack(r);
+          }
+        }
+        if (visible) value += c * r.W;
       }
     }
   }

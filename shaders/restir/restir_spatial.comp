@@ -32,7 +32,10 @@ Reservoir g_canonical;
 ShadingPoint g_canonical_point;
 vec3 g_camera;
 Reservoir combine_domain_reservoir(uint j) {
-  return j == 0u ? g_canonical : reservoir_unpack(reservoirs_in.r[g_domain_pixel[j]]);
+  if (j == 0u) return g_canonical;
+  Reservoir r = reservoir_unpack(reservoirs_in.r[g_domain_pixel[j]]);
+  reservoir_set_visibility(r, false, false);  // its visibility was seen from another surface
+  return r;
 }
 float combine_domain_target(uint j, LightSample y) {
   ShadingPoint p = j == 0u ? g_canonical_point

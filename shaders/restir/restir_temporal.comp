@@ -75,7 +75,9 @@ void main() {
       if (q.x >= 0) {
         uint q_index = uint(q.y) * restir_size().x + uint(q.x);
         Reservoir history = reservoir_unpack(reservoirs_history.r[q_index]);
-        history.age = min(history.age + 1u, kPackedMaxAge);
+        reservoir_age_one_frame(history);
+        // Visibility reuse only along a direct reprojection (a jittered retry is another point).
+        if (status != kRestirStatusReprojected) reservoir_set_visibility(history, false, false);
         // A removed light (or an empty history reservoir) leaves no sample but keeps M: the
         // history domain produced "nothing" this time, and the canonical sample's MIS weight must
         // not depend on that outcome. (Zeroing M here skipped the merge exactly when the history

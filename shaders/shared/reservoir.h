@@ -40,9 +40,19 @@ struct Reservoir {
   float weight_sum;      // sum of the guarded weights w_i seen so far
   float M;               // confidence: number of candidates (or capped history) it summarises
   float W;               // unbiased contribution weight of `selected`; valid after finalize
-  uint age;              // frames since `selected` was drawn as a fresh candidate (debug view)
+  uint age;              // bits 0-5: frames since `selected` was drawn as a fresh candidate
+                         // (saturating); bits 6-7: kReservoirVisibilityKnown/Visible
 };
 LANTERN_STATIC_SIZE(Reservoir, 32);
+
+// Reservoir.age: the age saturates here, and kReservoirVisibilityKnown says restir.shade tested
+// `selected` from this pixel's surface, kReservoirVisible that it was unoccluded (visibility
+// reuse: a later frame may shade it without a shadow ray). A merge carries the flags with the
+// sample it takes; a fresh candidate clears them; restir.spatial clears them on neighbours'
+// samples (seen from another surface).
+LANTERN_CONST uint kReservoirMaxAge = 63u;
+LANTERN_CONST uint kReservoirVisibilityKnown = 64u;
+LANTERN_CONST uint kReservoirVisible = 128u;
 
 // uv is clamped to [0,1] (non-finite -> 0) so a bad coordinate can never reach packing.
 LANTERN_FUNC float light_sample_coordinate(float x) {
@@ -70,6 +80,25 @@ LANTERN_FUNC Reservoir reservoir_empty() {
 
 LANTERN_FUNC bool reservoir_has_sample(Reservoir r) {
   return r.selected.light_index != kInvalidLight && r.W > 0.0f;
+}
+
+LANTERN_FUNC uint reservoir_age(Reservoir r) {
+  return r.age & kReservoirMaxAge;
+}
+LANTERN_FUNC bool reservoir_visibility_known(Reservoir r) {
+  return (r.age & kReservoirVisibilityKnown) != 0u;
+}
+LANTERN_FUNC bool reservoir_known_visible(Reservoir r) {
+  return (r.age & kReservoirVisible) != 0u;
+}
+// Records shade's verdict (known) or forgets it (known = false).
+LANTERN_FUNC void reservoir_set_visibility(LANTERN_INOUT(Reservoir) r, bool known, bool visible) {
+  r.age = reservoir_age(r) | (known ? kReservoirVisibilityKnown : 0u) |
+          (known && visible ? kReservoirVisible : 0u);
+}
+// One frame older (history reuse), keeping the visibility flags.
+LANTERN_FUNC void reservoir_age_one_frame(LANTERN_INOUT(Reservoir) r) {
+  r.age = min(reservoir_age(r) + 1u, kReservoirMaxAge) | (r.age & ~kReservoirMaxAge);
 }
 
 // Guard for a weight about to enter a reservoir: finite, non-negative, bounded.

@@ -30,7 +30,7 @@ LANTERN_CONST uint kPackedLightMask = 0xffffffu;
 LANTERN_CONST uint kPackedNoLight = 0xffffffu;  // the 24-bit form of kInvalidLight
 LANTERN_CONST uint kPackedMaxLights = 0xffffffu;  // light indices must stay below this
                                                   // (kEnvironmentLight = kPackedMaxLights - 1)
-LANTERN_CONST uint kPackedMaxAge = 255u;
+LANTERN_CONST uint kPackedMaxAge = 255u;  // Reservoir.age's 8 bits (age and visibility flag)
 LANTERN_CONST float kHalfMax = 65504.0f;
 
 // Half bits of a non-negative p̂: saturating, and never 0 for a positive input (0 would make the

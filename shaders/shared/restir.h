@@ -84,7 +84,7 @@ struct RestirPush {
   float m_cap;            // temporal M cap (absolute)
   float boiling_filter;   // boiling filter strength 0..1
   uint presample_tiles;   // light presampling tiles (0: candidates from the alias table directly)
-  uint pad1;
+  uint visibility_reuse;  // re-test a reused visible sample every this many frames (0: off)
   uint pad2;
   vec4 similarity;        // restir_surfaces_similar's thresholds: x max relative depth difference;
                           // y min cos between normals; z max roughness difference; w unused
