@@ -48,6 +48,19 @@ std::vector<std::pair<std::string, double>> RestirIntegrator::shadow_rays_per_pi
   return rays;
 }
 
+std::uint32_t RestirIntegrator::presample_tiles(const RestirSettings& s,
+                                               const FrameInputs& inputs) {
+  // Presampling pays off only when a tile is smaller than the light list, and only while the
+  // presampled entries stay a small part of the candidates drawn from them (at most 1/8: at
+  // 160x90, 32 tiles made the frame slower than the alias table).
+  if (s.presample_tiles == 0 || inputs.light_count <= gpu::kRestirPresampleTileSize) return 0;
+  const std::uint64_t draws =
+      std::uint64_t{inputs.width} * inputs.height * s.light_candidates;
+  const std::uint64_t affordable = draws / (8 * std::uint64_t{gpu::kRestirPresampleTileSize});
+  return static_cast<std::uint32_t>(
+      std::clamp<std::uint64_t>(affordable, 1, s.presample_tiles));
+}
+
 gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const FrameInputs& inputs) {
   if (inputs.light_count >= gpu::kEnvironmentLight) {
     throw InputError(fmt::format("restir: {} lights exceed the {} a packed reservoir can index",
@@ -66,8 +79,7 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   p.radius = s.radius;
   p.m_cap = s.m_cap();
   p.boiling_filter = s.boiling_filter;
-  // Presampling pays off only when the tiles are smaller than the light list.
-  p.presample_tiles = inputs.light_count > gpu::kRestirPresampleTileSize ? s.presample_tiles : 0u;
+  p.presample_tiles = presample_tiles(s, inputs);
   p.visibility_reuse = s.temporal ? s.visibility_reuse : 0u;
   p.similarity = {s.depth_threshold, s.normal_threshold, 0.25f, 0.0f};
   return p;

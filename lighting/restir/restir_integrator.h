@@ -45,6 +45,9 @@ class RestirIntegrator final : public Integrator {
 
   // The push constants a frame with these settings gets (the pass index and history flag aside).
   static gpu::RestirPush make_push(const RestirSettings& settings, const FrameInputs& inputs);
+  // Presampling tiles this frame gets: 0 when the lights fit in one tile, else the setting,
+  // lowered so that the presampled entries stay at most 1/8 of the light candidates drawn.
+  static std::uint32_t presample_tiles(const RestirSettings& settings, const FrameInputs& inputs);
 
  private:
   runtime::Device& device_;

@@ -1,5 +1,5 @@
 // RestirSettings: presets, every key settable, bad keys and values rejected with InputError
-// naming the key and value.
+// naming the key and value; the presampling tiles a frame gets.
 #include "lighting/restir/restir_settings.h"
 
 #include <gtest/gtest.h>
@@ -7,6 +7,8 @@
 #include <set>
 
 #include "engine/core/error.h"
+#include "lighting/frame/frame_inputs.h"
+#include "lighting/restir/restir_integrator.h"
 
 namespace lantern::lighting {
 namespace {
@@ -123,6 +125,36 @@ TEST(RestirSettings, ChoiceTablesNameEverySharedConstantOnce) {
   }
   EXPECT_NE(error_of("debug_view", "normals").find("disocclusion"), std::string::npos)
       << "the message lists the valid views";
+}
+
+}  // namespace
+}  // namespace lantern::lighting
+
+namespace lantern::lighting {
+namespace {
+
+FrameInputs inputs_of(std::uint32_t width, std::uint32_t height, std::uint32_t lights) {
+  FrameInputs in;
+  in.width = width;
+  in.height = height;
+  in.light_count = lights;
+  return in;
+}
+
+// Presampling: off when the lights fit in one tile; the setting where the candidate draws are
+// many; fewer tiles where the presampled entries would exceed 1/8 of the draws; at least one.
+TEST(RestirSettings, PresampleTilesFollowLightsAndResolution) {
+  const RestirSettings s = restir_preset("balanced");  // 8 candidates, 32 tiles
+  ASSERT_EQ(s.presample_tiles, 32u);
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, inputs_of(320, 180, 1024)), 0u);
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, inputs_of(320, 180, 123000)), 32u);
+  // 160x90 x 8 = 115200 draws: 14 tiles of 1024 stay within 1/8 of them.
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, inputs_of(160, 90, 123000)), 14u);
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, inputs_of(8, 8, 123000)), 1u);
+  RestirSettings off = s;
+  apply_setting(off, "presample_tiles", "0");
+  EXPECT_EQ(RestirIntegrator::presample_tiles(off, inputs_of(320, 180, 123000)), 0u);
+  EXPECT_EQ(RestirIntegrator::make_push(s, inputs_of(320, 180, 123000)).presample_tiles, 32u);
 }
 
 }  // namespace
