@@ -40,6 +40,7 @@ struct BenchOptions {
   std::string json;
   std::string trace;
   std::string budget;
+  std::string output = "raw";  // --output raw|denoised: time the denoise.* chain too
 };
 
 // Calibration runs: one before the frames, then one every kCalibrationEvery frames.
@@ -85,7 +86,11 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
   runtime::CalibrationWorkload calibration(device, shaders);
   lighting::HeadlessSession session(
       device, shaders, level,
-      {.integrator = config, .width = width, .height = height, .seed = common.seed});
+      {.integrator = config,
+       .width = width,
+       .height = height,
+       .seed = common.seed,
+       .output = lighting::parse_frame_output(o.output)});
   session.warm_up();
   const std::string integrator = config.name;
   const lighting::VisibilityChoice visibility =
@@ -195,6 +200,7 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"integrator", integrator},
         {"preset", common.preset},
         {"settings", config.settings},
+        {"output", o.output},
         {"size", {width, height}},
         {"device", device.info().name},
         {"visibility", lighting::visibility_backend_name(visibility.backend)},
@@ -243,6 +249,10 @@ void add_bench_command(CLI::App& root, CommonOptions& options) {
       ->required();
   add_integrator_option(*cmd, opts->integrator)->capture_default_str();
   cmd->add_option("--warmup", opts->warmup, "Frames rendered before timing")
+      ->capture_default_str();
+  cmd->add_option("--output", opts->output,
+                  "raw (the integrator's image) or denoised (adds the denoise.* passes)")
+      ->check(CLI::IsMember({"raw", "denoised"}))
       ->capture_default_str();
   cmd->add_option("--json", opts->json, "Write the statistics as JSON to FILE");
   cmd->add_option("--trace", opts->trace,

@@ -5,6 +5,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/log.h"
+#include "lighting/denoise/denoiser.h"
 #include "lighting/frame/frame_output_pass.h"
 #include "lighting/gbuffer/gbuffer_pass.h"
 #include "lighting/scene/frame_constants.h"
@@ -13,6 +14,16 @@
 #include "runtime/gpu/shader_library.h"
 
 namespace lantern::lighting {
+
+FrameOutput parse_frame_output(std::string_view text) {
+  if (text == "raw") return FrameOutput::Raw;
+  if (text == "denoised") return FrameOutput::Denoised;
+  throw InputError(fmt::format("--output {}: expected raw or denoised", text));
+}
+
+const char* frame_output_name(FrameOutput output) {
+  return output == FrameOutput::Denoised ? "denoised" : "raw";
+}
 
 FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& shaders,
                              std::shared_ptr<const Level> level,
@@ -30,6 +41,7 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
   if (!integrator_) throw InputError("frame renderer: no integrator");
   scene_ = std::make_unique<GpuScene>(device, std::move(level), integrator_->visibility());
   gbuffer_ = std::make_unique<GBufferPass>(device, shaders);
+  denoiser_ = std::make_unique<Denoiser>(device, shaders);
   output_ = std::make_unique<runtime::ComputePipeline>(
       device, shaders.load("frame/frame_output.comp"),
       runtime::ComputePipelineDesc{.name = "frame.output", .constants = {}});
@@ -46,6 +58,7 @@ FrameRenderer::~FrameRenderer() = default;
 void FrameRenderer::warm_up() {
   gbuffer_->warm_up();
   integrator_->warm_up();
+  denoiser_->warm_up();
   output_->warm_up();
 }
 
@@ -91,6 +104,8 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   inputs_.light_count = scene_->light_count();
   inputs_.previous_light_count = scene_->previous_light_count();
   hdr = integrator_->add_passes(graph, inputs_, hdr);
+  raw_ = hdr;
+  if (frame_output_ == FrameOutput::Denoised) hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr);
   ++frames_;
   resized_ = false;
   return hdr;

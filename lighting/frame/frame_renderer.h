@@ -11,8 +11,10 @@
 
 #include <cstdint>
 #include <memory>
+#include <string_view>
 
 #include "engine/world/frame_snapshot.h"
+#include "lighting/denoise/denoise_settings.h"
 #include "lighting/frame/frame_inputs.h"
 #include "lighting/scene/gpu_scene.h"
 #include "runtime/graph/render_graph.h"
@@ -21,6 +23,15 @@
 namespace lantern::lighting {
 
 class GBufferPass;
+class Denoiser;
+
+// Which image add_frame returns (what the output pass shows): the integrator's raw radiance
+// (unbiased: bias tests, trade's raw error, EXR by default) or the denoised one (what a player,
+// a PNG or a video sees; lighting/denoise/denoiser.h).
+enum class FrameOutput : std::uint8_t { Raw, Denoised };
+// "raw" | "denoised"; InputError naming the value otherwise.
+FrameOutput parse_frame_output(std::string_view text);
+const char* frame_output_name(FrameOutput output);
 
 class FrameRenderer {
  public:
@@ -35,8 +46,9 @@ class FrameRenderer {
   // JIT-compiles every pipeline (G-buffer, integrator, output) outside the timed frames.
   void warm_up();
 
-  // Adds this frame's passes (scene.upload, gbuffer, the integrator's) to `graph` (between its
-  // begin_frame() and bake()) and returns the HDR buffer: width*height vec4 linear radiance.
+  // Adds this frame's passes (scene.upload, gbuffer, the integrator's, and with
+  // FrameOutput::Denoised the denoise.* chain) to `graph` (between its begin_frame() and bake())
+  // and returns the HDR buffer of output(): width*height vec4 linear radiance.
   [[nodiscard]] runtime::graph::BufferHandle add_frame(runtime::graph::RenderGraph& graph,
                                                        const FrameSnapshot& snapshot);
   // frame.output: `hdr` -> `target` (rgba32f image of the render size). exposure 0: linear
@@ -45,6 +57,16 @@ class FrameRenderer {
                                                             runtime::graph::BufferHandle hdr,
                                                             runtime::graph::ImageHandle target,
                                                             float exposure);
+
+  // What add_frame returns from the next frame on (default Raw: no denoise pass runs).
+  void set_output(FrameOutput output) { frame_output_ = output; }
+  FrameOutput output() const { return frame_output_; }
+  // The denoiser's knobs from the next frame on (a change keeps its history).
+  void set_denoise_settings(const DenoiseSettings& settings) { denoise_ = settings; }
+  const DenoiseSettings& denoise_settings() const { return denoise_; }
+  // The integrator's raw HDR buffer of the last add_frame (valid for that graph frame only): a
+  // hook can read back the raw image while the output shows the denoised one.
+  runtime::graph::BufferHandle last_raw() const { return raw_; }
 
   // A new render size: the next frame has no history.
   void resize(std::uint32_t width, std::uint32_t height);
@@ -66,6 +88,10 @@ class FrameRenderer {
   std::unique_ptr<GpuScene> scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<Integrator> integrator_;
+  std::unique_ptr<Denoiser> denoiser_;
+  DenoiseSettings denoise_;
+  FrameOutput frame_output_ = FrameOutput::Raw;
+  runtime::graph::BufferHandle raw_;
   std::unique_ptr<runtime::ComputePipeline> output_;
   std::uint32_t width_;
   std::uint32_t height_;

@@ -148,6 +148,30 @@ void draw_panel(PanelState& s) {
     if (c) s.settings_changed = true;
   }
 
+  if (ImGui::CollapsingHeader("Denoiser", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // One widget per row of the denoiser's key table, its sentence as the tooltip.
+    for (const lighting::DenoiseKey& key : lighting::denoise_keys()) {
+      float v = lighting::denoise_value(s.denoise, key.name);
+      bool changed = false;
+      if (key.integer && key.hi == 1.0f) {
+        bool on = v != 0.0f;
+        changed = ImGui::Checkbox(key.name, &on);
+        v = on ? 1.0f : 0.0f;
+      } else if (key.integer) {
+        int x = static_cast<int>(v);
+        changed = ImGui::SliderInt(key.name, &x, static_cast<int>(key.lo), static_cast<int>(key.hi));
+        v = static_cast<float>(x);
+      } else {
+        changed = ImGui::SliderFloat(key.name, &v, key.lo, key.hi, "%.3g",
+                                     key.hi / std::max(key.lo, 1e-3f) > 100.0f
+                                         ? ImGuiSliderFlags_Logarithmic
+                                         : ImGuiSliderFlags_None);
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", key.when);
+      if (changed) lighting::set_denoise_value(s.denoise, key.name, v);
+    }
+  }
+
   if (ImGui::CollapsingHeader("GPU passes", ImGuiTreeNodeFlags_DefaultOpen)) {
     for (const auto& [name, series] : s.pass_ms) plot(name.c_str(), series, "ms");
   }

@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 
+#include "lighting/denoise/denoise_settings.h"
 #include "lighting/integrators/integrator_registry.h"
 #include "lighting/restir/restir_settings.h"
 
@@ -23,6 +24,7 @@ struct PanelState {
   std::string preset = "balanced";
   lighting::RestirSettings restir;
   bool progressive = true;  // accumulate while still (integrators whose entry is progressive)
+  lighting::DenoiseSettings denoise;  // the frame's denoiser: applied every frame
   // Requests (set by the panel, cleared by the session).
   bool rebuild = false;           // integrator or preset changed: new integrator
   bool settings_changed = false;  // a ReSTIR knob changed: Integrator::apply_settings

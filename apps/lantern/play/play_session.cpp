@@ -190,6 +190,7 @@ PlayReport run_play(const PlayConfig& config) {
         lighting::make_restir_settings(config.integrator.preset, config.integrator.settings);
   else
     panel.restir = lighting::restir_preset(config.integrator.preset);
+  panel.denoise = lighting::make_denoise_settings(config.integrator.preset, config.integrator.denoise);
   bool show_panel = config.show_panel;
 
   RenderBundle bundle =
@@ -397,6 +398,14 @@ PlayReport run_play(const PlayConfig& config) {
 
     // The frame: the session's passes, accumulation between the HDR image and the output while
     // a progressive integrator holds still, the panel over the output.
+    // The window shows the denoised image, except while a progressive integrator accumulates a
+    // still view or a ReSTIR debug view is up (both want the raw image).
+    const bool accumulate = bundle.integrator->progressive && panel.progressive;
+    const bool debug_view = bundle.integrator->name == std::string(lighting::RestirIntegrator::kName) &&
+                            panel.restir.debug_view != gpu::kRestirDebugNone;
+    bundle.renderer->set_output(accumulate || debug_view ? lighting::FrameOutput::Raw
+                                                         : lighting::FrameOutput::Denoised);
+    bundle.renderer->set_denoise_settings(panel.denoise);
     lighting::FrameHooks hooks;
     hooks.exposure = exposure;
     if (bundle.integrator->progressive && panel.progressive) {
