@@ -62,6 +62,7 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
   // denoise.temporal: with no à-trous iteration its result is next frame's colour history.
   const bool filter = s.atrous_iterations > 0;
   BufferHandle accum = filter ? graph.create_buffer("denoise.accum", vec4s) : color;
+  BufferHandle guide = graph.create_buffer("denoise.guide", vec4s);
   {
     const std::vector<BufferHandle> out = temporal_.add(
         graph, inputs, push,
@@ -72,9 +73,11 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
          {"color_history", history ? color_history : raw},
          {"moments_history", history ? moments_history : raw},
          {"accum_out", accum, DenoisePass::Buffer::Write},
-         {"moments_out", moments, DenoisePass::Buffer::Write}});
+         {"moments_out", moments, DenoisePass::Buffer::Write},
+         {"guide_out", guide, DenoisePass::Buffer::Write}});
     accum = out[1];
     moments = out[2];
+    guide = out[3];
   }
 
   if (filter) {
@@ -83,6 +86,7 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
     // ping-pong two scratch buffers.
     BufferHandle current = variance_.add(graph, inputs, push,
                                          {{"accum_in", accum},
+                                          {"guide", guide},
                                           {"moments_in", moments},
                                           {"accum_out", graph.create_buffer("denoise.variance", vec4s),
                                            DenoisePass::Buffer::Write}})[0];
@@ -93,7 +97,9 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
       BufferHandle& target = i == 0 ? color : scratch[i % 2];
       if (!target) target = graph.create_buffer(i % 2 ? "denoise.atrous.a" : "denoise.atrous.b", vec4s);
       target = atrous_.add(graph, inputs, p,
-                           {{"accum_in", current}, {"accum_out", target, DenoisePass::Buffer::Write}})[0];
+                           {{"accum_in", current},
+                            {"guide", guide},
+                            {"accum_out", target, DenoisePass::Buffer::Write}})[0];
       current = target;
     }
     accum = current;

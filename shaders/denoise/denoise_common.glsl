@@ -28,4 +28,26 @@ vec3 denoise_finite(vec3 c) {
   return vec3(is_finite(c.r) ? c.r : 0.0, is_finite(c.g) ? c.g : 0.0, is_finite(c.b) ? c.b : 0.0);
 }
 
+// The edge-stopping guide denoise.temporal writes once per pixel ("denoise.guide", read by
+// every tap of denoise.variance and denoise.atrous instead of two G-buffer images): xyz world
+// position, w the octahedral shading normal (snorm 2x16) as float bits; kDenoiseSky bits for sky.
+const uint kDenoiseSky = 0xffffffffu;
+
+vec4 denoise_guide(vec4 position_depth, vec3 n) {
+  if (gbuffer_is_sky(position_depth.w)) return vec4(0.0, 0.0, 0.0, uintBitsToFloat(kDenoiseSky));
+  return vec4(position_depth.xyz, uintBitsToFloat(packSnorm2x16(oct_encode(n))));
+}
+bool denoise_guide_sky(vec4 g) { return floatBitsToUint(g.w) == kDenoiseSky; }
+vec3 denoise_guide_normal(vec4 g) { return oct_decode(unpackSnorm2x16(floatBitsToUint(g.w))); }
+
+// Edge-stopping weight of a tap with guide q seen from the centre (guide c, normal n, view depth
+// depth), times exp(-extra): its distance from the centre's tangent plane relative to
+// phi_depth x depth x spacing, and the normals' agreement max(0, n.nq)^phi_normal.
+float denoise_geometry_weight(vec4 c, vec3 n, float depth, vec4 q, float spacing, float extra) {
+  float plane = abs(dot(n, q.xyz - c.xyz));
+  float cosine = max(dot(n, denoise_guide_normal(q)), 0.0);
+  return exp(-plane / (push.phi_depth * depth * spacing + 1e-6) - extra) *
+         pow(cosine, push.phi_normal);
+}
+
 #endif

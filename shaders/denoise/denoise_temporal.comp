@@ -7,7 +7,8 @@
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
 // surfaces_history, color_history, moments_history, frame constants (prev_view_proj).
 // Writes: denoise_surfaces (this frame's "denoise.surfaces"), accum_out (rgb illumination, a:
-// temporal variance), moments_out ("denoise.moments": x, y luminance moments, z history length).
+// temporal variance), moments_out ("denoise.moments": x, y luminance moments, z history length),
+// guide_out ("denoise.guide", denoise_common.glsl).
 // History: "denoise.surfaces", "denoise.color", "denoise.moments" of last frame; without
 // kDenoiseFlagHistoryValid the history bindings are stand-ins and are not read.
 // Dispatch: one thread per pixel, 8x8 groups.
@@ -32,6 +33,7 @@ layout(std430, binding = PASS_BINDING(9)) readonly buffer ColorHistory { vec4 p[
 layout(std430, binding = PASS_BINDING(10)) readonly buffer MomentsHistory { vec4 p[]; } moments_history;
 layout(std430, binding = PASS_BINDING(11)) writeonly buffer AccumOut { vec4 p[]; } accum_out;
 layout(std430, binding = PASS_BINDING(12)) writeonly buffer MomentsOut { vec4 p[]; } moments_out;
+layout(std430, binding = PASS_BINDING(13)) writeonly buffer GuideOut { vec4 p[]; } guide_out;
 
 void main() {
   ivec2 pixel;
@@ -43,6 +45,7 @@ void main() {
     denoise_surfaces.s[index] = restir_surface_sky();
     accum_out.p[index] = vec4(radiance, 0.0);
     moments_out.p[index] = vec4(0.0);
+    guide_out.p[index] = denoise_guide(position, vec3(0.0, 0.0, 1.0));
     return;
   }
   vec4 normals = imageLoad(gbuffer_normal, pixel);
@@ -54,6 +57,7 @@ void main() {
                                               albedo_roughness.a, emission_metallic.a, 0.0,
                                               material);
   denoise_surfaces.s[index] = surface;
+  guide_out.p[index] = denoise_guide(position, oct_decode(normals.xy));
   vec3 illumination = (radiance - emission_metallic.rgb) / denoise_demodulation(albedo_roughness.rgb);
   float l = luminance(illumination);
 
