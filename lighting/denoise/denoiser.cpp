@@ -59,9 +59,11 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
       surfaces_history.valid() && color_history.valid() && moments_history.valid();
   if (history) push.flags |= gpu::kDenoiseFlagHistoryValid;
 
-  // denoise.temporal: with no à-trous iteration its result is next frame's colour history.
+  // denoise.temporal: its result is next frame's colour history (the unfiltered accumulation:
+  // feeding the à-trous output back, as SVGF does, kept light the filter had spread into dark
+  // contact shadows for frames: cornell_lights' relMSE 0.8-9.7 -> see README).
   const bool filter = s.atrous_iterations > 0;
-  BufferHandle accum = filter ? graph.create_buffer("denoise.accum", vec4s) : color;
+  BufferHandle accum = color;
   BufferHandle guide = graph.create_buffer("denoise.guide", vec4s);
   {
     const std::vector<BufferHandle> out = temporal_.add(
@@ -81,9 +83,7 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
   }
 
   if (filter) {
-    // denoise.variance, then the à-trous iterations: iteration 0 writes the colour history (the
-    // filtered illumination is what next frame blends into, SVGF's feedback), later ones
-    // ping-pong two scratch buffers.
+    // denoise.variance, then the à-trous iterations ping-ponging two scratch buffers.
     BufferHandle current = variance_.add(graph, inputs, push,
                                          {{"accum_in", accum},
                                           {"guide", guide},
@@ -94,7 +94,7 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
     for (std::uint32_t i = 0; i < s.atrous_iterations; ++i) {
       gpu::DenoisePush p = push;
       p.step = 1u << i;
-      BufferHandle& target = i == 0 ? color : scratch[i % 2];
+      BufferHandle& target = scratch[i % 2];
       if (!target) target = graph.create_buffer(i % 2 ? "denoise.atrous.a" : "denoise.atrous.b", vec4s);
       target = atrous_.add(graph, inputs, p,
                            {{"accum_in", current},

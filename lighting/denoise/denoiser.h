@@ -1,11 +1,11 @@
 // Denoiser: the denoise.* pass chain between the integrator's raw HDR image and what a player, a
 // PNG or a video sees (SVGF/ReLAX-style, Schied et al. 2017), with its own history in the render
 // graph:
-//   denoise.temporal   raw radiance -> demodulated illumination (minus emission, / albedo),
+//   denoise.temporal   raw radiance -> demodulated illumination (/ albedo; sky, emitters kept),
 //                      reprojected history (motion vectors, ReSTIR's restir_surfaces_similar
 //                      disocclusion test), anti-firefly clamp, blend; luminance moments
 //   denoise.variance   spatial variance where the history is short (< 4 frames)
-//   denoise.atrous xN  variance-guided edge-avoiding à-trous (iteration 0 is next frame's history)
+//   denoise.atrous xN  variance-guided edge-avoiding à-trous
 //   denoise.modulate   illumination x albedo + emission -> "denoise.output"
 // History ("denoise.surfaces", "denoise.color", "denoise.moments") is the graph's: the frame
 // renderer's invalidate_history() on a cut, a resize or the first frame leaves none, and a frame

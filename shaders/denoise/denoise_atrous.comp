@@ -6,7 +6,7 @@
 // image stays constant); variance propagates as sum w^2 var / (sum w)^2. Sky pixels pass through.
 // (3x3 rather than SVGF's 5x5: 9 taps instead of 25, the same reach with one more iteration.)
 // Reads: accum_in (rgb illumination, a variance), guide, gbuffer position (the centre's depth).
-// Writes: accum_out (iteration 0 writes "denoise.color", next frame's temporal history).
+// Writes: accum_out.
 // History: none. Dispatch: one thread per pixel, 8x8 groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
@@ -49,7 +49,7 @@ void main() {
   vec3 n = denoise_guide_normal(g);
   float depth = imageLoad(gbuffer_position, pixel).w;
   float l = luminance(centre.rgb);
-  float lum_scale = push.phi_luminance * sqrt(max(filtered_variance(pixel), 0.0)) + 1e-6;
+  float lum_scale = push.phi_luminance * sqrt(max(min(filtered_variance(pixel), centre.a), 0.0)) + 1e-6;
   int step = int(push.step);
 
   float w0 = kKernel[0] * kKernel[0];

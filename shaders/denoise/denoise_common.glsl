@@ -28,15 +28,24 @@ vec3 denoise_finite(vec3 c) {
   return vec3(is_finite(c.r) ? c.r : 0.0, is_finite(c.g) ? c.g : 0.0, is_finite(c.b) ? c.b : 0.0);
 }
 
+// Pixels the denoiser leaves as they are: sky (no surface) and emitters. An emitter's radiance is
+// its emission (exact, from the G-buffer) plus light it reflects, orders of magnitude smaller
+// where it matters; filtering it would spread its residual noise (and its value, 10^4 above its
+// surroundings on cornell_lights) into the dark surfaces around it.
+bool denoise_passthrough(float view_depth, vec3 emission) {
+  return gbuffer_is_sky(view_depth) || max(emission.r, max(emission.g, emission.b)) > 0.0;
+}
+
 // The edge-stopping guide denoise.temporal writes once per pixel ("denoise.guide", read by
 // every tap of denoise.variance and denoise.atrous instead of two G-buffer images): xyz world
-// position, w the octahedral shading normal (snorm 2x16) as float bits; kDenoiseSky bits for sky.
+// position, w the octahedral shading normal (snorm 2x16) as float bits; kDenoiseSky bits for the
+// pass-through pixels (sky, emitters: no tap reads them).
 const uint kDenoiseSky = 0xffffffffu;
 
 vec4 denoise_guide(vec4 position_depth, vec3 n) {
-  if (gbuffer_is_sky(position_depth.w)) return vec4(0.0, 0.0, 0.0, uintBitsToFloat(kDenoiseSky));
   return vec4(position_depth.xyz, uintBitsToFloat(packSnorm2x16(oct_encode(n))));
 }
+vec4 denoise_guide_passthrough() { return vec4(0.0, 0.0, 0.0, uintBitsToFloat(kDenoiseSky)); }
 bool denoise_guide_sky(vec4 g) { return floatBitsToUint(g.w) == kDenoiseSky; }
 vec3 denoise_guide_normal(vec4 g) { return oct_decode(unpackSnorm2x16(floatBitsToUint(g.w))); }
 

@@ -1,5 +1,6 @@
-// denoise.modulate: the filtered illumination back to radiance: emission + albedo demodulation x
-// illumination (the same factor denoise.temporal divided by); sky pixels keep the raw radiance.
+// denoise.modulate: the filtered illumination back to radiance: albedo demodulation x
+// illumination (the same factor denoise.temporal divided by); sky and emitters
+// (denoise_passthrough) keep the raw radiance.
 // Reads: accum_in (rgb illumination), hdr_in (raw radiance, for the sky), gbuffer
 // position/albedo_roughness/emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
 // History: none. Dispatch: one thread per pixel, 8x8 groups.
@@ -20,12 +21,12 @@ void main() {
   if (!denoise_pixel(pixel)) return;
   uint index = denoise_index(pixel);
   vec3 rgb;
-  if (gbuffer_is_sky(imageLoad(gbuffer_position, pixel).w)) {
+  if (denoise_passthrough(imageLoad(gbuffer_position, pixel).w,
+                          imageLoad(gbuffer_emission_metallic, pixel).rgb)) {
     rgb = denoise_finite(hdr_in.p[index].rgb);
   } else {
     vec3 albedo = imageLoad(gbuffer_albedo_roughness, pixel).rgb;
-    rgb = imageLoad(gbuffer_emission_metallic, pixel).rgb +
-          denoise_demodulation(albedo) * accum_in.p[index].rgb;
+    rgb = denoise_demodulation(albedo) * accum_in.p[index].rgb;
   }
   hdr_out.p[index] = vec4(denoise_finite(rgb), 1.0);
 }

@@ -1,13 +1,14 @@
-// denoise.temporal: demodulates this frame's raw radiance by the surface's albedo (minus its
-// emission), reprojects last frame's denoised illumination and luminance moments along the
+// denoise.temporal: demodulates this frame's raw radiance by the surface's albedo (an emitter
+// passes through), reprojects last frame's denoised illumination and luminance moments along the
 // motion vector (bilinear over the 2x2 previous pixels, each kept only when it passes ReSTIR's
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
 // history), clamps a firefly against the history's mean + firefly x sigma, and blends
-// (alpha = max(1 / history length, push.color_alpha)). Sky pixels pass through unfiltered.
+// (alpha = max(1 / history length, push.color_alpha)). Sky and emitters pass through unfiltered
+// (denoise_passthrough).
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
 // surfaces_history, color_history, moments_history, frame constants (prev_view_proj).
 // Writes: denoise_surfaces (this frame's "denoise.surfaces"), accum_out (rgb illumination, a:
-// temporal variance), moments_out ("denoise.moments": x, y luminance moments, z history length),
+// temporal variance; "denoise.color", next frame's history), moments_out ("denoise.moments": x, y luminance moments, z history length),
 // guide_out ("denoise.guide", denoise_common.glsl).
 // History: "denoise.surfaces", "denoise.color", "denoise.moments" of last frame; without
 // kDenoiseFlagHistoryValid the history bindings are stand-ins and are not read.
@@ -41,16 +42,16 @@ void main() {
   uint index = denoise_index(pixel);
   vec4 position = imageLoad(gbuffer_position, pixel);
   vec3 radiance = denoise_finite(hdr_in.p[index].rgb);
-  if (gbuffer_is_sky(position.w)) {
+  vec4 emission_metallic = imageLoad(gbuffer_emission_metallic, pixel);
+  if (denoise_passthrough(position.w, emission_metallic.rgb)) {
     denoise_surfaces.s[index] = restir_surface_sky();
     accum_out.p[index] = vec4(radiance, 0.0);
     moments_out.p[index] = vec4(0.0);
-    guide_out.p[index] = denoise_guide(position, vec3(0.0, 0.0, 1.0));
+    guide_out.p[index] = denoise_guide_passthrough();
     return;
   }
   vec4 normals = imageLoad(gbuffer_normal, pixel);
   vec4 albedo_roughness = imageLoad(gbuffer_albedo_roughness, pixel);
-  vec4 emission_metallic = imageLoad(gbuffer_emission_metallic, pixel);
   uint material = imageLoad(gbuffer_ids, pixel).y;
   RestirSurface surface = restir_surface_pack(position, oct_decode(normals.xy),
                                               oct_decode(normals.zw), albedo_roughness.rgb,
@@ -58,7 +59,7 @@ void main() {
                                               material);
   denoise_surfaces.s[index] = surface;
   guide_out.p[index] = denoise_guide(position, oct_decode(normals.xy));
-  vec3 illumination = (radiance - emission_metallic.rgb) / denoise_demodulation(albedo_roughness.rgb);
+  vec3 illumination = radiance / denoise_demodulation(albedo_roughness.rgb);
   float l = luminance(illumination);
 
   // Last frame's history at the reprojected position: bilinear weights of the similar taps.

@@ -40,7 +40,7 @@ struct DenoisePush {
 LANTERN_STATIC_SIZE(DenoisePush, 64);
 
 // What illumination is divided by: the surface's albedo (base colour), floored. Radiance =
-// emission + factor x illumination; sky pixels (no surface) are not filtered.
+// factor x illumination; sky and emitters are not filtered.
 LANTERN_FUNC vec3 denoise_demodulation(vec3 albedo) {
   return max(albedo, vec3(kDenoiseMinAlbedo));
 }
