@@ -41,6 +41,7 @@ struct BenchOptions {
   std::string trace;
   std::string budget;
   std::string output = "raw";  // --output raw|denoised: time the denoise.* chain too
+  float render_scale = 1.0f;   // --render-scale: internal size / --size (upscale.temporal)
 };
 
 // Calibration runs: one before the frames, then one every kCalibrationEvery frames.
@@ -90,7 +91,8 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
        .width = width,
        .height = height,
        .seed = common.seed,
-       .output = lighting::parse_frame_output(o.output)});
+       .output = lighting::parse_frame_output(o.output),
+       .render_scale = o.render_scale});
   session.warm_up();
   const std::string integrator = config.name;
   const lighting::VisibilityChoice visibility =
@@ -201,6 +203,8 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"preset", common.preset},
         {"settings", config.settings},
         {"output", o.output},
+        {"render_scale", o.render_scale},
+        {"internal_size", {session.renderer().width(), session.renderer().height()}},
         {"size", {width, height}},
         {"device", device.info().name},
         {"visibility", lighting::visibility_backend_name(visibility.backend)},
@@ -253,6 +257,10 @@ void add_bench_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("--output", opts->output,
                   "raw (the integrator's image) or denoised (adds the denoise.* passes)")
       ->check(CLI::IsMember({"raw", "denoised"}))
+      ->capture_default_str();
+  cmd->add_option("--render-scale", opts->render_scale,
+                  "Internal size as a fraction of --size; below 1 upscale.temporal reconstructs")
+      ->check(CLI::Range(0.1f, 1.0f))
       ->capture_default_str();
   cmd->add_option("--json", opts->json, "Write the statistics as JSON to FILE");
   cmd->add_option("--trace", opts->trace,

@@ -3,12 +3,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "lighting/denoise/denoiser.h"
 #include "lighting/frame/frame_output_pass.h"
 #include "lighting/gbuffer/gbuffer_pass.h"
 #include "lighting/scene/frame_constants.h"
+#include "lighting/upscale/upscaler.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/shader_library.h"
@@ -33,6 +36,8 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
       integrator_(std::move(integrator)),
       width_(width),
       height_(height),
+      output_width_(width),
+      output_height_(height),
       seed_(seed) {
   if (width == 0 || height == 0) {
     throw InputError(
@@ -42,6 +47,7 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
   scene_ = std::make_unique<GpuScene>(device, std::move(level), integrator_->visibility());
   gbuffer_ = std::make_unique<GBufferPass>(device, shaders);
   denoiser_ = std::make_unique<Denoiser>(device, shaders);
+  upscaler_ = std::make_unique<Upscaler>(device, shaders);
   output_ = std::make_unique<runtime::ComputePipeline>(
       device, shaders.load("frame/frame_output.comp"),
       runtime::ComputePipelineDesc{.name = "frame.output", .constants = {}});
@@ -59,6 +65,7 @@ void FrameRenderer::warm_up() {
   gbuffer_->warm_up();
   integrator_->warm_up();
   denoiser_->warm_up();
+  upscaler_->warm_up();
   output_->warm_up();
 }
 
@@ -67,6 +74,20 @@ void FrameRenderer::resize(std::uint32_t width, std::uint32_t height) {
     throw InputError(
         fmt::format("frame renderer: render size {}x{} must be positive", width, height));
   }
+  if (width == output_width_ && height == output_height_ && width == width_ &&
+      height == height_) {
+    return;
+  }
+  output_width_ = width;
+  output_height_ = height;
+  width_ = width;
+  height_ = height;
+  resized_ = true;
+}
+
+void FrameRenderer::set_internal_size(std::uint32_t width, std::uint32_t height) {
+  width = std::clamp(width, 1u, output_width_);
+  height = std::clamp(height, 1u, output_height_);
   if (width == width_ && height == height_) return;
   width_ = width;
   height_ = height;
@@ -106,6 +127,9 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   hdr = integrator_->add_passes(graph, inputs_, hdr);
   raw_ = hdr;
   if (frame_output_ == FrameOutput::Denoised) hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr);
+  if (width_ != output_width_ || height_ != output_height_) {
+    hdr = upscaler_->add_pass(graph, inputs_, hdr, output_width_, output_height_);
+  }
   ++frames_;
   resized_ = false;
   return hdr;
@@ -115,7 +139,8 @@ runtime::graph::ImageHandle FrameRenderer::add_output_pass(runtime::graph::Rende
                                                            runtime::graph::BufferHandle hdr,
                                                            runtime::graph::ImageHandle target,
                                                            float exposure) {
-  return add_frame_output_pass(graph, *output_, hdr, target, width_, height_, exposure);
+  return add_frame_output_pass(graph, *output_, hdr, target, output_width_, output_height_,
+                               exposure);
 }
 
 }  // namespace lantern::lighting

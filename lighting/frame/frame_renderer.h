@@ -1,6 +1,8 @@
 // FrameRenderer: one frame of a level from its FrameSnapshot, as render-graph passes:
 //   scene.upload (GpuScene: instances with previous transforms, TLAS, lights + remap, constants)
-//   -> gbuffer (lighting/gbuffer/gbuffer_pass.h) -> the integrator's passes -> the HDR buffer.
+//   -> gbuffer (lighting/gbuffer/gbuffer_pass.h) -> the integrator's passes (the raw image)
+//   -> [denoise.* (lighting/denoise/denoiser.h)] -> [upscale.temporal to the output size]
+//   -> the HDR buffer.
 // It owns the GpuScene, the G-buffer pass and the Integrator; the FrameSession
 // (lighting/frame/frame_session.h) owns the graph, the executor and the target and drives it:
 //
@@ -24,6 +26,7 @@ namespace lantern::lighting {
 
 class GBufferPass;
 class Denoiser;
+class Upscaler;
 
 // Which image add_frame returns (what the output pass shows): the integrator's raw radiance
 // (unbiased: bias tests, trade's raw error, EXR by default) or the denoised one (what a player,
@@ -48,10 +51,11 @@ class FrameRenderer {
 
   // Adds this frame's passes (scene.upload, gbuffer, the integrator's, and with
   // FrameOutput::Denoised the denoise.* chain) to `graph` (between its begin_frame() and bake())
-  // and returns the HDR buffer of output(): width*height vec4 linear radiance.
+  // and returns the HDR buffer of output(): output_width*output_height vec4 linear radiance
+  // (upscale.temporal reconstructs it when the internal size is smaller).
   [[nodiscard]] runtime::graph::BufferHandle add_frame(runtime::graph::RenderGraph& graph,
                                                        const FrameSnapshot& snapshot);
-  // frame.output: `hdr` -> `target` (rgba32f image of the render size). exposure 0: linear
+  // frame.output: `hdr` -> `target` (rgba32f image of the output size). exposure 0: linear
   // copy (EXR, readback); > 0: exposure x filmic tonemap (display-referred linear, for a window).
   [[nodiscard]] runtime::graph::ImageHandle add_output_pass(runtime::graph::RenderGraph& graph,
                                                             runtime::graph::BufferHandle hdr,
@@ -68,8 +72,12 @@ class FrameRenderer {
   // hook can read back the raw image while the output shows the denoised one.
   runtime::graph::BufferHandle last_raw() const { return raw_; }
 
-  // A new render size: the next frame has no history.
+  // A new output size (the internal size follows it): the next frame has no history.
   void resize(std::uint32_t width, std::uint32_t height);
+  // The internal (render) size the G-buffer, the integrator and the denoiser run at, clamped to
+  // 1..output size; below the output size upscale.temporal (lighting/upscale/upscaler.h)
+  // reconstructs the output. A change drops history like a resize.
+  void set_internal_size(std::uint32_t width, std::uint32_t height);
 
   // Whether the last add_frame kept temporal history (false on the first frame, after a camera
   // cut or a resize: it invalidated the graph's history).
@@ -79,8 +87,11 @@ class FrameRenderer {
   Integrator& integrator() { return *integrator_; }
   // What the last add_frame handed the integrator (handles valid for that graph frame only).
   const FrameInputs& last_inputs() const { return inputs_; }
+  // The internal (render) size; the output size the target gets.
   std::uint32_t width() const { return width_; }
   std::uint32_t height() const { return height_; }
+  std::uint32_t output_width() const { return output_width_; }
+  std::uint32_t output_height() const { return output_height_; }
   std::uint32_t frames_rendered() const { return frames_; }
 
  private:
@@ -89,12 +100,15 @@ class FrameRenderer {
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<Integrator> integrator_;
   std::unique_ptr<Denoiser> denoiser_;
+  std::unique_ptr<Upscaler> upscaler_;
   DenoiseSettings denoise_;
   FrameOutput frame_output_ = FrameOutput::Raw;
   runtime::graph::BufferHandle raw_;
   std::unique_ptr<runtime::ComputePipeline> output_;
   std::uint32_t width_;
   std::uint32_t height_;
+  std::uint32_t output_width_;
+  std::uint32_t output_height_;
   std::uint32_t seed_;
   std::uint32_t frames_ = 0;
   bool resized_ = false;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "engine/core/error.h"
 #include "engine/world/world.h"
@@ -36,6 +37,9 @@ struct HeadlessSession::State {
         session(device, target, renderer),
         raw(device) {
     renderer.set_output(o.output);
+    renderer.set_internal_size(
+        static_cast<std::uint32_t>(std::lround(o.render_scale * static_cast<float>(o.width))),
+        static_cast<std::uint32_t>(std::lround(o.render_scale * static_cast<float>(o.height))));
     renderer.set_denoise_settings(make_denoise_settings(o.integrator.preset, o.integrator.denoise));
   }
 
@@ -53,6 +57,9 @@ HeadlessSession::HeadlessSession(runtime::Device& device, runtime::ShaderLibrary
   if (options.width == 0 || options.height == 0) {
     throw InputError(
         fmt::format("render size {}x{} must be positive", options.width, options.height));
+  }
+  if (!(options.render_scale > 0.0f && options.render_scale <= 1.0f)) {
+    throw InputError(fmt::format("render scale {} must be in (0, 1]", options.render_scale));
   }
   state_ = std::make_unique<State>(device, shaders, std::move(level), options);
 }

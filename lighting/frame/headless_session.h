@@ -39,6 +39,9 @@ struct SessionOptions {
   // What render()'s `image` holds: the raw integrator image or the denoised one (denoiser knobs:
   // integrator.preset and integrator.denoise).
   FrameOutput output = FrameOutput::Raw;
+  // Internal size = round(scale x width/height) (0 < scale <= 1): below 1 the frame is upscaled
+  // to width x height by upscale.temporal; `raw` images stay at the internal size.
+  float render_scale = 1.0f;
 };
 
 class HeadlessSession {

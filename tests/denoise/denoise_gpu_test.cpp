@@ -5,12 +5,14 @@
 // (exact images), no NaN/Inf from non-finite input. The fixture checks validation ran clean.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 
 #include "lighting/denoise/denoise_settings.h"
+#include "lighting/upscale/upscaler.h"
 #include "runtime/graph/pass_context.h"
 #include "shared/scene.h"
 #include "tests/restir/restir_test_support.h"
@@ -44,18 +46,19 @@ class ImageIntegrator final : public lighting::Integrator {
     std::memcpy(upload_.mapped(), image.pixels.data(), image.pixels.size() * sizeof(float));
   }
   runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
-                                          const lighting::FrameInputs&,
+                                          const lighting::FrameInputs& inputs,
                                           runtime::graph::BufferHandle hdr) override {
     struct Copy {
       runtime::graph::BufferHandle src, dst;
     };
-    const VkDeviceSize bytes = upload_.size();
+    // The first width x height pixels of the image (all of it at the output size).
+    const VkDeviceSize bytes = VkDeviceSize{inputs.width} * inputs.height * 16;
     runtime::graph::ImportInfo host_written;
     host_written.read_only = true;
     host_written.initial = runtime::graph::AccessState{
         VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
     const runtime::graph::BufferHandle src =
-        graph.import_buffer(upload_.name(), upload_.handle(), {bytes}, host_written);
+        graph.import_buffer(upload_.name(), upload_.handle(), {upload_.size()}, host_written);
     return graph
         .add_pass<Copy>(
             "test.image", runtime::graph::PassKind::Transfer,
@@ -281,6 +284,57 @@ TEST_F(DenoiseGpuTest, NonFiniteInputNeverReachesOutput) {
     EXPECT_TRUE(test::all_finite(out)) << "frame " << f;
     EXPECT_GT(runtime::mean_rgb(out), 0.1) << "frame " << f;
   }
+}
+
+// upscale.temporal at scale 1 with no jitter reproduces its input exactly, frame after frame
+// (history valid from the second frame on, but there is nothing to reconstruct).
+TEST_F(DenoiseGpuTest, UpscalerAtScaleOneReproducesItsInput) {
+  auto integrator = std::make_unique<ImageIntegrator>(device, kW, kH);
+  ImageIntegrator* input = integrator.get();
+  lighting::FrameRenderer renderer(device, shaders, level, std::move(integrator), kW, kH, 1);
+  renderer.warm_up();
+  runtime::HeadlessTarget target(device, {.width = kW, .height = kH});
+  lighting::FrameSession session(device, target, renderer);
+  lighting::Upscaler upscaler(device, shaders);
+  upscaler.warm_up();
+  lighting::FrameHooks hooks;
+  hooks.hdr = [&](runtime::graph::RenderGraph& g, runtime::graph::BufferHandle hdr) {
+    return upscaler.add_pass(g, renderer.last_inputs(), hdr, kW, kH);
+  };
+  FrameSnapshot s = test::first_snapshot(level, kW, kH);
+  for (std::uint32_t f = 0; f < 3; ++f) {
+    if (f > 0) s = frozen(s);
+    const ImageRGBA32F in = noisy(0.4f, f);
+    input->set(in);
+    ASSERT_TRUE(session.render(s, hooks));
+    const ImageRGBA32F out = target.read_output();
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < in.pixels.size(); ++i) differ += out.pixels[i] != in.pixels[i];
+    EXPECT_EQ(differ, 0u) << "frame " << f;
+  }
+}
+
+// Below the output size the frame renderer upscales; a constant image stays constant (bilinear
+// resampling and the history clamp preserve it) and the output has the output size.
+TEST_F(DenoiseGpuTest, HalfInternalSizeUpscalesAConstantImageUnchanged) {
+  Run run = make_run();
+  run.harness->renderer().set_internal_size(kW / 2, kH / 2);
+  ASSERT_EQ(run.harness->renderer().width(), kW / 2);
+  run.input->set(constant(0.25f));  // the first kW/2 x kH/2 pixels are read: all 0.25
+  FrameSnapshot s = test::first_snapshot(level, kW, kH);
+  for (int f = 0; f < 3; ++f) {
+    if (f > 0) s = frozen(s);
+    const ImageRGBA32F out = run.harness->render(s);
+    ASSERT_EQ(out.width, kW);
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+      if (i % 4 != 3) worst = std::max(worst, std::abs(out.pixels[i] - 0.25f));
+    }
+    EXPECT_LT(worst, 1e-6f) << "frame " << f;
+  }
+  const auto& passes = run.harness->pass_ms();
+  EXPECT_TRUE(std::any_of(passes.begin(), passes.end(),
+                          [](const auto& p) { return p.first == "upscale.temporal"; }));
 }
 
 }  // namespace
