@@ -60,6 +60,12 @@ void draw_panel(PanelState& s) {
     return;
   }
   ImGui::Text("%s  %ux%u", s.level.c_str(), s.width, s.height);
+  if (s.target_ms > 0.0) {
+    ImGui::Text("internal %ux%u (%.0f%%), target %.1f ms", s.internal_width, s.internal_height,
+                s.width > 0 ? 100.0 * s.internal_width / s.width : 0.0, s.target_ms);
+  } else {
+    ImGui::Text("internal %ux%u (dynamic resolution off)", s.internal_width, s.internal_height);
+  }
   if (!s.frame_ms.empty()) {
     ImGui::Text("frame %.2f ms GPU, %.1f ms wall (%.1f fps)", s.frame_ms.back(),
                 s.wall_ms.empty() ? 0.0f : s.wall_ms.back(),

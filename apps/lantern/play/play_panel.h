@@ -41,7 +41,9 @@ struct PanelState {
   bool manual_camera = false;
   float camera_speed = 0.0f;
   float camera_position[3] = {0.0f, 0.0f, 0.0f};
-  std::uint32_t width = 0, height = 0;
+  std::uint32_t width = 0, height = 0;                    // the window's (output) size
+  std::uint32_t internal_width = 0, internal_height = 0;  // the render size (dynamic resolution)
+  double target_ms = 0.0;                                 // its frame-time target (0: off)
   std::string reload_status = "watching";
   std::string reload_error;  // last failed reload's messages
 };

@@ -152,15 +152,23 @@ PlayReport run_play(const PlayConfig& config) {
   runtime::DeviceOptions device_options{.selector = config.device};
   const auto glfw = runtime::enable_presentation(device_options);
   runtime::Device device(device_options);
+  // No size asked for: one the device can hold at an interactive rate (lavapipe renders on the
+  // CPU: 640x360 ran night_market at 0.9 fps).
+  const bool cpu_device = device.info().type == "cpu";
+  const std::uint32_t window_width = config.width > 0 ? config.width : cpu_device ? 320 : 1280;
+  const std::uint32_t window_height = config.height > 0 ? config.height : cpu_device ? 180 : 720;
   runtime::Window window({.title = fmt::format("lantern - {} - F1 panel, right mouse + WASD fly, "
                                                "F flashlight, Space spawn light, Esc quit",
                                                config.level),
-                          .width = config.width,
-                          .height = config.height});
+                          .width = window_width,
+                          .height = window_height});
   runtime::WindowTarget target(device, window);
   const auto fb = window.framebuffer_size();
-  std::uint32_t width = fb.width > 0 ? fb.width : config.width;
-  std::uint32_t height = fb.height > 0 ? fb.height : config.height;
+  std::uint32_t width = fb.width > 0 ? fb.width : window_width;
+  std::uint32_t height = fb.height > 0 ? fb.height : window_height;
+  DynamicResolution dynamic(config.dynamic_resolution);
+  auto last_frame = Clock::now();
+  bool have_last_frame = false;
 
   // Exposure: the log-average luminance of one headless frame of the level as authored.
   float exposure = 1.0f;
@@ -296,6 +304,30 @@ PlayReport run_play(const PlayConfig& config) {
           static_cast<float>(width) / static_cast<float>(height);
       world.request_camera_cut();
     }
+    // Dynamic resolution: the interval since the last rendered frame moves the internal size.
+    const auto frame_start = Clock::now();
+    if (have_last_frame) {
+      const double interval =
+          std::chrono::duration<double, std::milli>(frame_start - last_frame).count();
+      report.interval_ms.push_back(interval);
+      dynamic.update(interval);
+    }
+    last_frame = frame_start;
+    have_last_frame = true;
+    {
+      const auto [iw, ih] = dynamic.internal_size(width, height);
+      if (iw != bundle.renderer->width() || ih != bundle.renderer->height()) {
+        device.wait_idle();  // the graph's per-size resources may still be in flight
+        bundle.renderer->set_internal_size(iw, ih);
+        accumulated = 0;
+        if (report.frames > 0) ++report.resolution_changes;
+      }
+    }
+    const std::uint32_t iw = bundle.renderer->width(), ih = bundle.renderer->height();
+    if (report.frames == 0 || iw < report.min_internal_width) report.min_internal_width = iw;
+    if (report.frames == 0 || ih < report.min_internal_height) report.min_internal_height = ih;
+    report.max_internal_width = std::max(report.max_internal_width, iw);
+    report.max_internal_height = std::max(report.max_internal_height, ih);
 
     const auto now = Clock::now();
     const float wall_dt = std::chrono::duration<float>(now - last_wall).count();
@@ -438,6 +470,11 @@ PlayReport run_play(const PlayConfig& config) {
     report.wall_ms.push_back(wall_ms);
     panel.width = width;
     panel.height = height;
+    panel.internal_width = bundle.renderer->width();
+    panel.internal_height = bundle.renderer->height();
+    panel.target_ms = config.dynamic_resolution.target_ms;
+    report.output_width = width;
+    report.output_height = height;
     panel.accumulated = accumulated;
     panel.flashlight = lights.flashlight_on();
     panel.level_lights = lights.level_lights_on();
