@@ -54,6 +54,9 @@ constexpr graph::AccessState kAnyPriorUse{
     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
 constexpr float kLookRadiansPerUnit = 0.004f;
+// Frames before play's frame-interval report counts (pipelines settle, dynamic resolution finds
+// its size).
+constexpr std::size_t kWarmUpFrames = 30;
 
 // The renderer and everything built from one ShaderLibrary: replaced as a whole on an integrator
 // switch or a shader reload (the library outlives what was built from it).
@@ -503,6 +506,17 @@ PlayReport run_play(const PlayConfig& config) {
       "moved {:.2f} m, {} validation errors",
       report.frames, report.skipped, median(report.frame_ms), median(report.wall_ms),
       report.camera_travel, report.validation_errors);
+  if (config.dynamic_resolution.target_ms > 0.0 && report.interval_ms.size() > 2 * kWarmUpFrames) {
+    const std::vector<double> settled(report.interval_ms.begin() + kWarmUpFrames,
+                                      report.interval_ms.end());
+    const double m = median(settled);
+    log::info("play: frame interval after {} warm-up frames: median {:.1f} ms for a {:.1f} ms "
+              "target ({:+.0f}%), internal size {}x{}..{}x{} of {}x{}, {} changes",
+              kWarmUpFrames, m, config.dynamic_resolution.target_ms,
+              100.0 * (m / config.dynamic_resolution.target_ms - 1.0), report.min_internal_width,
+              report.min_internal_height, report.max_internal_width, report.max_internal_height,
+              report.output_width, report.output_height, report.resolution_changes);
+  }
   if (device.validation_enabled() && device.validation_errors() > 0)
     throw RuntimeError(fmt::format("play: {} validation errors", device.validation_errors()));
   return report;
