@@ -68,6 +68,7 @@ struct Row {
   std::vector<double> relmse;  // per evaluated frame, raw image
   std::vector<double> relmse_denoised;
   std::vector<double> mean_ratio_denoised;  // mean(denoised) / mean(reference) per frame
+  std::vector<double> mean_ratio_raw;       // mean(raw) / mean(reference) per frame
   // Mean squared change between the last two frames relative to the reference's mean square.
   double flicker_raw = 0.0;
   double flicker_denoised = 0.0;
@@ -228,6 +229,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
         const double ref_mean = runtime::mean_rgb(ref);
         row.mean_ratio_denoised.push_back(ref_mean > 0.0 ? runtime::mean_rgb(image) / ref_mean
                                                          : 0.0);
+        row.mean_ratio_raw.push_back(ref_mean > 0.0 ? runtime::mean_rgb(raw) / ref_mean : 0.0);
       }
       if (keep) {
         previous_raw = std::move(raw);
@@ -307,6 +309,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                       mean_of(r.relmse_denoised) > 0.0 ? r.mean_relmse() / mean_of(r.relmse_denoised)
                                                        : 0.0},
                      {"mean_ratio_denoised", mean_of(r.mean_ratio_denoised)},
+                     {"mean_ratio_raw", mean_of(r.mean_ratio_raw)},
                      {"flicker_raw", r.flicker_raw},
                      {"flicker_denoised", r.flicker_denoised},
                      {"flicker_ratio", flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0},
@@ -353,15 +356,15 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   for (std::size_t i : front) plot.line.emplace_back(rows[i].frame_ms, rows[i].mean_relmse());
   runtime::write_log_log_plot(out / "trade.png", plot);
 
-  std::printf("%-14s %-9s %10s %12s %6s %10s %12s %8s %10s %10s\n", "config", "integr.",
-              "frame ms", "relMSE", "pareto", "denoise ms", "denoised", "mean", "flicker",
-              "x ref");
+  std::printf("%-14s %-9s %10s %12s %6s %10s %12s %8s %8s %10s %10s\n", "config", "integr.",
+              "frame ms", "relMSE", "pareto", "denoise ms", "denoised", "mean", "raw mean",
+              "flicker", "x ref");
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
-    std::printf("%-14s %-9s %10.2f %12.4g %6s %10.2f %12.4g %8.4f %10.4g %10.3g\n",
+    std::printf("%-14s %-9s %10.2f %12.4g %6s %10.2f %12.4g %8.4f %8.4f %10.4g %10.3g\n",
                 r.config.name.c_str(), r.config.integrator.name.c_str(), r.frame_ms,
                 r.mean_relmse(), on_front(i) ? "*" : "", r.denoise_ms, mean_of(r.relmse_denoised),
-                mean_of(r.mean_ratio_denoised), r.flicker_denoised,
+                mean_of(r.mean_ratio_denoised), mean_of(r.mean_ratio_raw), r.flicker_denoised,
                 flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0);
   }
   std::printf("reference flicker %.4g (frames %u-%u)\n", flicker_ref, flicker_frame,
