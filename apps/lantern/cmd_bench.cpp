@@ -106,6 +106,9 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
 
   std::vector<double> calibration_ms = {calibration.run_ms()};
   std::vector<double> frame_ms, wall_ms, update_ms;
+  // Per frame, the sum of the denoise.* and of the upscale.* passes (à-trous runs several
+  // passes of one name; `passes` summarises each instance).
+  std::vector<double> denoise_ms, upscale_ms;
   std::map<std::string, std::vector<double>> pass_ms, system_ms;
   std::vector<std::string> pass_order;
   perf::ChromeTrace trace;
@@ -121,10 +124,15 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
     frame_ms.push_back(t.gpu_ms);
     wall_ms.push_back(t.wall_ms);
     update_ms.push_back(t.scene_update_ms);
+    double denoise = 0.0, upscale = 0.0;
     for (const auto& [name, ms] : t.passes) {
       if (!pass_ms.contains(name)) pass_order.push_back(name);
       pass_ms[name].push_back(ms);
+      if (name.rfind("denoise.", 0) == 0) denoise += ms;
+      if (name.rfind("upscale.", 0) == 0) upscale += ms;
     }
+    denoise_ms.push_back(denoise);
+    upscale_ms.push_back(upscale);
     for (const auto& [name, ms] : t.systems) system_ms[name].push_back(ms);
 
     // Trace: systems laid out in run order inside the step (exact with one worker thread), the
@@ -184,6 +192,12 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
               m.frame.p99, m.frame.max);
   std::printf("%-24s %9.3f %9.3f %9.3f %9.3f\n", "frame (wall)", wall.median, wall.p95, wall.p99,
               wall.max);
+  if (perf::summarize(denoise_ms).median > 0.0 || perf::summarize(upscale_ms).median > 0.0) {
+    const double dn = perf::summarize(denoise_ms).median, up = perf::summarize(upscale_ms).median;
+    std::printf("denoise %.3f ms + upscale %.3f ms per frame = %.1f%% of the frame (internal %ux%u)\n",
+                dn, up, m.frame.median > 0.0 ? 100.0 * (dn + up) / m.frame.median : 0.0,
+                session.renderer().width(), session.renderer().height());
+  }
   std::printf("calibration %.3f ms (median of %zu); frame = %.2fx calibration\n", m.calibration_ms,
               calibration_ms.size(), m.frame.median / m.calibration_ms);
   std::printf("rays/s: primary %.3g (raster), shadow %.3g (visibility %s)\n", primary_rps,
@@ -213,6 +227,8 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"warmup", o.warmup},
         {"seed", common.seed},
         {"frame_ms", summary_json(m.frame)},
+        {"denoise_ms", perf::summarize(denoise_ms).median},
+        {"upscale_ms", perf::summarize(upscale_ms).median},
         {"frame_wall_ms", summary_json(wall)},
         {"scene_update_ms", summary_json(perf::summarize(update_ms))},
         {"passes", passes},
