@@ -84,21 +84,27 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
 
   if (filter) {
     // denoise.variance, then the à-trous iterations ping-ponging two scratch buffers.
-    BufferHandle current = variance_.add(graph, inputs, push,
-                                         {{"accum_in", accum},
-                                          {"guide", guide},
-                                          {"moments_in", moments},
-                                          {"accum_out", graph.create_buffer("denoise.variance", vec4s),
-                                           DenoisePass::Buffer::Write}})[0];
+    const std::vector<BufferHandle> filtered = variance_.add(
+        graph, inputs, push,
+        {{"accum_in", accum},
+         {"guide", guide},
+         {"moments_in", moments},
+         {"accum_out", graph.create_buffer("denoise.variance", vec4s), DenoisePass::Buffer::Write},
+         {"luminance_out", graph.create_buffer("denoise.luminance", {pixels * sizeof(float)}),
+          DenoisePass::Buffer::Write}});
+    BufferHandle current = filtered[0];
+    const BufferHandle smooth_luminance = filtered[1];
     BufferHandle scratch[2];
     for (std::uint32_t i = 0; i < s.atrous_iterations; ++i) {
       gpu::DenoisePush p = push;
       p.step = 1u << i;
+      if (i == 0) p.flags |= gpu::kDenoiseFlagSmoothLuminance;
       BufferHandle& target = scratch[i % 2];
       if (!target) target = graph.create_buffer(i % 2 ? "denoise.atrous.a" : "denoise.atrous.b", vec4s);
       target = atrous_.add(graph, inputs, p,
                            {{"accum_in", current},
                             {"guide", guide},
+                            {"luminance_in", smooth_luminance},
                             {"accum_out", target, DenoisePass::Buffer::Write}})[0];
       current = target;
     }

@@ -5,7 +5,8 @@
 // filtered standard deviation (3x3 Gaussian of the variance). Weights are normalised (a constant
 // image stays constant); variance propagates as sum w^2 var / (sum w)^2. Sky pixels pass through.
 // (3x3 rather than SVGF's 5x5: 9 taps instead of 25, the same reach with one more iteration.)
-// Reads: accum_in (rgb illumination, a variance), guide, gbuffer position (the centre's depth).
+// Reads: accum_in (rgb illumination, a variance), guide, luminance_in (denoise.variance's 3x3
+// means, iteration 0), gbuffer position (the centre's depth).
 // Writes: accum_out.
 // History: none. Dispatch: one thread per pixel, 8x8 groups.
 #version 460
@@ -18,6 +19,13 @@ layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_position;
 layout(std430, binding = 1) readonly buffer Guide { vec4 p[]; } guide;
 layout(std430, binding = 2) readonly buffer AccumIn { vec4 p[]; } accum_in;
 layout(std430, binding = 3) writeonly buffer AccumOut { vec4 p[]; } accum_out;
+layout(std430, binding = 4) readonly buffer LuminanceIn { float l[]; } luminance_in;
+
+// The luminance the edge stop compares: denoise.variance's 3x3 means in iteration 0, else the
+// input's own (already smoothed by the iterations before).
+float stop_luminance(uint index, vec3 rgb) {
+  return (push.flags & kDenoiseFlagSmoothLuminance) != 0u ? luminance_in.l[index] : luminance(rgb);
+}
 
 const float kKernel[2] = float[2](0.5, 0.25);
 
@@ -48,7 +56,7 @@ void main() {
   }
   vec3 n = denoise_guide_normal(g);
   float depth = imageLoad(gbuffer_position, pixel).w;
-  float l = luminance(centre.rgb);
+  float l = stop_luminance(index, centre.rgb);
   float lum_scale = push.phi_luminance * sqrt(max(min(filtered_variance(pixel), centre.a), 0.0)) + 1e-6;
   int step = int(push.step);
 
@@ -67,7 +75,7 @@ void main() {
     vec4 c = accum_in.p[qi];
     float w = kKernel[abs(o.x)] * kKernel[abs(o.y)] *
               denoise_geometry_weight(g, n, depth, gq, float(step),
-                                      abs(luminance(c.rgb) - l) / lum_scale);
+                                      abs(stop_luminance(qi, c.rgb) - l) / lum_scale);
     sum += w * c.rgb;
     sum_var += w * w * c.a;
     sum_w += w;

@@ -21,6 +21,7 @@ LANTERN_CONST float kDenoiseMinAlbedo = 0.02f;
 
 // DenoisePush.flags.
 LANTERN_CONST uint kDenoiseFlagHistoryValid = 1u;  // the graph handed last frame's history
+LANTERN_CONST uint kDenoiseFlagSmoothLuminance = 2u;  // denoise.atrous: stop on 3x3 luminance
 
 struct DenoisePush {
   uint width;
