@@ -18,6 +18,23 @@
 
 namespace lantern::lighting {
 
+namespace {
+
+// Radical inverse of `index` in `base`: the Halton sequence's coordinate.
+float halton(std::uint32_t index, std::uint32_t base) {
+  float f = 1.0f, r = 0.0f;
+  for (; index > 0; index /= base) {
+    f /= static_cast<float>(base);
+    r += f * static_cast<float>(index % base);
+  }
+  return r;
+}
+
+// Sub-pixel offsets of the G-buffer samples: Halton (2, 3) points 1..8, centred on the pixel.
+constexpr std::uint32_t kJitterPhases = 8;
+
+}  // namespace
+
 FrameOutput parse_frame_output(std::string_view text) {
   if (text == "raw") return FrameOutput::Raw;
   if (text == "denoised") return FrameOutput::Denoised;
@@ -101,8 +118,17 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   const FrameCounts counts{scene_->light_count(), scene_->instance_count(),
                            scene_->emissive_triangles(), scene_->previous_light_count(),
                            scene_->scene_radius()};
-  scene_->set_frame_constants(
-      make_frame_constants(snapshot, width_, height_, frames_, seed_, counts, history_valid));
+  const bool upscaling = width_ != output_width_ || height_ != output_height_;
+  const bool jitter = jitter_mode_ == Jitter::On || (jitter_mode_ == Jitter::WhenUpscaling && upscaling);
+  previous_jitter_ = history_valid ? jitter_ : glm::vec2(0.0f);
+  jitter_ = jitter ? glm::vec2(halton(frames_ % kJitterPhases + 1, 2),
+                               halton(frames_ % kJitterPhases + 1, 3)) - 0.5f
+                   : glm::vec2(0.0f);
+  if (!history_valid) previous_jitter_ = jitter_;
+  gpu::FrameConstants constants =
+      make_frame_constants(snapshot, width_, height_, frames_, seed_, counts, history_valid);
+  constants.jitter = glm::vec4(jitter_, previous_jitter_);
+  scene_->set_frame_constants(constants);
   // The one decision on history: the graph drops it; every pass then sees invalid history handles.
   if (!history_valid) graph.invalidate_history();
   history_valid_ = history_valid;
@@ -128,7 +154,7 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   raw_ = hdr;
   if (frame_output_ == FrameOutput::Denoised) hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr);
   if (width_ != output_width_ || height_ != output_height_) {
-    hdr = upscaler_->add_pass(graph, inputs_, hdr, output_width_, output_height_);
+    hdr = upscaler_->add_pass(graph, inputs_, hdr, output_width_, output_height_, jitter_);
   }
   ++frames_;
   resized_ = false;

@@ -72,6 +72,14 @@ class FrameRenderer {
   // hook can read back the raw image while the output shows the denoised one.
   runtime::graph::BufferHandle last_raw() const { return raw_; }
 
+  // Sub-pixel jitter of the G-buffer's samples (Halton 2,3 over 8 frames, FrameConstants.jitter):
+  // what upscale.temporal reconstructs from. Default: on exactly while the internal size is
+  // below the output size; force it on or off for tests. Motion vectors follow it (gbuffer.h).
+  enum class Jitter : std::uint8_t { WhenUpscaling, On, Off };
+  void set_jitter(Jitter jitter) { jitter_mode_ = jitter; }
+  // This frame's sample offset from the pixel centres (pixels; 0 when off), after add_frame.
+  glm::vec2 jitter() const { return jitter_; }
+
   // A new output size (the internal size follows it): the next frame has no history.
   void resize(std::uint32_t width, std::uint32_t height);
   // The internal (render) size the G-buffer, the integrator and the denoiser run at, clamped to
@@ -103,6 +111,9 @@ class FrameRenderer {
   std::unique_ptr<Upscaler> upscaler_;
   DenoiseSettings denoise_;
   FrameOutput frame_output_ = FrameOutput::Raw;
+  Jitter jitter_mode_ = Jitter::WhenUpscaling;
+  glm::vec2 jitter_{0.0f};
+  glm::vec2 previous_jitter_{0.0f};
   runtime::graph::BufferHandle raw_;
   std::unique_ptr<runtime::ComputePipeline> output_;
   std::uint32_t width_;

@@ -29,8 +29,8 @@ gpu::UpscalePush Upscaler::make_push(const FrameInputs& inputs, std::uint32_t ou
 
 BufferHandle Upscaler::add_pass(runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
                                 BufferHandle hdr, std::uint32_t out_width,
-                                std::uint32_t out_height) const {
-  gpu::UpscalePush push = make_push(inputs, out_width, out_height, glm::vec2(0.0f));
+                                std::uint32_t out_height, glm::vec2 jitter) const {
+  gpu::UpscalePush push = make_push(inputs, out_width, out_height, jitter);
   BufferHandle out = graph.create_history_buffer(
       "upscale.color", {VkDeviceSize{out_width} * out_height * 4 * sizeof(float)});
   const BufferHandle history = graph.history(out);

@@ -4,7 +4,6 @@
 // the current 3x3 neighbourhood. Its history ("upscale.color", output size) is the graph's: a
 // cut, a resize or a change of internal size leaves none. The frame renderer adds it when the
 // internal size differs from the output size (lighting/frame/frame_renderer.h).
-// Left for later: sub-pixel jitter of the G-buffer (UpscalePush.jitter is 0 this round).
 #pragma once
 
 #include <cstdint>
@@ -29,12 +28,14 @@ class Upscaler {
   static gpu::UpscalePush make_push(const FrameInputs& inputs, std::uint32_t out_width,
                                     std::uint32_t out_height, glm::vec2 jitter);
 
-  // Adds upscale.temporal: `hdr` (inputs' size) -> a new out_width x out_height HDR buffer.
+  // Adds upscale.temporal: `hdr` (inputs' size, its samples `jitter` pixels off the pixel
+  // centres: FrameRenderer::jitter()) -> a new out_width x out_height HDR buffer.
   [[nodiscard]] runtime::graph::BufferHandle add_pass(runtime::graph::RenderGraph& graph,
                                                       const FrameInputs& inputs,
                                                       runtime::graph::BufferHandle hdr,
                                                       std::uint32_t out_width,
-                                                      std::uint32_t out_height) const;
+                                                      std::uint32_t out_height,
+                                                      glm::vec2 jitter = glm::vec2(0.0f)) const;
 
  private:
   runtime::ComputePipeline pipeline_;
