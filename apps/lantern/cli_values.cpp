@@ -8,6 +8,7 @@
 #include "apps/lantern/commands.h"
 #include "engine/core/error.h"
 #include "engine/core/log.h"
+#include "lighting/denoise/denoise_settings.h"
 #include "runtime/core/device.h"
 
 namespace lantern::app {
@@ -39,9 +40,11 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
   config.name = lighting::find_integrator(integrator).name;
   config.preset = common.preset;
   const std::string& name = config.name;
+  const std::string denoise = "denoise.";
   for (const auto& [key, value] : level.settings) {
     const std::string prefix = name + ".";
     if (key.rfind(prefix, 0) == 0) config.settings.emplace_back(key.substr(prefix.size()), value);
+    if (key.rfind(denoise, 0) == 0) config.denoise.emplace_back(key.substr(denoise.size()), value);
   }
   for (const std::string& s : common.settings) {
     const std::size_t eq = s.find('=');
@@ -49,6 +52,10 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
       throw InputError(fmt::format("--set {}: expected KEY=VALUE", s));
     }
     if (s.substr(0, eq) == "visibility") continue;  // the frame's: visibility_setting()
+    if (s.rfind(denoise, 0) == 0) {  // the frame's denoiser, whichever integrator
+      config.denoise.emplace_back(s.substr(denoise.size(), eq - denoise.size()), s.substr(eq + 1));
+      continue;
+    }
     const std::optional<std::string> key = key_for(s.substr(0, eq), name);
     if (!key) {
       log::warn("--set {}: not a {} setting, ignored", s, name);
@@ -57,6 +64,7 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
     config.settings.emplace_back(*key, s.substr(eq + 1));
   }
   lighting::validate_integrator_config(config);
+  (void)lighting::make_denoise_settings(config.preset, config.denoise);  // InputError on a bad key
   config.visibility = visibility_setting(common);
   // rayquery on a device without it: refused before any device is created.
   if (config.visibility == lighting::VisibilitySetting::RayQuery)

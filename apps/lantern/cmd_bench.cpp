@@ -48,6 +48,8 @@ struct BenchOptions {
   std::string trace;
   std::string budget;
   bool startup = false;
+  std::string output = "raw";  // --output raw|denoised: time the denoise.* chain too
+  float render_scale = 1.0f;   // --render-scale: internal size / --size (upscale.temporal)
 };
 
 // Calibration runs: one before the frames, then one every kCalibrationEvery frames.
@@ -182,8 +184,12 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
   startup.device_ms = lap();
   runtime::CalibrationWorkload calibration(device, shaders);
   startup.calibration_ms = lap();
-  const lighting::SessionOptions session_options{
-      .integrator = config, .width = width, .height = height, .seed = common.seed};
+  const lighting::SessionOptions session_options{.integrator = config,
+                                                 .width = width,
+                                                 .height = height,
+                                                 .seed = common.seed,
+                                                 .output = lighting::parse_frame_output(o.output),
+                                                 .render_scale = o.render_scale};
   lighting::HeadlessSession session(device, shaders, level, session_options);
   startup.session_ms = lap();
   session.warm_up();
@@ -203,6 +209,9 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
 
   std::vector<double> calibration_ms = {calibration.run_ms()};
   std::vector<double> frame_ms, wall_ms, update_ms;
+  // Per frame, the sum of the denoise.* and of the upscale.* passes (à-trous runs several
+  // passes of one name; `passes` summarises each instance).
+  std::vector<double> denoise_ms, upscale_ms;
   std::map<std::string, std::vector<double>> pass_ms, system_ms;
   std::vector<std::string> pass_order;
   perf::ChromeTrace trace;
@@ -218,10 +227,15 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
     frame_ms.push_back(t.gpu_ms);
     wall_ms.push_back(t.wall_ms);
     update_ms.push_back(t.scene_update_ms);
+    double denoise = 0.0, upscale = 0.0;
     for (const auto& [name, ms] : t.passes) {
       if (!pass_ms.contains(name)) pass_order.push_back(name);
       pass_ms[name].push_back(ms);
+      if (name.rfind("denoise.", 0) == 0) denoise += ms;
+      if (name.rfind("upscale.", 0) == 0) upscale += ms;
     }
+    denoise_ms.push_back(denoise);
+    upscale_ms.push_back(upscale);
     for (const auto& [name, ms] : t.systems) system_ms[name].push_back(ms);
 
     // Trace: systems laid out in run order inside the step (exact with one worker thread), the
@@ -281,6 +295,12 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
               m.frame.p99, m.frame.max);
   std::printf("%-24s %9.3f %9.3f %9.3f %9.3f\n", "frame (wall)", wall.median, wall.p95, wall.p99,
               wall.max);
+  if (perf::summarize(denoise_ms).median > 0.0 || perf::summarize(upscale_ms).median > 0.0) {
+    const double dn = perf::summarize(denoise_ms).median, up = perf::summarize(upscale_ms).median;
+    std::printf("denoise %.3f ms + upscale %.3f ms per frame = %.1f%% of the frame (internal %ux%u)\n",
+                dn, up, m.frame.median > 0.0 ? 100.0 * (dn + up) / m.frame.median : 0.0,
+                session.renderer().width(), session.renderer().height());
+  }
   std::printf("calibration %.3f ms (median of %zu); frame = %.2fx calibration\n", m.calibration_ms,
               calibration_ms.size(), m.frame.median / m.calibration_ms);
   std::printf("rays/s: primary %.3g (raster), shadow %.3g (visibility %s)\n", primary_rps,
@@ -304,6 +324,9 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"integrator", integrator},
         {"preset", common.preset},
         {"settings", config.settings},
+        {"output", o.output},
+        {"render_scale", o.render_scale},
+        {"internal_size", {session.renderer().width(), session.renderer().height()}},
         {"size", {width, height}},
         {"device", device.info().name},
         {"visibility", lighting::visibility_backend_name(visibility.backend)},
@@ -312,6 +335,8 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"warmup", o.warmup},
         {"seed", common.seed},
         {"frame_ms", summary_json(m.frame)},
+        {"denoise_ms", perf::summarize(denoise_ms).median},
+        {"upscale_ms", perf::summarize(upscale_ms).median},
         {"frame_wall_ms", summary_json(wall)},
         {"scene_update_ms", summary_json(perf::summarize(update_ms))},
         {"passes", passes},
@@ -366,6 +391,14 @@ void add_bench_command(CLI::App& root, CommonOptions& options) {
       ->required();
   add_integrator_option(*cmd, opts->integrator)->capture_default_str();
   cmd->add_option("--warmup", opts->warmup, "Frames rendered before timing")
+      ->capture_default_str();
+  cmd->add_option("--output", opts->output,
+                  "raw (the integrator's image) or denoised (adds the denoise.* passes)")
+      ->check(CLI::IsMember({"raw", "denoised"}))
+      ->capture_default_str();
+  cmd->add_option("--render-scale", opts->render_scale,
+                  "Internal size as a fraction of --size; below 1 upscale.temporal reconstructs")
+      ->check(CLI::Range(0.1f, 1.0f))
       ->capture_default_str();
   cmd->add_option("--json", opts->json, "Write the statistics as JSON to FILE");
   cmd->add_option("--trace", opts->trace,

@@ -22,6 +22,7 @@
 #include "engine/core/log.h"
 #include "engine/level/level_loader.h"
 #include "engine/world/world.h"
+#include "lighting/denoise/denoise_settings.h"
 #include "lighting/frame/headless_session.h"
 #include "lighting/integrators/auto_exposure.h"
 #include "runtime/core/device.h"
@@ -41,6 +42,7 @@ struct CaptureOptions {
   std::string format = "exr";
   std::string video;
   float exposure = 0.0f;  // PNG/video: 0 = automatic from the first frame, then fixed
+  std::string output;     // --output raw|denoised; empty: raw for EXR frames, denoised for PNG/video
 };
 
 bool have_ffmpeg() { return std::system("command -v ffmpeg >/dev/null 2>&1") == 0; }
@@ -97,6 +99,15 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
                                  level->source.string()));
   }
   const lighting::IntegratorConfig config = integrator_config(o.integrator, common, *level);
+  // What the frames and the video show: --output, else raw EXR frames and a denoised PNG/video.
+  using lighting::FrameOutput;
+  const FrameOutput frame_output = !o.output.empty() ? lighting::parse_frame_output(o.output)
+                                   : o.format == "png" ? FrameOutput::Denoised
+                                                       : FrameOutput::Raw;
+  const FrameOutput video_output =
+      !o.output.empty() ? frame_output : FrameOutput::Denoised;
+  const bool denoise = frame_output == FrameOutput::Denoised ||
+                       (!o.video.empty() && video_output == FrameOutput::Denoised);
 
   runtime::Device device({.selector = common.device});
   runtime::ShaderLibrary shaders;
@@ -106,7 +117,8 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
                                      .width = width,
                                      .height = height,
                                      .seed = common.seed,
-                                     .fixed_dt = 1.0 / fps});
+                                     .fixed_dt = 1.0 / fps,
+                                     .output = denoise ? FrameOutput::Denoised : FrameOutput::Raw});
   if (!o.path.empty()) session.world().set_camera_path(o.path);  // InputError when unknown
   session.warm_up();
 
@@ -119,14 +131,22 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
   std::vector<std::string> columns;
   float exposure = o.exposure;
   const bool png_frames = o.format == "png";
-  const bool video_pngs = !o.video.empty() && !png_frames;  // encode from tonemapped PNGs
+  // Encode from separate tonemapped PNGs unless the frames are already the video's PNGs.
+  const bool video_pngs = !o.video.empty() && !(png_frames && frame_output == video_output);
   if (video_pngs) fs::create_directories(staging.path / "video_frames");
   Progress progress("capture", frames, common.quiet);
   for (std::uint32_t k = 0; k < frames; ++k) {
-    runtime::ImageRGBA32F image;
-    const lighting::FrameTiming t = session.render(session.step_world(), &image);
+    runtime::ImageRGBA32F shown;  // the session's output (denoised when anything needs it)
+    runtime::ImageRGBA32F raw;
+    const bool need_raw = denoise && (frame_output == FrameOutput::Raw ||
+                                      (video_pngs && video_output == FrameOutput::Raw));
+    const lighting::FrameTiming t =
+        session.render(session.step_world(), &shown, need_raw ? &raw : nullptr);
+    const runtime::ImageRGBA32F& image = frame_output == FrameOutput::Raw && need_raw ? raw : shown;
+    const runtime::ImageRGBA32F& video_image =
+        video_output == FrameOutput::Raw && need_raw ? raw : shown;
     if (k == 0) {
-      if (exposure <= 0.0f) exposure = lighting::auto_exposure(image);
+      if (exposure <= 0.0f) exposure = lighting::auto_exposure(video_image);
       csv << "frame,frame_ms,frame_wall_ms";
       for (const auto& [name, ms] : t.passes) {
         columns.push_back(name);
@@ -142,7 +162,7 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
     runtime::write_image(staging.path / name, image, exposure);
     if (video_pngs) {
       runtime::write_image(staging.path / "video_frames" / fmt::format("frame_{:04}.png", k),
-                           image, exposure);
+                           video_image, exposure);
     }
     progress.update(k + 1, fmt::format("{:.1f} ms", t.gpu_ms));
   }
@@ -165,6 +185,17 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
       {"fixed_dt", 1.0 / fps},
       {"seed", common.seed},
       {"format", o.format},
+      {"output", lighting::frame_output_name(frame_output)},
+      {"video_output", o.video.empty() ? nlohmann::json(nullptr)
+                                       : nlohmann::json(lighting::frame_output_name(video_output))},
+      {"denoise", [&] {
+         nlohmann::json d = nlohmann::json::object();
+         for (const auto& [key, value] : lighting::describe_denoise_settings(
+                  lighting::make_denoise_settings(config.preset, config.denoise))) {
+           d[key] = value;
+         }
+         return d;
+       }()},
       {"exposure", exposure},
       {"device", {{"name", device.info().name},
                   {"driver", device.info().driver},
@@ -210,6 +241,10 @@ void add_capture_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("--format", opts->format, "exr (linear) or png (tonemapped)")
       ->capture_default_str();
   cmd->add_option("--video", opts->video, "Also encode an .mp4 with ffmpeg");
+  cmd->add_option("--output", opts->output,
+                  "raw or denoised frames and video; default raw EXR frames, denoised PNG "
+                  "frames and video")
+      ->check(CLI::IsMember({"raw", "denoised"}));
   cmd->add_option("--exposure", opts->exposure,
                   "PNG/video exposure (default: automatic from the first frame, then fixed)")
       ->check(CLI::Range(1e-6f, 1e6f));

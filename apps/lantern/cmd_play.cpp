@@ -18,14 +18,17 @@ struct PlayOptions {
   std::string integrator = "restir";
   std::string script;
   bool panel = false;
+  double target_ms = 33.0;
+  bool size_given = false;  // --size on the command line (else the device picks)
 };
 
 void play(const PlayOptions& options, const CommonOptions& common) {
   PlayConfig config;
   config.level = options.level;
   const auto [width, height] = parse_size(common.size);
-  config.width = width;
-  config.height = height;
+  config.width = options.size_given ? width : 0;
+  config.height = options.size_given ? height : 0;
+  config.dynamic_resolution.target_ms = options.target_ms;
   config.seed = common.seed;
   config.device = common.device;
   config.max_frames = common.frames > 0 ? static_cast<std::uint64_t>(common.frames) : 0;
@@ -48,8 +51,16 @@ void add_play_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("--script", play_options->script,
                   "Timed input events, e.g. 'frame 2 key W down' (see play_input.h)");
   cmd->add_flag("--panel", play_options->panel, "Start with the F1 panel open");
+  cmd->add_option("--target-ms", play_options->target_ms,
+                  "Frame-time target: dynamic resolution moves the internal size between 25% "
+                  "and the window to hold it (0: off)")
+      ->check(CLI::Range(0.0, 10000.0))
+      ->capture_default_str();
   add_common_flags(*cmd, options);
-  cmd->callback([play_options, &options] { play(*play_options, options); });
+  cmd->callback([play_options, &options, cmd] {
+    play_options->size_given = cmd->count("--size") > 0;
+    play(*play_options, options);
+  });
 }
 
 }  // namespace lantern::app

@@ -36,7 +36,15 @@ struct RenderOptions {
   std::uint32_t first_frame = 0;
   std::uint32_t spp = 0;
   bool still = false;  // --static: every frame renders the first rendered frame's snapshot
+  std::string output;  // --output raw|denoised; empty: raw for EXR, denoised for PNG
 };
+
+// --output, or the default for the file type: EXR (and a directory of EXRs) raw, PNG denoised.
+lighting::FrameOutput frame_output(const RenderOptions& o) {
+  if (!o.output.empty()) return lighting::parse_frame_output(o.output);
+  return std::filesystem::path(o.out).extension() == ".png" ? lighting::FrameOutput::Denoised
+                                                           : lighting::FrameOutput::Raw;
+}
 
 // Whether --out names one image file (.exr/.png) or a directory; InputError for anything else
 // and for one file when several images result.
@@ -98,6 +106,7 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
   request.frames = common.frames > 0 ? static_cast<std::uint32_t>(common.frames) : 1u;
   request.average = o.average;
   request.seed = common.seed;
+  request.output = frame_output(o);
   // Refuse a bad --out before any work.
   require_writable_parent(o.out, out_is_file(o.out, request.average ? 1u : request.frames));
   const auto level = std::make_shared<const Level>(load_level_argument(o.level));
@@ -111,9 +120,10 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
   const lighting::OfflineRenderResult result =
       lighting::render_offline(device, shaders, level, request);
   write_images(o.out, result.images, o.exposure);
-  log::info("{} {} frame(s) from frame {} at {}x{}: median {:.2f} ms/frame (GPU); wrote {}",
+  log::info("{} {} frame(s) from frame {} at {}x{}: median {:.2f} ms/frame (GPU); wrote {} ({})",
             request.integrator.name, request.frames, request.first_frame,
-            width, height, result.median_frame_ms(), o.out);
+            width, height, result.median_frame_ms(), o.out,
+            lighting::frame_output_name(request.output));
   // Median GPU ms per pass, in the order of the first frame.
   if (!result.pass_ms.empty()) {
     std::string passes;
@@ -160,6 +170,10 @@ void add_render_command(CLI::App& root, CommonOptions& options) {
   cmd->add_flag("--static", opts->still,
                 "Render every frame from the first rendered frame's snapshot (no animation)");
   cmd->add_option("--out", opts->out, "Output directory, or one .exr/.png file")->required();
+  cmd->add_option("--output", opts->output,
+                  "raw (the integrator's unbiased image) or denoised; default raw for EXR, "
+                  "denoised for PNG")
+      ->check(CLI::IsMember({"raw", "denoised"}));
   cmd->add_option("--exposure", opts->exposure, "PNG exposure multiplier (default: automatic)")
       ->check(CLI::Range(1e-6f, 1e6f));
   cmd->callback([opts, &options] { run_render(*opts, options); });

@@ -54,17 +54,41 @@ struct Config {
   bool baseline = false;  // the baseline row (the others are ReSTIR presets and variants)
 };
 
+double mean_of(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double e : v) s += e;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
 struct Row {
   Config config;
-  double frame_ms = 0.0;
+  double frame_ms = 0.0;       // GPU ms of the raw frame (the denoise.* passes not included)
   double frame_wall_ms = 0.0;
-  std::vector<double> relmse;  // per evaluated frame
-  double mean_relmse() const {
-    double s = 0.0;
-    for (double e : relmse) s += e;
-    return relmse.empty() ? 0.0 : s / static_cast<double>(relmse.size());
-  }
+  double denoise_ms = 0.0;     // GPU ms of the denoise.* passes
+  std::vector<double> relmse;  // per evaluated frame, raw image
+  std::vector<double> relmse_denoised;
+  std::vector<double> mean_ratio_denoised;  // mean(denoised) / mean(reference) per frame
+  std::vector<double> mean_ratio_raw;       // mean(raw) / mean(reference) per frame
+  // Mean squared change between the last two frames relative to the reference's mean square.
+  double flicker_raw = 0.0;
+  double flicker_denoised = 0.0;
+  double mean_relmse() const { return mean_of(relmse); }
 };
+
+// Mean over pixels and RGB of (a - b)^2 over the mean of reference^2: the frame-to-frame change
+// of a sequence, comparable between the images a preset makes and the reference's own.
+double frame_change(const runtime::ImageRGBA32F& a, const runtime::ImageRGBA32F& b,
+                    const runtime::ImageRGBA32F& reference) {
+  double change = 0.0;
+  double power = 0.0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const double d = static_cast<double>(a.pixels[i]) - b.pixels[i];
+    change += d * d;
+    power += static_cast<double>(reference.pixels[i]) * reference.pixels[i];
+  }
+  return power > 0.0 ? change / power : 0.0;
+}
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
@@ -132,13 +156,18 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   const std::vector<Config> cfgs = configs(o, common, *level);
   const std::vector<std::uint32_t> ks = eval_frames(frames, o.eval_frames);
 
+  // Flicker: the frame-to-frame change between the last two frames, of each preset's raw and
+  // denoised images and of the references (frame frames-2 gets its own reference).
+  const bool flicker = frames >= 2;
+  const std::uint32_t flicker_frame = frames - 2;
   runtime::Device device({.selector = common.device});
   runtime::ShaderLibrary shaders;
-  Progress progress("trade", ks.size() + cfgs.size() * frames, common.quiet);
+  Progress progress("trade", ks.size() + (flicker ? 1 : 0) + cfgs.size() * frames, common.quiet);
   std::uint64_t done = 0;
 
   // References first (cached on disk: later runs skip the expensive part).
   std::vector<runtime::ImageRGBA32F> references;
+  runtime::ImageRGBA32F flicker_reference;
   lighting::ReferenceRequest ref_request{.width = width,
                                          .height = height,
                                          .frame = 0,
@@ -152,25 +181,63 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
     progress.update(++done, fmt::format("reference frame {}{}", k, ref.cache_hit ? " (cached)" : ""));
     references.push_back(std::move(ref.image));
   }
+  if (flicker) {
+    ref_request.frame = flicker_frame;
+    lighting::ReferenceImage ref = lighting::reference_image(device, shaders, level, ref_request);
+    progress.update(++done, fmt::format("reference frame {}{}", flicker_frame,
+                                        ref.cache_hit ? " (cached)" : ""));
+    flicker_reference = std::move(ref.image);
+  }
+  const double flicker_ref =
+      flicker ? frame_change(references.back(), flicker_reference, references.back()) : 0.0;
 
   std::vector<Row> rows;
   for (const Config& cfg : cfgs) {
-    Row row{cfg, 0.0, 0.0, {}};
-    lighting::HeadlessSession session(
-        device, shaders, level,
-        {.integrator = cfg.integrator, .width = width, .height = height, .seed = common.seed});
+    Row row{cfg};
+    // Denoised output, the raw image read back beside it: both errors from the same frames.
+    lighting::HeadlessSession session(device, shaders, level,
+                                      {.integrator = cfg.integrator,
+                                       .width = width,
+                                       .height = height,
+                                       .seed = common.seed,
+                                       .output = lighting::FrameOutput::Denoised});
     session.warm_up();
-    std::vector<double> gpu, wall;
+    std::vector<double> gpu, wall, denoise;
     std::size_t next = 0;
+    runtime::ImageRGBA32F previous_raw, previous_denoised;
     for (std::uint32_t k = 0; k < frames; ++k) {
       const bool evaluate = next < ks.size() && ks[next] == k;
-      runtime::ImageRGBA32F image;
-      const lighting::FrameTiming t = session.render(session.step_world(), evaluate ? &image : nullptr);
-      gpu.push_back(t.gpu_ms);
+      const bool keep = evaluate || (flicker && k == flicker_frame);
+      runtime::ImageRGBA32F image, raw;
+      const lighting::FrameTiming t =
+          session.render(session.step_world(), keep ? &image : nullptr, keep ? &raw : nullptr);
+      double denoise_ms = 0.0;
+      for (const auto& [name, ms] : t.passes) {
+        if (name.rfind("denoise.", 0) == 0) denoise_ms += ms;
+      }
+      gpu.push_back(t.gpu_ms - denoise_ms);
+      denoise.push_back(denoise_ms);
       wall.push_back(t.wall_ms);
-      if (evaluate) row.relmse.push_back(runtime::relative_mse(image, references[next++]));
+      if (flicker && k == flicker_frame + 1) {
+        row.flicker_raw = frame_change(raw, previous_raw, references.back());
+        row.flicker_denoised = frame_change(image, previous_denoised, references.back());
+      }
+      if (evaluate) {
+        const runtime::ImageRGBA32F& ref = references[next++];
+        row.relmse.push_back(runtime::relative_mse(raw, ref));
+        row.relmse_denoised.push_back(runtime::relative_mse(image, ref));
+        const double ref_mean = runtime::mean_rgb(ref);
+        row.mean_ratio_denoised.push_back(ref_mean > 0.0 ? runtime::mean_rgb(image) / ref_mean
+                                                         : 0.0);
+        row.mean_ratio_raw.push_back(ref_mean > 0.0 ? runtime::mean_rgb(raw) / ref_mean : 0.0);
+      }
+      if (keep) {
+        previous_raw = std::move(raw);
+        previous_denoised = std::move(image);
+      }
       progress.update(++done, fmt::format("{} frame {}", cfg.name, k));
     }
+    row.denoise_ms = perf::summarize(denoise).median;
     row.frame_ms = perf::summarize(gpu).median;
     row.frame_wall_ms = perf::summarize(wall).median;
     rows.push_back(std::move(row));
@@ -222,7 +289,9 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
 
   fs::create_directories(out);
   nlohmann::json jrows = nlohmann::json::array();
-  std::string csv = "name,integrator,frame_ms,frame_wall_ms,relmse,pareto,settings\n";
+  std::string csv =
+      "name,integrator,frame_ms,frame_wall_ms,relmse,pareto,denoise_ms,relmse_denoised,"
+      "mean_ratio_denoised,flicker_raw,flicker_denoised,settings\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     const std::string& integrator = r.config.integrator.name;
@@ -233,12 +302,25 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                      {"frame_wall_ms", r.frame_wall_ms},
                      {"relmse", r.mean_relmse()},
                      {"relmse_per_frame", r.relmse},
+                     {"denoise_ms", r.denoise_ms},
+                     {"relmse_denoised", mean_of(r.relmse_denoised)},
+                     {"relmse_denoised_per_frame", r.relmse_denoised},
+                     {"relmse_reduction",
+                      mean_of(r.relmse_denoised) > 0.0 ? r.mean_relmse() / mean_of(r.relmse_denoised)
+                                                       : 0.0},
+                     {"mean_ratio_denoised", mean_of(r.mean_ratio_denoised)},
+                     {"mean_ratio_raw", mean_of(r.mean_ratio_raw)},
+                     {"flicker_raw", r.flicker_raw},
+                     {"flicker_denoised", r.flicker_denoised},
+                     {"flicker_ratio", flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0},
                      {"pareto", on_front(i)},
                      {"settings", settings_json(r.config.integrator)}});
     std::string settings;
     for (const auto& [k, v] : r.config.integrator.settings) settings += fmt::format("{}={};", k, v);
-    csv += fmt::format("{},{},{:.4f},{:.4f},{:.6g},{},{}\n", r.config.name, integrator, r.frame_ms,
-                       r.frame_wall_ms, r.mean_relmse(), on_front(i) ? 1 : 0, settings);
+    csv += fmt::format("{},{},{:.4f},{:.4f},{:.6g},{},{:.4f},{:.6g},{:.5f},{:.6g},{:.6g},{}\n",
+                       r.config.name, integrator, r.frame_ms, r.frame_wall_ms, r.mean_relmse(),
+                       on_front(i) ? 1 : 0, r.denoise_ms, mean_of(r.relmse_denoised),
+                       mean_of(r.mean_ratio_denoised), r.flicker_raw, r.flicker_denoised, settings);
   }
   const nlohmann::json j = {
       {"level", level->name},
@@ -247,6 +329,11 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
       {"seed", common.seed},
       {"device", device.info().name},
       {"evaluated_frames", ks},
+      // Frame-to-frame change between frames frames-2 and frames-1 relative to the reference's
+      // mean square; the rows' flicker_ratio is their denoised flicker over this.
+      {"flicker", {{"frames", flicker ? nlohmann::json::array({flicker_frame, flicker_frame + 1})
+                                      : nlohmann::json()},
+                   {"reference", flicker_ref}}},
       {"reference", {{"integrator", "reference"},
                      {"spp_per_frame", o.reference_spp},
                      {"frames_averaged", o.reference_frames},
@@ -269,12 +356,19 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   for (std::size_t i : front) plot.line.emplace_back(rows[i].frame_ms, rows[i].mean_relmse());
   runtime::write_log_log_plot(out / "trade.png", plot);
 
-  std::printf("%-14s %-9s %10s %12s %s\n", "config", "integr.", "frame ms", "relMSE", "pareto");
+  std::printf("%-14s %-9s %10s %12s %6s %10s %12s %8s %8s %10s %10s\n", "config", "integr.",
+              "frame ms", "relMSE", "pareto", "denoise ms", "denoised", "mean", "raw mean",
+              "flicker", "x ref");
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    std::printf("%-14s %-9s %10.2f %12.4g %s\n", rows[i].config.name.c_str(),
-                rows[i].config.integrator.name.c_str(), rows[i].frame_ms,
-                rows[i].mean_relmse(), on_front(i) ? "*" : "");
+    const Row& r = rows[i];
+    std::printf("%-14s %-9s %10.2f %12.4g %6s %10.2f %12.4g %8.4f %8.4f %10.4g %10.3g\n",
+                r.config.name.c_str(), r.config.integrator.name.c_str(), r.frame_ms,
+                r.mean_relmse(), on_front(i) ? "*" : "", r.denoise_ms, mean_of(r.relmse_denoised),
+                mean_of(r.mean_ratio_denoised), mean_of(r.mean_ratio_raw), r.flicker_denoised,
+                flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0);
   }
+  std::printf("reference flicker %.4g (frames %u-%u)\n", flicker_ref, flicker_frame,
+              flicker_frame + 1);
   for (const auto& e : equal_time) {
     std::printf("equal time vs %s: baseline x%d frames relMSE %.4g = %.1fx ReSTIR's\n",
                 e["restir"].get<std::string>().c_str(), e["baseline_frames_averaged"].get<int>(),

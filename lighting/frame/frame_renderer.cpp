@@ -3,16 +3,47 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "engine/core/error.h"
 #include "engine/core/log.h"
+#include "lighting/denoise/denoiser.h"
 #include "lighting/frame/frame_output_pass.h"
 #include "lighting/gbuffer/gbuffer_pass.h"
 #include "lighting/scene/frame_constants.h"
+#include "lighting/upscale/upscaler.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/shader_library.h"
 
 namespace lantern::lighting {
+
+namespace {
+
+// Radical inverse of `index` in `base`: the Halton sequence's coordinate.
+float halton(std::uint32_t index, std::uint32_t base) {
+  float f = 1.0f, r = 0.0f;
+  for (; index > 0; index /= base) {
+    f /= static_cast<float>(base);
+    r += f * static_cast<float>(index % base);
+  }
+  return r;
+}
+
+// Sub-pixel offsets of the G-buffer samples: Halton (2, 3) points 1..8, centred on the pixel.
+constexpr std::uint32_t kJitterPhases = 8;
+
+}  // namespace
+
+FrameOutput parse_frame_output(std::string_view text) {
+  if (text == "raw") return FrameOutput::Raw;
+  if (text == "denoised") return FrameOutput::Denoised;
+  throw InputError(fmt::format("--output {}: expected raw or denoised", text));
+}
+
+const char* frame_output_name(FrameOutput output) {
+  return output == FrameOutput::Denoised ? "denoised" : "raw";
+}
 
 FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& shaders,
                              std::shared_ptr<const Level> level,
@@ -22,6 +53,8 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
       integrator_(std::move(integrator)),
       width_(width),
       height_(height),
+      output_width_(width),
+      output_height_(height),
       seed_(seed) {
   if (width == 0 || height == 0) {
     throw InputError(
@@ -30,6 +63,8 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
   if (!integrator_) throw InputError("frame renderer: no integrator");
   scene_ = std::make_unique<GpuScene>(device, std::move(level), integrator_->visibility());
   gbuffer_ = std::make_unique<GBufferPass>(device, shaders);
+  denoiser_ = std::make_unique<Denoiser>(device, shaders);
+  upscaler_ = std::make_unique<Upscaler>(device, shaders);
   output_ = std::make_unique<runtime::ComputePipeline>(
       device, shaders.load("frame/frame_output.comp"),
       runtime::ComputePipelineDesc{.name = "frame.output", .constants = {}});
@@ -46,6 +81,8 @@ FrameRenderer::~FrameRenderer() = default;
 void FrameRenderer::warm_up() {
   gbuffer_->warm_up();
   integrator_->warm_up();
+  denoiser_->warm_up();
+  upscaler_->warm_up();
   output_->warm_up();
 }
 
@@ -54,6 +91,20 @@ void FrameRenderer::resize(std::uint32_t width, std::uint32_t height) {
     throw InputError(
         fmt::format("frame renderer: render size {}x{} must be positive", width, height));
   }
+  if (width == output_width_ && height == output_height_ && width == width_ &&
+      height == height_) {
+    return;
+  }
+  output_width_ = width;
+  output_height_ = height;
+  width_ = width;
+  height_ = height;
+  resized_ = true;
+}
+
+void FrameRenderer::set_internal_size(std::uint32_t width, std::uint32_t height) {
+  width = std::clamp(width, 1u, output_width_);
+  height = std::clamp(height, 1u, output_height_);
   if (width == width_ && height == height_) return;
   width_ = width;
   height_ = height;
@@ -67,8 +118,17 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   const FrameCounts counts{scene_->light_count(), scene_->instance_count(),
                            scene_->emissive_triangles(), scene_->previous_light_count(),
                            scene_->scene_radius()};
-  scene_->set_frame_constants(
-      make_frame_constants(snapshot, width_, height_, frames_, seed_, counts, history_valid));
+  const bool upscaling = width_ != output_width_ || height_ != output_height_;
+  const bool jitter = jitter_mode_ == Jitter::On || (jitter_mode_ == Jitter::WhenUpscaling && upscaling);
+  previous_jitter_ = history_valid ? jitter_ : glm::vec2(0.0f);
+  jitter_ = jitter ? glm::vec2(halton(frames_ % kJitterPhases + 1, 2),
+                               halton(frames_ % kJitterPhases + 1, 3)) - 0.5f
+                   : glm::vec2(0.0f);
+  if (!history_valid) previous_jitter_ = jitter_;
+  gpu::FrameConstants constants =
+      make_frame_constants(snapshot, width_, height_, frames_, seed_, counts, history_valid);
+  constants.jitter = glm::vec4(jitter_, previous_jitter_);
+  scene_->set_frame_constants(constants);
   // The one decision on history: the graph drops it; every pass then sees invalid history handles.
   if (!history_valid) graph.invalidate_history();
   history_valid_ = history_valid;
@@ -91,6 +151,11 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   inputs_.light_count = scene_->light_count();
   inputs_.previous_light_count = scene_->previous_light_count();
   hdr = integrator_->add_passes(graph, inputs_, hdr);
+  raw_ = hdr;
+  if (frame_output_ == FrameOutput::Denoised) hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr);
+  if (width_ != output_width_ || height_ != output_height_) {
+    hdr = upscaler_->add_pass(graph, inputs_, hdr, output_width_, output_height_, jitter_);
+  }
   ++frames_;
   resized_ = false;
   return hdr;
@@ -100,7 +165,8 @@ runtime::graph::ImageHandle FrameRenderer::add_output_pass(runtime::graph::Rende
                                                            runtime::graph::BufferHandle hdr,
                                                            runtime::graph::ImageHandle target,
                                                            float exposure) {
-  return add_frame_output_pass(graph, *output_, hdr, target, width_, height_, exposure);
+  return add_frame_output_pass(graph, *output_, hdr, target, output_width_, output_height_,
+                               exposure);
 }
 
 }  // namespace lantern::lighting

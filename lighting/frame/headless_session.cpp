@@ -4,10 +4,13 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "engine/core/error.h"
 #include "engine/world/world.h"
+#include "lighting/denoise/denoise_settings.h"
 #include "lighting/frame/frame_renderer.h"
+#include "lighting/frame/hdr_readback.h"
 #include "runtime/target/headless_target.h"
 
 namespace lantern::lighting {
@@ -31,12 +34,20 @@ struct HeadlessSession::State {
         renderer(device, shaders, level, make_integrator(device, shaders, o.integrator), o.width,
                  o.height, o.seed),
         target(device, {.width = o.width, .height = o.height}),
-        session(device, target, renderer) {}
+        session(device, target, renderer),
+        raw(device) {
+    renderer.set_output(o.output);
+    renderer.set_internal_size(
+        static_cast<std::uint32_t>(std::lround(o.render_scale * static_cast<float>(o.width))),
+        static_cast<std::uint32_t>(std::lround(o.render_scale * static_cast<float>(o.height))));
+    renderer.set_denoise_settings(make_denoise_settings(o.integrator.preset, o.integrator.denoise));
+  }
 
   World world;
   FrameRenderer renderer;
   runtime::HeadlessTarget target;
   FrameSession session;
+  HdrReadback raw;
 };
 
 HeadlessSession::HeadlessSession(runtime::Device& device, runtime::ShaderLibrary& shaders,
@@ -46,6 +57,9 @@ HeadlessSession::HeadlessSession(runtime::Device& device, runtime::ShaderLibrary
   if (options.width == 0 || options.height == 0) {
     throw InputError(
         fmt::format("render size {}x{} must be positive", options.width, options.height));
+  }
+  if (!(options.render_scale > 0.0f && options.render_scale <= 1.0f)) {
+    throw InputError(fmt::format("render scale {} must be in (0, 1]", options.render_scale));
   }
   state_ = std::make_unique<State>(device, shaders, std::move(level), options);
 }
@@ -66,10 +80,19 @@ void HeadlessSession::skip(std::uint32_t frames) {
   if (frames > 0) state_->world.request_camera_cut();
 }
 
-FrameTiming HeadlessSession::render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image) {
+FrameTiming HeadlessSession::render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image,
+                                    runtime::ImageRGBA32F* raw) {
   State& s = *state_;
   FrameTiming timing;
-  if (!s.session.render(snapshot, {}, &timing)) {
+  FrameHooks hooks;
+  const bool raw_pass = raw != nullptr && s.renderer.output() != FrameOutput::Raw;
+  if (raw_pass) {
+    hooks.hdr = [&s](runtime::graph::RenderGraph& graph, runtime::graph::BufferHandle hdr) {
+      s.raw.add(graph, s.renderer.last_raw(), s.renderer.width(), s.renderer.height());
+      return hdr;
+    };
+  }
+  if (!s.session.render(snapshot, hooks, &timing)) {
     throw RuntimeError("the headless target gave no frame");
   }
   timing.step_ms = last_step_ms_;
@@ -77,6 +100,7 @@ FrameTiming HeadlessSession::render(const FrameSnapshot& snapshot, runtime::Imag
     timing.systems.emplace_back(std::string(t.name), t.ms);
   }
   if (image) *image = s.target.read_output();
+  if (raw != nullptr) *raw = raw_pass ? s.raw.read() : image ? *image : s.target.read_output();
   return timing;
 }
 

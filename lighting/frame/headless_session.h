@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/world/frame_snapshot.h"
+#include "lighting/frame/frame_renderer.h"
 #include "lighting/frame/frame_session.h"
 #include "lighting/integrators/integrator_registry.h"
 #include "runtime/image/image.h"
@@ -35,6 +36,12 @@ struct SessionOptions {
   std::uint32_t seed = 1;
   unsigned world_threads = 1;        // scheduler worker threads (results do not depend on it)
   double fixed_dt = 1.0 / 60.0;      // simulated seconds per frame
+  // What render()'s `image` holds: the raw integrator image or the denoised one (denoiser knobs:
+  // integrator.preset and integrator.denoise).
+  FrameOutput output = FrameOutput::Raw;
+  // Internal size = round(scale x width/height) (0 < scale <= 1): below 1 the frame is upscaled
+  // to width x height by upscale.temporal; `raw` images stay at the internal size.
+  float render_scale = 1.0f;
 };
 
 class HeadlessSession {
@@ -52,8 +59,10 @@ class HeadlessSession {
   // Steps `frames` frames without rendering, then requests a camera cut (`--frame K`).
   void skip(std::uint32_t frames);
   // Renders `snapshot` (usually the last step_world()'s); with `image`, reads the linear radiance
-  // back into it.
-  FrameTiming render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image = nullptr);
+  // of options().output back into it, and with `raw` the integrator's raw image of the same frame
+  // (the same as `image` when the output is raw).
+  FrameTiming render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image = nullptr,
+                     runtime::ImageRGBA32F* raw = nullptr);
 
   World& world();
   FrameRenderer& renderer();

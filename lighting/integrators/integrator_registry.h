@@ -28,6 +28,9 @@ struct IntegratorConfig {
   // --set visibility=auto|bvh|rayquery (lighting/visibility/visibility_backend.h): resolved
   // against the device by make_integrator.
   VisibilitySetting visibility = VisibilitySetting::Auto;
+  // --set denoise.KEY=VALUE (prefix stripped; lighting/denoise/denoise_settings.h), applied over
+  // `preset` to the frame's denoiser, whichever integrator runs.
+  std::vector<std::pair<std::string, std::string>> denoise;
 };
 
 struct IntegratorEntry {

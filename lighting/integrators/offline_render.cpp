@@ -56,7 +56,8 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
                           {.integrator = request.integrator,
                            .width = request.width,
                            .height = request.height,
-                           .seed = request.seed});
+                           .seed = request.seed,
+                           .output = request.output});
   session.warm_up();
   session.skip(request.first_frame);
 

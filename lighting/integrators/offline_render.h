@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/scene/level.h"
+#include "lighting/frame/frame_renderer.h"
 #include "lighting/integrators/integrator_registry.h"
 #include "lighting/scene/gpu_scene.h"
 #include "runtime/image/image.h"
@@ -33,6 +34,8 @@ struct OfflineRenderRequest {
   // frame renders the first rendered frame's snapshot (a static scene; only the random numbers
   // change), the accumulation a converged image needs.
   bool animate = true;
+  // Raw integrator images or denoised ones (knobs: integrator.preset, integrator.denoise).
+  FrameOutput output = FrameOutput::Raw;
 };
 
 struct OfflineRenderResult {

@@ -56,11 +56,11 @@ void main() {
   float view_depth = max(finite_or_zero(1.0 / gl_FragCoord.w), 1e-30);
 
   vec2 size = vec2(frame_constants.frame.frame.xy);
-  vec2 current = gl_FragCoord.xy;  // pixel centre, (0,0) top-left
+  vec2 current = gl_FragCoord.xy;  // pixel centre, (0,0) top-left (the sample: + jitter)
   vec2 previous = vec2(kGBufferNoPreviousPixel);
   if (in_prev_clip.w > 0.0) {
     vec2 ndc = in_prev_clip.xy / in_prev_clip.w;
-    previous = (ndc * 0.5 + 0.5) * size;
+    previous = (ndc * 0.5 + 0.5) * size - frame_constants.frame.jitter.zw;
   }
   vec2 motion = previous - current;
   if (!(is_finite(motion.x) && is_finite(motion.y))) motion = vec2(kGBufferNoPreviousPixel);

@@ -9,6 +9,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "gbuffer/gbuffer_push.h"
+#include "shared/gbuffer.h"
 #include "lib/scene_buffers.glsl"
 
 
@@ -46,5 +47,7 @@ void main() {
   out_shading_normal = transpose(mat3(scene_instances.i[instance].world_to_object)) * n_object;
   out_prev_clip = frame_constants.frame.prev_view_proj * prev_world;
   out_ids = uvec3(instance, geometry.x, primitive);
-  gl_Position = frame_constants.frame.view_proj * world;
+  gl_Position = gbuffer_jitter_clip(frame_constants.frame.view_proj * world,
+                                    frame_constants.frame.jitter.xy,
+                                    vec2(frame_constants.frame.frame.xy));
 }

@@ -15,6 +15,7 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 
 #include "gbuffer/gbuffer_push.h"
+#include "shared/gbuffer.h"
 #include "lib/scene_buffers.glsl"
 
 layout(local_size_x = 128) in;
@@ -108,6 +109,12 @@ void main() {
          vec4(scene_vertices.v[geometry.w + scene_indices.i[base + 1u]].position_u.xyz, 1.0);
     c2 = to_clip *
          vec4(scene_vertices.v[geometry.w + scene_indices.i[base + 2u]].position_u.xyz, 1.0);
+    // The raster samples at centre + jitter: test (and write) the jittered clip positions.
+    vec2 size = vec2(frame_constants.frame.frame.xy);
+    vec2 jitter = frame_constants.frame.jitter.xy;
+    c0 = gbuffer_jitter_clip(c0, jitter, size);
+    c1 = gbuffer_jitter_clip(c1, jitter, size);
+    c2 = gbuffer_jitter_clip(c2, jitter, size);
     keep = survives(c0, c1, c2);
   }
   // One atomic per subgroup: survivors take consecutive slots.

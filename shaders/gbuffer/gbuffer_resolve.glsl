@@ -61,10 +61,11 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
   vec3 e1 = linear * (p1 - p0);
   vec3 e2 = linear * (p2 - p0);
 
-  // Pixel-centre camera ray.
+  // Pixel-centre camera ray (through the jittered sample position).
   vec2 size = vec2(frame_constants.frame.frame.xy);
   vec2 centre = vec2(pixel) + 0.5;
-  vec2 ndc = centre / size * 2.0 - 1.0;
+  vec2 sample_position = centre + frame_constants.frame.jitter.xy;
+  vec2 ndc = sample_position / size * 2.0 - 1.0;
   mat4 inv_view_proj = frame_constants.frame.inv_view_proj;
   vec4 a = inv_view_proj * vec4(ndc, 0.0, 1.0);
   vec4 b = inv_view_proj * vec4(ndc, 0.5, 1.0);
@@ -124,7 +125,9 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
   vec4 prev_clip = frame_constants.frame.prev_view_proj *
                    (scene_instances.i[instance].prev_object_to_world * vec4(p_object, 1.0));
   vec2 previous = vec2(kGBufferNoPreviousPixel);
-  if (prev_clip.w > 0.0) previous = (prev_clip.xy / prev_clip.w * 0.5 + 0.5) * size;
+  if (prev_clip.w > 0.0) {
+    previous = (prev_clip.xy / prev_clip.w * 0.5 + 0.5) * size - frame_constants.frame.jitter.zw;
+  }
   vec2 motion = previous - centre;
   if (!(is_finite(motion.x) && is_finite(motion.y))) motion = vec2(kGBufferNoPreviousPixel);
 

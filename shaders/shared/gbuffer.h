@@ -14,7 +14,13 @@
 //   gbuffer.ids                R32G32B32A32_UINT    x instance (kNoInstance = sky), y material,
 //                                                   z primitive, w 0
 //   gbuffer.motion             R32G32B32A32_SFLOAT  xy motion in pixels: previous pixel position
-//                                                   minus current (prev = cur + motion); zw 0
+//                                                   minus current (prev = cur + motion); zw 0.
+//                                                   With a sample jitter (FrameConstants.jitter)
+//                                                   pixel p samples the image at p + 0.5 + j, and
+//                                                   the motion leads to the previous frame's
+//                                                   pixel whose sample was nearest: the point's
+//                                                   previous position minus last frame's jitter,
+//                                                   minus p + 0.5
 //   gbuffer.depth              D32_SFLOAT           raster depth (not read by compute passes)
 //
 // Compute passes read the colour images as storage images (imageLoad, layout GENERAL).
@@ -43,6 +49,13 @@ LANTERN_FUNC vec3 oct_decode(vec2 e) {
   n.x += n.x >= 0.0f ? -t : t;
   n.y += n.y >= 0.0f ? -t : t;
   return normalize(n);
+}
+
+// A clip position moved so the raster's pixel centres sample the image at centre + jitter
+// (pixels; FrameConstants.jitter.xy): the geometry shifts by -jitter on screen.
+LANTERN_FUNC vec4 gbuffer_jitter_clip(vec4 clip, vec2 jitter, vec2 size) {
+  return vec4(clip.x - 2.0f * jitter.x / size.x * clip.w, clip.y - 2.0f * jitter.y / size.y * clip.w,
+              clip.z, clip.w);
 }
 
 // Sky test on gbuffer.position.w.

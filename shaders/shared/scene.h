@@ -27,8 +27,11 @@ struct FrameConstants {
   uvec4 history;           // x: last frame's lights (entries of light_previous_to_current); yzw: 0
   vec4 scene;              // x: radius of the world's bounding sphere (directional and environment
                            // shadow rays end kDirectionalShadowRadii radii away); yzw: 0
+  vec4 jitter;             // xy: this frame's G-buffer sample offset from the pixel centres, in
+                           // pixels (+x right, +y down; 0 unless upscaling); zw: last frame's
+                           // (gbuffer.h: gbuffer_jitter_clip, and the motion convention)
 };
-LANTERN_STATIC_SIZE(FrameConstants, 3 * 64 + 7 * 16);
+LANTERN_STATIC_SIZE(FrameConstants, 3 * 64 + 8 * 16);
 
 struct GpuVertex {
   vec4 position_u;  // xyz object-space position; w: texture u

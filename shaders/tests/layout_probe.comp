@@ -9,6 +9,7 @@
 #include "shared/bvh.h"
 #include "shared/color.h"
 #include "shared/common_math.h"
+#include "shared/denoise.h"
 #include "shared/environment.h"
 #include "shared/lang.h"
 #include "shared/lights.h"
@@ -21,6 +22,7 @@
 #include "shared/sampling.h"
 #include "shared/scene.h"
 #include "shared/tonemap.h"
+#include "shared/upscale.h"
 
 layout(local_size_x = 1) in;
 
@@ -44,10 +46,14 @@ layout(std430, binding = 15) buffer RestirPushProbe { RestirPush restir_pushes[]
 layout(std430, binding = 16) buffer RestirSurfaceProbe { RestirSurface restir_surfaces[]; };
 layout(std430, binding = 17) buffer GpuEnvironmentProbe { GpuEnvironment gpu_environments[]; };
 layout(std430, binding = 18) buffer PresampledLightProbe { PresampledLight presampled_lights[]; };
+layout(std430, binding = 19) buffer DenoisePushProbe { DenoisePush denoise_pushes[]; };
+layout(std430, binding = 20) buffer UpscalePushProbe { UpscalePush upscale_pushes[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
   alias_entries[0] = alias_entries[1];
+  denoise_pushes[0] = denoise_pushes[1];
+  upscale_pushes[0] = upscale_pushes[1];
   gpu_lights[0] = gpu_lights[1];
   light_samples[0] = light_samples[1];
   reservoirs[0] = reservoirs[1];

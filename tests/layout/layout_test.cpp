@@ -15,12 +15,14 @@
 
 #include "shared/alias_table.h"
 #include "shared/bvh.h"
+#include "shared/denoise.h"
 #include "shared/environment.h"
 #include "shared/lights.h"
 #include "shared/reservoir.h"
 #include "shared/reservoir_pack.h"
 #include "shared/restir.h"
 #include "shared/scene.h"
+#include "shared/upscale.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/gpu/spirv_reflect.h"
 
@@ -88,6 +90,21 @@ const std::vector<StructLayout>& cpp_layouts() {
        {LANTERN_MEMBER(PresampledLight, light), LANTERN_MEMBER(PresampledLight, index),
         LANTERN_MEMBER(PresampledLight, pdf), LANTERN_MEMBER(PresampledLight, pad0),
         LANTERN_MEMBER(PresampledLight, pad1)}},
+      {"DenoisePush",
+       sizeof(gpu::DenoisePush),
+       {LANTERN_MEMBER(DenoisePush, width), LANTERN_MEMBER(DenoisePush, height),
+        LANTERN_MEMBER(DenoisePush, flags), LANTERN_MEMBER(DenoisePush, step),
+        LANTERN_MEMBER(DenoisePush, color_alpha), LANTERN_MEMBER(DenoisePush, moments_alpha),
+        LANTERN_MEMBER(DenoisePush, phi_luminance), LANTERN_MEMBER(DenoisePush, phi_normal),
+        LANTERN_MEMBER(DenoisePush, phi_depth), LANTERN_MEMBER(DenoisePush, firefly),
+        LANTERN_MEMBER(DenoisePush, max_history), LANTERN_MEMBER(DenoisePush, pad0),
+        LANTERN_MEMBER(DenoisePush, similarity)}},
+      {"UpscalePush",
+       sizeof(gpu::UpscalePush),
+       {LANTERN_MEMBER(UpscalePush, in_width), LANTERN_MEMBER(UpscalePush, in_height),
+        LANTERN_MEMBER(UpscalePush, out_width), LANTERN_MEMBER(UpscalePush, out_height),
+        LANTERN_MEMBER(UpscalePush, flags), LANTERN_MEMBER(UpscalePush, history_weight),
+        LANTERN_MEMBER(UpscalePush, jitter)}},
       {"RestirSurface",
        sizeof(gpu::RestirSurface),
        {LANTERN_MEMBER(RestirSurface, position_depth), LANTERN_MEMBER(RestirSurface, packed),
@@ -99,7 +116,8 @@ const std::vector<StructLayout>& cpp_layouts() {
         LANTERN_MEMBER(FrameConstants, camera_position),
         LANTERN_MEMBER(FrameConstants, prev_camera_position), LANTERN_MEMBER(FrameConstants, frame),
         LANTERN_MEMBER(FrameConstants, counts), LANTERN_MEMBER(FrameConstants, environment),
-        LANTERN_MEMBER(FrameConstants, history), LANTERN_MEMBER(FrameConstants, scene)}},
+        LANTERN_MEMBER(FrameConstants, history), LANTERN_MEMBER(FrameConstants, scene),
+        LANTERN_MEMBER(FrameConstants, jitter)}},
       {"GpuVertex",
        sizeof(gpu::GpuVertex),
        {LANTERN_MEMBER(GpuVertex, position_u), LANTERN_MEMBER(GpuVertex, normal_v)}},

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 
+#include "apps/lantern/play/dynamic_resolution.h"
 #include "apps/lantern/play/play_input.h"
 #include "engine/core/error.h"
 #include "engine/level/level_loader.h"
@@ -105,6 +106,36 @@ TEST(FlyCamera, ManualControlMovesTheCameraWithHistoryAndNoCut) {
   EXPECT_FALSE(fly.active);
   // Back on the path is a teleport (a cut); a level without a path keeps the camera still.
   EXPECT_EQ(world.step().camera_cut, !level->camera_path.empty());
+}
+
+// Dynamic resolution: too slow -> the scale drops (by sqrt of the time ratio, after the settle
+// frames), never below the floor; on target it holds; too fast -> back up, never above 1.
+TEST(DynamicResolution, HoldsTheTargetWithinItsLimits) {
+  DynamicResolution d({.target_ms = 30.0, .min_scale = 0.25f});
+  for (int f = 0; f < DynamicResolution::kSettleFrames - 1; ++f) EXPECT_EQ(d.update(120.0), 1.0f);
+  EXPECT_NEAR(d.update(120.0), 0.5f, 1e-3f);  // 4x the time: half the size per axis
+  for (int f = 0; f < 40; ++f) d.update(1000.0);
+  EXPECT_FLOAT_EQ(d.scale(), 0.25f);
+  EXPECT_EQ(d.internal_size(320, 180), (std::pair<std::uint32_t, std::uint32_t>{80, 45}));
+  EXPECT_EQ(d.internal_size(40, 20), (std::pair<std::uint32_t, std::uint32_t>{16, 16}));
+  const float held = d.scale();
+  for (int f = 0; f < 20; ++f) d.update(31.0);  // within the dead band
+  EXPECT_EQ(d.scale(), held);
+  for (int f = 0; f < 40; ++f) d.update(1.0);
+  EXPECT_FLOAT_EQ(d.scale(), 1.0f);
+  EXPECT_EQ(d.internal_size(320, 180), (std::pair<std::uint32_t, std::uint32_t>{320, 180}));
+}
+
+TEST(DynamicResolution, OffAtTargetZeroAndIgnoresBadTimes) {
+  DynamicResolution off({.target_ms = 0.0, .min_scale = 0.25f});
+  for (int f = 0; f < 20; ++f) off.update(500.0);
+  EXPECT_EQ(off.scale(), 1.0f);
+  DynamicResolution d({.target_ms = 30.0, .min_scale = 0.25f});
+  for (int f = 0; f < 20; ++f) {
+    d.update(std::nan(""));
+    d.update(-5.0);
+  }
+  EXPECT_EQ(d.scale(), 1.0f);
 }
 
 }  // namespace

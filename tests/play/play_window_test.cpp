@@ -73,6 +73,33 @@ TEST(PlayWindow, IntegratorSwitchAndProgressiveReference) {
   EXPECT_EQ(r.validation_errors, 0u);
 }
 
+// Dynamic resolution under scripted input: an unreachable target (0.5 ms) drives the internal
+// size down to its floor and no further; a generous one (10 s) keeps the window size. The output
+// stays the window's either way, and the panel (open) shows it all.
+TEST(PlayWindow, DynamicResolutionStaysWithinItsLimits) {
+  if (!have_display()) FAIL() << "needs a display: run under xvfb-run (scripts/test.sh does)";
+  PlayConfig c = small_config("frame 1 key F1 press\nframe 2 key W down\nframe 24 quit\n");
+  c.width = 128;
+  c.height = 72;
+  c.dynamic_resolution = {.target_ms = 0.5, .min_scale = 0.25f};
+  const PlayReport fast = run_play(c);
+  EXPECT_EQ(fast.frames, 24u);
+  EXPECT_EQ(fast.output_width, 128u);
+  EXPECT_EQ(fast.output_height, 72u);
+  EXPECT_EQ(fast.min_internal_width, 32u);  // the floor: 25% of the window
+  EXPECT_EQ(fast.min_internal_height, 18u);
+  EXPECT_LE(fast.max_internal_width, 128u);
+  EXPECT_LE(fast.max_internal_height, 72u);
+  EXPECT_GE(fast.resolution_changes, 1u);
+  EXPECT_EQ(fast.validation_errors, 0u);
+
+  c.dynamic_resolution.target_ms = 10000.0;
+  const PlayReport slow = run_play(c);
+  EXPECT_EQ(slow.min_internal_width, 128u);
+  EXPECT_EQ(slow.min_internal_height, 72u);
+  EXPECT_EQ(slow.resolution_changes, 0u);
+}
+
 TEST(PlayWindow, BrokenShaderKeepsRenderingAndFixedShaderReloads) {
   if (!have_display()) FAIL() << "needs a display: run under xvfb-run (scripts/test.sh does)";
   const fs::path dir = fs::temp_directory_path() / "lantern_play_reload_test";

@@ -60,6 +60,12 @@ void draw_panel(PanelState& s) {
     return;
   }
   ImGui::Text("%s  %ux%u", s.level.c_str(), s.width, s.height);
+  if (s.target_ms > 0.0) {
+    ImGui::Text("internal %ux%u (%.0f%%), target %.1f ms", s.internal_width, s.internal_height,
+                s.width > 0 ? 100.0 * s.internal_width / s.width : 0.0, s.target_ms);
+  } else {
+    ImGui::Text("internal %ux%u (dynamic resolution off)", s.internal_width, s.internal_height);
+  }
   if (!s.frame_ms.empty()) {
     ImGui::Text("frame %.2f ms GPU, %.1f ms wall (%.1f fps)", s.frame_ms.back(),
                 s.wall_ms.empty() ? 0.0f : s.wall_ms.back(),
@@ -146,6 +152,30 @@ void draw_panel(PanelState& s) {
     slider_f("normal threshold", r.normal_threshold, -1.0f, 1.0f, "%.2f");
     choice("debug view", r.debug_view, lighting::restir_debug_views());
     if (c) s.settings_changed = true;
+  }
+
+  if (ImGui::CollapsingHeader("Denoiser", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // One widget per row of the denoiser's key table, its sentence as the tooltip.
+    for (const lighting::DenoiseKey& key : lighting::denoise_keys()) {
+      float v = lighting::denoise_value(s.denoise, key.name);
+      bool changed = false;
+      if (key.integer && key.hi == 1.0f) {
+        bool on = v != 0.0f;
+        changed = ImGui::Checkbox(key.name, &on);
+        v = on ? 1.0f : 0.0f;
+      } else if (key.integer) {
+        int x = static_cast<int>(v);
+        changed = ImGui::SliderInt(key.name, &x, static_cast<int>(key.lo), static_cast<int>(key.hi));
+        v = static_cast<float>(x);
+      } else {
+        changed = ImGui::SliderFloat(key.name, &v, key.lo, key.hi, "%.3g",
+                                     key.hi / std::max(key.lo, 1e-3f) > 100.0f
+                                         ? ImGuiSliderFlags_Logarithmic
+                                         : ImGuiSliderFlags_None);
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", key.when);
+      if (changed) lighting::set_denoise_value(s.denoise, key.name, v);
+    }
   }
 
   if (ImGui::CollapsingHeader("GPU passes", ImGuiTreeNodeFlags_DefaultOpen)) {

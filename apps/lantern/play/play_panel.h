@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 
+#include "lighting/denoise/denoise_settings.h"
 #include "lighting/integrators/integrator_registry.h"
 #include "lighting/restir/restir_settings.h"
 
@@ -23,6 +24,7 @@ struct PanelState {
   std::string preset = "balanced";
   lighting::RestirSettings restir;
   bool progressive = true;  // accumulate while still (integrators whose entry is progressive)
+  lighting::DenoiseSettings denoise;  // the frame's denoiser: applied every frame
   // Requests (set by the panel, cleared by the session).
   bool rebuild = false;           // integrator or preset changed: new integrator
   bool settings_changed = false;  // a ReSTIR knob changed: Integrator::apply_settings
@@ -39,7 +41,9 @@ struct PanelState {
   bool manual_camera = false;
   float camera_speed = 0.0f;
   float camera_position[3] = {0.0f, 0.0f, 0.0f};
-  std::uint32_t width = 0, height = 0;
+  std::uint32_t width = 0, height = 0;                    // the window's (output) size
+  std::uint32_t internal_width = 0, internal_height = 0;  // the render size (dynamic resolution)
+  double target_ms = 0.0;                                 // its frame-time target (0: off)
   std::string reload_status = "watching";
   std::string reload_error;  // last failed reload's messages
 };

@@ -54,6 +54,9 @@ constexpr graph::AccessState kAnyPriorUse{
     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
 constexpr float kLookRadiansPerUnit = 0.004f;
+// Frames before play's frame-interval report counts (pipelines settle, dynamic resolution finds
+// its size).
+constexpr std::size_t kWarmUpFrames = 30;
 
 // The renderer and everything built from one ShaderLibrary: replaced as a whole on an integrator
 // switch or a shader reload (the library outlives what was built from it).
@@ -152,15 +155,23 @@ PlayReport run_play(const PlayConfig& config) {
   runtime::DeviceOptions device_options{.selector = config.device};
   const auto glfw = runtime::enable_presentation(device_options);
   runtime::Device device(device_options);
+  // No size asked for: one the device can hold at an interactive rate (lavapipe renders on the
+  // CPU: 640x360 ran night_market at 0.9 fps).
+  const bool cpu_device = device.info().type == "cpu";
+  const std::uint32_t window_width = config.width > 0 ? config.width : cpu_device ? 320 : 1280;
+  const std::uint32_t window_height = config.height > 0 ? config.height : cpu_device ? 180 : 720;
   runtime::Window window({.title = fmt::format("lantern - {} - F1 panel, right mouse + WASD fly, "
                                                "F flashlight, Space spawn light, Esc quit",
                                                config.level),
-                          .width = config.width,
-                          .height = config.height});
+                          .width = window_width,
+                          .height = window_height});
   runtime::WindowTarget target(device, window);
   const auto fb = window.framebuffer_size();
-  std::uint32_t width = fb.width > 0 ? fb.width : config.width;
-  std::uint32_t height = fb.height > 0 ? fb.height : config.height;
+  std::uint32_t width = fb.width > 0 ? fb.width : window_width;
+  std::uint32_t height = fb.height > 0 ? fb.height : window_height;
+  DynamicResolution dynamic(config.dynamic_resolution);
+  auto last_frame = Clock::now();
+  bool have_last_frame = false;
 
   // Exposure: the log-average luminance of one headless frame of the level as authored.
   float exposure = 1.0f;
@@ -190,6 +201,7 @@ PlayReport run_play(const PlayConfig& config) {
         lighting::make_restir_settings(config.integrator.preset, config.integrator.settings);
   else
     panel.restir = lighting::restir_preset(config.integrator.preset);
+  panel.denoise = lighting::make_denoise_settings(config.integrator.preset, config.integrator.denoise);
   bool show_panel = config.show_panel;
 
   RenderBundle bundle =
@@ -295,6 +307,30 @@ PlayReport run_play(const PlayConfig& config) {
           static_cast<float>(width) / static_cast<float>(height);
       world.request_camera_cut();
     }
+    // Dynamic resolution: the interval since the last rendered frame moves the internal size.
+    const auto frame_start = Clock::now();
+    if (have_last_frame) {
+      const double interval =
+          std::chrono::duration<double, std::milli>(frame_start - last_frame).count();
+      report.interval_ms.push_back(interval);
+      dynamic.update(interval);
+    }
+    last_frame = frame_start;
+    have_last_frame = true;
+    {
+      const auto [iw, ih] = dynamic.internal_size(width, height);
+      if (iw != bundle.renderer->width() || ih != bundle.renderer->height()) {
+        device.wait_idle();  // the graph's per-size resources may still be in flight
+        bundle.renderer->set_internal_size(iw, ih);
+        accumulated = 0;
+        if (report.frames > 0) ++report.resolution_changes;
+      }
+    }
+    const std::uint32_t iw = bundle.renderer->width(), ih = bundle.renderer->height();
+    if (report.frames == 0 || iw < report.min_internal_width) report.min_internal_width = iw;
+    if (report.frames == 0 || ih < report.min_internal_height) report.min_internal_height = ih;
+    report.max_internal_width = std::max(report.max_internal_width, iw);
+    report.max_internal_height = std::max(report.max_internal_height, ih);
 
     const auto now = Clock::now();
     const float wall_dt = std::chrono::duration<float>(now - last_wall).count();
@@ -397,6 +433,14 @@ PlayReport run_play(const PlayConfig& config) {
 
     // The frame: the session's passes, accumulation between the HDR image and the output while
     // a progressive integrator holds still, the panel over the output.
+    // The window shows the denoised image, except while a progressive integrator accumulates a
+    // still view or a ReSTIR debug view is up (both want the raw image).
+    const bool accumulate = bundle.integrator->progressive && panel.progressive;
+    const bool debug_view = bundle.integrator->name == std::string(lighting::RestirIntegrator::kName) &&
+                            panel.restir.debug_view != gpu::kRestirDebugNone;
+    bundle.renderer->set_output(accumulate || debug_view ? lighting::FrameOutput::Raw
+                                                         : lighting::FrameOutput::Denoised);
+    bundle.renderer->set_denoise_settings(panel.denoise);
     lighting::FrameHooks hooks;
     hooks.exposure = exposure;
     if (bundle.integrator->progressive && panel.progressive) {
@@ -429,6 +473,11 @@ PlayReport run_play(const PlayConfig& config) {
     report.wall_ms.push_back(wall_ms);
     panel.width = width;
     panel.height = height;
+    panel.internal_width = bundle.renderer->width();
+    panel.internal_height = bundle.renderer->height();
+    panel.target_ms = config.dynamic_resolution.target_ms;
+    report.output_width = width;
+    report.output_height = height;
     panel.accumulated = accumulated;
     panel.flashlight = lights.flashlight_on();
     panel.level_lights = lights.level_lights_on();
@@ -457,6 +506,17 @@ PlayReport run_play(const PlayConfig& config) {
       "moved {:.2f} m, {} validation errors",
       report.frames, report.skipped, median(report.frame_ms), median(report.wall_ms),
       report.camera_travel, report.validation_errors);
+  if (config.dynamic_resolution.target_ms > 0.0 && report.interval_ms.size() > 2 * kWarmUpFrames) {
+    const std::vector<double> settled(report.interval_ms.begin() + kWarmUpFrames,
+                                      report.interval_ms.end());
+    const double m = median(settled);
+    log::info("play: frame interval after {} warm-up frames: median {:.1f} ms for a {:.1f} ms "
+              "target ({:+.0f}%), internal size {}x{}..{}x{} of {}x{}, {} changes",
+              kWarmUpFrames, m, config.dynamic_resolution.target_ms,
+              100.0 * (m / config.dynamic_resolution.target_ms - 1.0), report.min_internal_width,
+              report.min_internal_height, report.max_internal_width, report.max_internal_height,
+              report.output_width, report.output_height, report.resolution_changes);
+  }
   if (device.validation_enabled() && device.validation_errors() > 0)
     throw RuntimeError(fmt::format("play: {} validation errors", device.validation_errors()));
   return report;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/lantern/play/dynamic_resolution.h"
 #include "apps/lantern/play/play_input.h"
 #include "engine/scene/level.h"
 #include "lighting/integrators/integrator_registry.h"
@@ -22,8 +23,13 @@ struct PlayConfig {
   // run_play loads it.
   std::shared_ptr<const Level> loaded_level;
   lighting::IntegratorConfig integrator{.name = lighting::RestirIntegrator::kName};
-  std::uint32_t width = 640;  // initial window size; the render size follows the window
+  // Initial window size (the output size follows the window); 0 x 0: by the device, 320x180 on
+  // a CPU device (lavapipe), 1280x720 elsewhere.
+  std::uint32_t width = 640;
   std::uint32_t height = 360;
+  // The internal size moves between min_scale x window and the window to hold target_ms
+  // (dynamic_resolution.h; target_ms 0: always the window size).
+  DynamicResolutionConfig dynamic_resolution;
   std::uint32_t seed = 1;
   std::string device = "auto";
   std::uint64_t max_frames = 0;  // 0: until Esc / close / a script's quit
@@ -54,6 +60,12 @@ struct PlayReport {
   std::vector<double> frame_ms;  // GPU ms per frame (sum of the frame's passes)
   std::vector<double> wall_ms;   // host ms per frame
   std::uint64_t validation_errors = 0;
+  // Internal (render) sizes seen over the frames, and how often dynamic resolution changed it.
+  std::uint32_t min_internal_width = 0, min_internal_height = 0;
+  std::uint32_t max_internal_width = 0, max_internal_height = 0;
+  std::uint32_t output_width = 0, output_height = 0;  // the window's, at the end
+  std::uint32_t resolution_changes = 0;
+  std::vector<double> interval_ms;  // host ms between consecutive rendered frames
 };
 
 // Throws InputError for bad input (level, integrator settings), RuntimeError for failures,

@@ -1,0 +1,122 @@
+// Denoiser: settings -> push constants, history and scratch buffers -> the denoise.* passes in
+// order (denoiser.h).
+#include "lighting/denoise/denoiser.h"
+
+#include "lighting/restir/restir_settings.h"
+#include "shared/restir.h"
+
+namespace lantern::lighting {
+
+using runtime::graph::BufferHandle;
+
+Denoiser::Denoiser(runtime::Device& device, runtime::ShaderLibrary& shaders)
+    : device_(device),
+      temporal_(device, shaders, "temporal"),
+      variance_(device, shaders, "variance"),
+      atrous_(device, shaders, "atrous"),
+      modulate_(device, shaders, "modulate") {}
+
+void Denoiser::warm_up() {
+  const std::array<const runtime::ComputePipeline*, 4> pipelines{
+      &temporal_.pipeline(), &variance_.pipeline(), &atrous_.pipeline(), &modulate_.pipeline()};
+  runtime::warm_up(device_, pipelines);
+}
+
+gpu::DenoisePush Denoiser::make_push(const DenoiseSettings& s, const FrameInputs& inputs) {
+  gpu::DenoisePush p{};
+  p.width = inputs.width;
+  p.height = inputs.height;
+  p.color_alpha = s.color_alpha;
+  p.moments_alpha = s.moments_alpha;
+  p.phi_luminance = s.phi_luminance;
+  p.phi_normal = s.phi_normal;
+  p.phi_depth = s.phi_depth;
+  p.firefly = s.firefly;
+  p.max_history = s.max_history;
+  // Reprojection rejects history exactly where ReSTIR's temporal reuse does by default (the same
+  // test, restir_surfaces_similar, with RestirSettings' default thresholds; roughness 0.25 as
+  // RestirIntegrator::make_push).
+  const RestirSettings restir;
+  p.similarity = {restir.depth_threshold, restir.normal_threshold, 0.25f, 0.0f};
+  return p;
+}
+
+BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
+                                  const DenoiseSettings& s, BufferHandle raw) const {
+  if (!s.enabled) return raw;
+  gpu::DenoisePush push = make_push(s, inputs);
+  const VkDeviceSize pixels = VkDeviceSize{inputs.width} * inputs.height;
+  const runtime::graph::BufferDesc vec4s{pixels * 4 * sizeof(float)};
+
+  BufferHandle surfaces =
+      graph.create_history_buffer("denoise.surfaces", {pixels * sizeof(gpu::RestirSurface)});
+  BufferHandle color = graph.create_history_buffer("denoise.color", vec4s);
+  BufferHandle moments = graph.create_history_buffer("denoise.moments", vec4s);
+  const BufferHandle surfaces_history = graph.history(surfaces);
+  const BufferHandle color_history = graph.history(color);
+  const BufferHandle moments_history = graph.history(moments);
+  const bool history =
+      surfaces_history.valid() && color_history.valid() && moments_history.valid();
+  if (history) push.flags |= gpu::kDenoiseFlagHistoryValid;
+
+  // denoise.temporal: its result is next frame's colour history (the unfiltered accumulation:
+  // feeding the à-trous output back, as SVGF does, kept light the filter had spread into dark
+  // contact shadows for frames: cornell_lights' relMSE 0.8-9.7 -> see README).
+  const bool filter = s.atrous_iterations > 0;
+  BufferHandle accum = color;
+  BufferHandle guide = graph.create_buffer("denoise.guide", vec4s);
+  {
+    const std::vector<BufferHandle> out = temporal_.add(
+        graph, inputs, push,
+        {{"hdr_in", raw},
+         {"denoise_surfaces", surfaces, DenoisePass::Buffer::Write},
+         // Without history the shader does not read these: this frame's raw stands in.
+         {"surfaces_history", history ? surfaces_history : raw},
+         {"color_history", history ? color_history : raw},
+         {"moments_history", history ? moments_history : raw},
+         {"accum_out", accum, DenoisePass::Buffer::Write},
+         {"moments_out", moments, DenoisePass::Buffer::Write},
+         {"guide_out", guide, DenoisePass::Buffer::Write}});
+    accum = out[1];
+    moments = out[2];
+    guide = out[3];
+  }
+
+  if (filter) {
+    // denoise.variance, then the à-trous iterations ping-ponging two scratch buffers.
+    const std::vector<BufferHandle> filtered = variance_.add(
+        graph, inputs, push,
+        {{"accum_in", accum},
+         {"guide", guide},
+         {"moments_in", moments},
+         {"accum_out", graph.create_buffer("denoise.variance", vec4s), DenoisePass::Buffer::Write},
+         {"luminance_out", graph.create_buffer("denoise.luminance", {pixels * sizeof(float)}),
+          DenoisePass::Buffer::Write}});
+    BufferHandle current = filtered[0];
+    const BufferHandle smooth_luminance = filtered[1];
+    BufferHandle scratch[2];
+    for (std::uint32_t i = 0; i < s.atrous_iterations; ++i) {
+      gpu::DenoisePush p = push;
+      p.step = 1u << i;
+      if (i == 0) p.flags |= gpu::kDenoiseFlagSmoothLuminance;
+      BufferHandle& target = scratch[i % 2];
+      if (!target) target = graph.create_buffer(i % 2 ? "denoise.atrous.a" : "denoise.atrous.b", vec4s);
+      target = atrous_.add(graph, inputs, p,
+                           {{"accum_in", current},
+                            {"guide", guide},
+                            {"luminance_in", smooth_luminance},
+                            {"accum_out", target, DenoisePass::Buffer::Write}})[0];
+      current = target;
+    }
+    accum = current;
+  }
+
+  // denoise.modulate: back to radiance.
+  return modulate_.add(graph, inputs, push,
+                       {{"accum_in", accum},
+                        {"hdr_in", raw},
+                        {"hdr_out", graph.create_buffer("denoise.output", vec4s),
+                         DenoisePass::Buffer::Write}})[0];
+}
+
+}  // namespace lantern::lighting

@@ -1,0 +1,84 @@
+// denoise.atrous (iteration i of N): one edge-avoiding à-trous wavelet step (Dammertz et al. 2010;
+// SVGF, Schied et al. 2017) with a 3x3 B-spline kernel (1/4, 1/2, 1/4 per axis) whose taps are
+// 2^i pixels apart, each tap weighted by the depth plane (distance from the centre's tangent plane
+// relative to its view depth), the normals, and the luminance difference in units of the centre's
+// filtered standard deviation (3x3 Gaussian of the variance). Weights are normalised (a constant
+// image stays constant); variance propagates as sum w^2 var / (sum w)^2. Sky pixels pass through.
+// (3x3 rather than SVGF's 5x5: 9 taps instead of 25, the same reach with one more iteration.)
+// Reads: accum_in (rgb illumination, a variance), guide, luminance_in (denoise.variance's 3x3
+// means, iteration 0), gbuffer position (the centre's depth).
+// Writes: accum_out.
+// History: none. Dispatch: one thread per pixel, 8x8 groups.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+
+#include "denoise/denoise_common.glsl"
+
+layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_position;
+layout(std430, binding = 1) readonly buffer Guide { vec4 p[]; } guide;
+layout(std430, binding = 2) readonly buffer AccumIn { vec4 p[]; } accum_in;
+layout(std430, binding = 3) writeonly buffer AccumOut { vec4 p[]; } accum_out;
+layout(std430, binding = 4) readonly buffer LuminanceIn { float l[]; } luminance_in;
+
+// The luminance the edge stop compares: denoise.variance's 3x3 means in iteration 0, else the
+// input's own (already smoothed by the iterations before).
+float stop_luminance(uint index, vec3 rgb) {
+  return (push.flags & kDenoiseFlagSmoothLuminance) != 0u ? luminance_in.l[index] : luminance(rgb);
+}
+
+const float kKernel[2] = float[2](0.5, 0.25);
+
+float filtered_variance(ivec2 pixel) {
+  float sum = 0.0;
+  float sum_w = 0.0;
+  [[unroll]] for (int dy = -1; dy <= 1; ++dy) {
+    [[unroll]] for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 q = pixel + ivec2(dx, dy);
+      if (!denoise_inside(q)) continue;
+      float w = kKernel[abs(dx)] * kKernel[abs(dy)];
+      sum += w * accum_in.p[denoise_index(q)].a;
+      sum_w += w;
+    }
+  }
+  return sum / sum_w;
+}
+
+void main() {
+  ivec2 pixel;
+  if (!denoise_pixel(pixel)) return;
+  uint index = denoise_index(pixel);
+  vec4 centre = accum_in.p[index];
+  vec4 g = guide.p[index];
+  if (denoise_guide_sky(g)) {
+    accum_out.p[index] = centre;
+    return;
+  }
+  vec3 n = denoise_guide_normal(g);
+  float depth = imageLoad(gbuffer_position, pixel).w;
+  float l = stop_luminance(index, centre.rgb);
+  float lum_scale = push.phi_luminance * sqrt(max(min(filtered_variance(pixel), centre.a), 0.0)) + 1e-6;
+  int step = int(push.step);
+
+  float w0 = kKernel[0] * kKernel[0];
+  vec3 sum = w0 * centre.rgb;
+  float sum_w = w0;
+  float sum_var = w0 * w0 * centre.a;
+  [[unroll]] for (int t = 0; t < 9; ++t) {
+    if (t == 4) continue;  // the centre, weighted above
+    ivec2 o = ivec2(t % 3 - 1, t / 3 - 1);
+    ivec2 q = pixel + o * step;
+    if (!denoise_inside(q)) continue;
+    uint qi = denoise_index(q);
+    vec4 gq = guide.p[qi];
+    if (denoise_guide_sky(gq)) continue;
+    vec4 c = accum_in.p[qi];
+    float w = kKernel[abs(o.x)] * kKernel[abs(o.y)] *
+              denoise_geometry_weight(g, n, depth, gq, float(step),
+                                      abs(stop_luminance(qi, c.rgb) - l) / lum_scale);
+    sum += w * c.rgb;
+    sum_var += w * w * c.a;
+    sum_w += w;
+  }
+  accum_out.p[index] = vec4(sum / sum_w, sum_var / (sum_w * sum_w));
+}

@@ -1,0 +1,62 @@
+// Shared GLSL of the denoise.* passes (lighting/denoise/denoiser.h): push constants, the
+// one-thread-per-pixel mapping, and the G-buffer reads the edge-stopping functions use. Each pass
+// declares the G-buffer images it reads and its own buffers from PASS_BINDING(0) on.
+#ifndef LANTERN_DENOISE_COMMON_GLSL
+#define LANTERN_DENOISE_COMMON_GLSL
+
+#include "shared/color.h"
+#include "shared/common_math.h"
+#include "shared/denoise.h"
+#include "shared/gbuffer.h"
+
+layout(local_size_x = kDenoiseGroupSize, local_size_y = kDenoiseGroupSize) in;
+
+layout(push_constant) uniform Push { DenoisePush push; };
+
+ivec2 denoise_size() { return ivec2(push.width, push.height); }
+
+bool denoise_pixel(out ivec2 pixel) {
+  pixel = ivec2(gl_GlobalInvocationID.xy);
+  return pixel.x < int(push.width) && pixel.y < int(push.height);
+}
+
+uint denoise_index(ivec2 pixel) { return uint(pixel.y) * push.width + uint(pixel.x); }
+
+bool denoise_inside(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, denoise_size())); }
+
+vec3 denoise_finite(vec3 c) {
+  return vec3(is_finite(c.r) ? c.r : 0.0, is_finite(c.g) ? c.g : 0.0, is_finite(c.b) ? c.b : 0.0);
+}
+
+// Pixels the denoiser leaves as they are: sky (no surface) and emitters. An emitter's radiance is
+// its emission (exact, from the G-buffer) plus light it reflects, orders of magnitude smaller
+// where it matters; filtering it would spread its residual noise (and its value, 10^4 above its
+// surroundings on cornell_lights) into the dark surfaces around it.
+bool denoise_passthrough(float view_depth, vec3 emission) {
+  return gbuffer_is_sky(view_depth) || max(emission.r, max(emission.g, emission.b)) > 0.0;
+}
+
+// The edge-stopping guide denoise.temporal writes once per pixel ("denoise.guide", read by
+// every tap of denoise.variance and denoise.atrous instead of two G-buffer images): xyz world
+// position, w the octahedral shading normal (snorm 2x16) as float bits; kDenoiseSky bits for the
+// pass-through pixels (sky, emitters: no tap reads them).
+const uint kDenoiseSky = 0xffffffffu;
+
+vec4 denoise_guide(vec4 position_depth, vec3 n) {
+  return vec4(position_depth.xyz, uintBitsToFloat(packSnorm2x16(oct_encode(n))));
+}
+vec4 denoise_guide_passthrough() { return vec4(0.0, 0.0, 0.0, uintBitsToFloat(kDenoiseSky)); }
+bool denoise_guide_sky(vec4 g) { return floatBitsToUint(g.w) == kDenoiseSky; }
+vec3 denoise_guide_normal(vec4 g) { return oct_decode(unpackSnorm2x16(floatBitsToUint(g.w))); }
+
+// Edge-stopping weight of a tap with guide q seen from the centre (guide c, normal n, view depth
+// depth), times exp(-extra): its distance from the centre's tangent plane relative to
+// phi_depth x depth x spacing, and the normals' agreement max(0, n.nq)^phi_normal.
+float denoise_geometry_weight(vec4 c, vec3 n, float depth, vec4 q, float spacing, float extra) {
+  float plane = abs(dot(n, q.xyz - c.xyz));
+  float cosine = max(dot(n, denoise_guide_normal(q)), 0.0);
+  return exp(-plane / (push.phi_depth * depth * spacing + 1e-6) - extra) *
+         pow(cosine, push.phi_normal);
+}
+
+#endif

@@ -1,0 +1,115 @@
+// denoise.temporal: demodulates this frame's raw radiance by the surface's albedo (an emitter
+// passes through), reprojects last frame's denoised illumination and luminance moments along the
+// motion vector (bilinear over the 2x2 previous pixels, each kept only when it passes ReSTIR's
+// surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
+// history), clamps a firefly against the history's mean + firefly x sigma, and blends
+// (alpha = max(1 / history length, push.color_alpha)). Sky and emitters pass through unfiltered
+// (denoise_passthrough).
+// Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
+// surfaces_history, color_history, moments_history, frame constants (prev_view_proj).
+// Writes: denoise_surfaces (this frame's "denoise.surfaces"), accum_out (rgb illumination, a:
+// temporal variance; "denoise.color", next frame's history), moments_out ("denoise.moments": x, y luminance moments, z history length),
+// guide_out ("denoise.guide", denoise_common.glsl).
+// History: "denoise.surfaces", "denoise.color", "denoise.moments" of last frame; without
+// kDenoiseFlagHistoryValid the history bindings are stand-ins and are not read.
+// Dispatch: one thread per pixel, 8x8 groups.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "denoise/denoise_common.glsl"
+#include "shared/restir.h"
+
+#include "lib/scene_buffers.glsl"
+
+layout(binding = PASS_BINDING(0), rgba32f) readonly uniform image2D gbuffer_position;
+layout(binding = PASS_BINDING(1), rgba32f) readonly uniform image2D gbuffer_normal;
+layout(binding = PASS_BINDING(2), rgba16f) readonly uniform image2D gbuffer_albedo_roughness;
+layout(binding = PASS_BINDING(3), rgba32f) readonly uniform image2D gbuffer_emission_metallic;
+layout(binding = PASS_BINDING(4), rgba32ui) readonly uniform uimage2D gbuffer_ids;
+layout(binding = PASS_BINDING(5), rgba32f) readonly uniform image2D gbuffer_motion;
+layout(std430, binding = PASS_BINDING(6)) readonly buffer HdrIn { vec4 p[]; } hdr_in;
+layout(std430, binding = PASS_BINDING(7)) writeonly buffer SurfacesOut { RestirSurface s[]; } denoise_surfaces;
+layout(std430, binding = PASS_BINDING(8)) readonly buffer SurfacesHistory { RestirSurface s[]; } surfaces_history;
+layout(std430, binding = PASS_BINDING(9)) readonly buffer ColorHistory { vec4 p[]; } color_history;
+layout(std430, binding = PASS_BINDING(10)) readonly buffer MomentsHistory { vec4 p[]; } moments_history;
+layout(std430, binding = PASS_BINDING(11)) writeonly buffer AccumOut { vec4 p[]; } accum_out;
+layout(std430, binding = PASS_BINDING(12)) writeonly buffer MomentsOut { vec4 p[]; } moments_out;
+layout(std430, binding = PASS_BINDING(13)) writeonly buffer GuideOut { vec4 p[]; } guide_out;
+
+void main() {
+  ivec2 pixel;
+  if (!denoise_pixel(pixel)) return;
+  uint index = denoise_index(pixel);
+  vec4 position = imageLoad(gbuffer_position, pixel);
+  vec3 radiance = denoise_finite(hdr_in.p[index].rgb);
+  vec4 emission_metallic = imageLoad(gbuffer_emission_metallic, pixel);
+  if (denoise_passthrough(position.w, emission_metallic.rgb)) {
+    denoise_surfaces.s[index] = restir_surface_sky();
+    accum_out.p[index] = vec4(radiance, 0.0);
+    moments_out.p[index] = vec4(0.0);
+    guide_out.p[index] = denoise_guide_passthrough();
+    return;
+  }
+  vec4 normals = imageLoad(gbuffer_normal, pixel);
+  vec4 albedo_roughness = imageLoad(gbuffer_albedo_roughness, pixel);
+  uint material = imageLoad(gbuffer_ids, pixel).y;
+  RestirSurface surface = restir_surface_pack(position, oct_decode(normals.xy),
+                                              oct_decode(normals.zw), albedo_roughness.rgb,
+                                              albedo_roughness.a, emission_metallic.a, 0.0,
+                                              material);
+  denoise_surfaces.s[index] = surface;
+  guide_out.p[index] = denoise_guide(position, oct_decode(normals.xy));
+  vec3 illumination = radiance / denoise_demodulation(albedo_roughness.rgb);
+  float l = luminance(illumination);
+
+  // Last frame's history at the reprojected position: bilinear weights of the similar taps.
+  vec3 history_color = vec3(0.0);
+  vec3 history_moments = vec3(0.0);  // x, y moments, z length
+  float weight_sum = 0.0;
+  vec2 motion = imageLoad(gbuffer_motion, pixel).xy;
+  if ((push.flags & kDenoiseFlagHistoryValid) != 0u && is_finite(motion.x) && is_finite(motion.y)) {
+    vec2 p = vec2(pixel) + motion;  // previous pixel centre minus 0.5
+    ivec2 base = ivec2(floor(p));
+    vec2 f = p - vec2(base);
+    float expected_depth = (frame_constants.frame.prev_view_proj * vec4(position.xyz, 1.0)).w;
+    for (int t = 0; t < 4; ++t) {
+      ivec2 o = ivec2(t & 1, t >> 1);
+      float w = (o.x == 0 ? 1.0 - f.x : f.x) * (o.y == 0 ? 1.0 - f.y : f.y);
+      ivec2 q = base + o;
+      if (w <= 0.0 || !denoise_inside(q)) continue;
+      uint qi = denoise_index(q);
+      if (!restir_surfaces_similar(surface, expected_depth, surfaces_history.s[qi], push.similarity)) {
+        continue;
+      }
+      history_color += w * color_history.p[qi].rgb;
+      history_moments += w * moments_history.p[qi].xyz;
+      weight_sum += w;
+    }
+  }
+
+  vec3 color = illumination;
+  vec2 moments = vec2(l, l * l);
+  float frames = 1.0;
+  if (weight_sum > 1e-3) {
+    history_color /= weight_sum;
+    history_moments /= weight_sum;
+    float history_length = history_moments.z;
+    // Anti-firefly: a new sample far above what this pixel has seen is clamped (biased, bounded).
+    if (push.firefly > 0.0 && history_length >= kDenoiseShortHistory && l > 0.0) {
+      float sigma = sqrt(max(history_moments.y - history_moments.x * history_moments.x, 0.0));
+      float limit = history_moments.x + push.firefly * sigma;
+      if (l > limit) {
+        illumination *= limit / l;
+        l = limit;
+      }
+    }
+    frames = min(history_length + 1.0, push.max_history);
+    float a = max(1.0 / frames, push.color_alpha);
+    float am = max(1.0 / frames, push.moments_alpha);
+    color = mix(history_color, illumination, a);
+    moments = mix(history_moments.xy, vec2(l, l * l), am);
+  }
+  float variance = max(moments.y - moments.x * moments.x, 0.0);
+  accum_out.p[index] = vec4(color, variance);
+  moments_out.p[index] = vec4(moments, frames, 0.0);
+}

@@ -1,0 +1,77 @@
+// denoise.variance: where the temporal history is short (< kDenoiseShortHistory frames: just
+// disoccluded, the first frame, after a cut) the temporal variance means nothing yet; estimate it
+// from the luminance of similar neighbours in a 7x7 window instead (depth-plane and normal edge
+// stops as in denoise.atrous), so the first à-trous iterations still know how noisy the pixel is.
+// Also the 3x3 mean luminance of similar neighbours, which the first à-trous iteration's
+// luminance edge stop compares.
+// Reads: accum_in (rgb illumination, a variance), moments_in (z history length), guide,
+// gbuffer position (the centre's view depth). Writes: accum_out (same layout), luminance_out.
+// History: none.
+// Dispatch: one thread per pixel, 8x8 groups.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+
+#include "denoise/denoise_common.glsl"
+
+layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_position;
+layout(std430, binding = 1) readonly buffer Guide { vec4 p[]; } guide;
+layout(std430, binding = 2) readonly buffer AccumIn { vec4 p[]; } accum_in;
+layout(std430, binding = 3) readonly buffer MomentsIn { vec4 p[]; } moments_in;
+layout(std430, binding = 4) writeonly buffer AccumOut { vec4 p[]; } accum_out;
+layout(std430, binding = 5) writeonly buffer LuminanceOut { float l[]; } luminance_out;
+
+void main() {
+  ivec2 pixel;
+  if (!denoise_pixel(pixel)) return;
+  uint index = denoise_index(pixel);
+  vec4 centre = accum_in.p[index];
+  vec4 g = guide.p[index];
+  float frames = moments_in.p[index].z;
+  if (denoise_guide_sky(g)) {
+    accum_out.p[index] = centre;
+    luminance_out.l[index] = 0.0;
+    return;
+  }
+  vec3 n = denoise_guide_normal(g);
+  float depth = imageLoad(gbuffer_position, pixel).w;
+  // The first à-trous iteration's luminance edge stop compares these 3x3 means, not single
+  // samples: a bright sample among dark neighbours (ReSTIR's heavy tail) is not rejected by all
+  // of them while it spreads itself over them (which lost 5% of night_market's energy).
+  float smooth_sum = 0.0;
+  float smooth_w = 0.0;
+  [[unroll]] for (int t = 0; t < 9; ++t) {
+    ivec2 q = pixel + ivec2(t % 3 - 1, t / 3 - 1);
+    if (!denoise_inside(q)) continue;
+    uint qi = denoise_index(q);
+    vec4 gq = guide.p[qi];
+    if (denoise_guide_sky(gq)) continue;
+    float w = denoise_geometry_weight(g, n, depth, gq, 1.0, 0.0);
+    smooth_sum += w * luminance(accum_in.p[qi].rgb);
+    smooth_w += w;
+  }
+  luminance_out.l[index] = smooth_sum / max(smooth_w, 1e-6);
+  if (frames >= kDenoiseShortHistory) {
+    accum_out.p[index] = centre;
+    return;
+  }
+  float sum_w = 0.0;
+  vec2 moments = vec2(0.0);
+  [[unroll]] for (int dy = -3; dy <= 3; ++dy) {
+    [[unroll]] for (int dx = -3; dx <= 3; ++dx) {
+      ivec2 q = pixel + ivec2(dx, dy);
+      if (!denoise_inside(q)) continue;
+      uint qi = denoise_index(q);
+      vec4 gq = guide.p[qi];
+      if (denoise_guide_sky(gq)) continue;
+      float w = denoise_geometry_weight(g, n, depth, gq, 1.0, 0.0);
+      float l = luminance(accum_in.p[qi].rgb);
+      moments += w * vec2(l, l * l);
+      sum_w += w;
+    }
+  }
+  moments /= max(sum_w, 1e-6);
+  // Fewer frames behind it: more uncertain (SVGF's boost of the spatial estimate).
+  float boost = kDenoiseShortHistory / max(frames, 1.0);
+  accum_out.p[index] = vec4(centre.rgb, max(moments.y - moments.x * moments.x, 0.0) * boost);
+}

@@ -1,0 +1,51 @@
+// The denoiser's GPU/CPU facts (lighting/denoise/denoiser.h, shaders/denoise/*.comp): the push
+// constants every denoise.* pass receives, its per-pixel records and the albedo demodulation the
+// first pass divides by and the last multiplies back (one function, so the two agree exactly).
+// The knobs behind the push constants, with when to change each, are
+// lighting/denoise/denoise_settings.h.
+#ifndef LANTERN_SHARED_DENOISE_H
+#define LANTERN_SHARED_DENOISE_H
+
+#include "shared/common_math.h"
+#include "shared/lang.h"
+
+LANTERN_BEGIN_SHARED
+
+// Threads per side of a denoise.* workgroup (one thread per pixel).
+LANTERN_CONST uint kDenoiseGroupSize = 8u;
+LANTERN_CONST uint kDenoiseMaxAtrousIterations = 6u;
+// History length below which denoise.variance estimates variance spatially (SVGF's 4 frames).
+LANTERN_CONST float kDenoiseShortHistory = 4.0f;
+// Smallest demodulation factor: keeps dark albedos from amplifying noise (and 0 from dividing).
+LANTERN_CONST float kDenoiseMinAlbedo = 0.02f;
+
+// DenoisePush.flags.
+LANTERN_CONST uint kDenoiseFlagHistoryValid = 1u;  // the graph handed last frame's history
+LANTERN_CONST uint kDenoiseFlagSmoothLuminance = 2u;  // denoise.atrous: stop on 3x3 luminance
+
+struct DenoisePush {
+  uint width;
+  uint height;
+  uint flags;            // kDenoiseFlag*
+  uint step;             // denoise.atrous: tap spacing 2^iteration in pixels
+  float color_alpha;     // temporal blend floor of the illumination (1/alpha frames of history)
+  float moments_alpha;   // temporal blend floor of the luminance moments
+  float phi_luminance;   // à-trous luminance edge stop, in standard deviations
+  float phi_normal;      // à-trous normal edge stop: weight = max(0, dot(n, nq))^phi_normal
+  float phi_depth;       // à-trous depth edge stop: relative depth difference per tap step
+  float firefly;         // temporal clamp of the new sample to mean + firefly x sigma (0: off)
+  float max_history;     // history length cap (frames)
+  uint pad0;
+  vec4 similarity;       // restir_surfaces_similar's thresholds (shared/restir.h) for reprojection
+};
+LANTERN_STATIC_SIZE(DenoisePush, 64);
+
+// What illumination is divided by: the surface's albedo (base colour), floored. Radiance =
+// factor x illumination; sky and emitters are not filtered.
+LANTERN_FUNC vec3 denoise_demodulation(vec3 albedo) {
+  return max(albedo, vec3(kDenoiseMinAlbedo));
+}
+
+LANTERN_END_SHARED
+
+#endif

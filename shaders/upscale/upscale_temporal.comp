@@ -1,0 +1,82 @@
+// upscale.temporal: reconstructs the output-size image from this frame's internal-size HDR image
+// and last frame's output: the current samples resampled bilinearly at the output pixel centre
+// (minus the sample jitter), last frame's output reprojected along the G-buffer's motion vector
+// (scaled to output pixels) and rectified (clamped to the min/max of the 3x3 current samples
+// around the pixel: stale history, e.g. a moving emitter's trail, cannot survive), then blended
+// (push.history_weight). At scale 1 with no jitter the weight is 0: the input comes out as it is.
+// Reads: hdr_in (internal size), gbuffer_motion (internal size), history (output size).
+// Writes: hdr_out ("upscale.color", output size). History: "upscale.color" of last frame;
+// without kUpscaleFlagHistoryValid the history binding is a stand-in and is not read.
+// Dispatch: one thread per output pixel, 8x8 groups.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
+
+#include "shared/common_math.h"
+#include "shared/upscale.h"
+
+layout(local_size_x = kUpscaleGroupSize, local_size_y = kUpscaleGroupSize) in;
+layout(push_constant) uniform Push { UpscalePush push; };
+
+layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_motion;
+layout(std430, binding = 1) readonly buffer HdrIn { vec4 p[]; } hdr_in;
+layout(std430, binding = 2) readonly buffer History { vec4 p[]; } history;
+layout(std430, binding = 3) writeonly buffer HdrOut { vec4 p[]; } hdr_out;
+
+vec3 finite3(vec3 c) {
+  return vec3(finite_positive_or_zero(c.r), finite_positive_or_zero(c.g),
+              finite_positive_or_zero(c.b));
+}
+
+vec3 load_in(ivec2 q) {
+  q = clamp(q, ivec2(0), ivec2(push.in_width, push.in_height) - 1);
+  return finite3(hdr_in.p[uint(q.y) * push.in_width + uint(q.x)].rgb);
+}
+
+vec3 load_history(ivec2 q) {
+  q = clamp(q, ivec2(0), ivec2(push.out_width, push.out_height) - 1);
+  return history.p[uint(q.y) * push.out_width + uint(q.x)].rgb;
+}
+
+// Bilinear at continuous texel coordinate u (texel centres at integers), clamped at the edges.
+vec3 bilinear_in(vec2 u) {
+  ivec2 b = ivec2(floor(u));
+  vec2 f = u - vec2(b);
+  return mix(mix(load_in(b), load_in(b + ivec2(1, 0)), f.x),
+             mix(load_in(b + ivec2(0, 1)), load_in(b + ivec2(1, 1)), f.x), f.y);
+}
+
+vec3 bilinear_history(vec2 u) {
+  ivec2 b = ivec2(floor(u));
+  vec2 f = u - vec2(b);
+  return mix(mix(load_history(b), load_history(b + ivec2(1, 0)), f.x),
+             mix(load_history(b + ivec2(0, 1)), load_history(b + ivec2(1, 1)), f.x), f.y);
+}
+
+void main() {
+  ivec2 o = ivec2(gl_GlobalInvocationID.xy);
+  if (o.x >= int(push.out_width) || o.y >= int(push.out_height)) return;
+  vec2 in_size = vec2(push.in_width, push.in_height);
+  vec2 out_size = vec2(push.out_width, push.out_height);
+  vec2 u = (vec2(o) + 0.5) * (in_size / out_size) - 0.5 - push.jitter;
+  vec3 current = bilinear_in(u);
+  vec3 result = current;
+  if ((push.flags & kUpscaleFlagHistoryValid) != 0u && push.history_weight > 0.0) {
+    ivec2 n = clamp(ivec2(floor(u + 0.5)), ivec2(0), ivec2(in_size) - 1);
+    vec3 lo = current;
+    vec3 hi = current;
+    [[unroll]] for (int t = 0; t < 9; ++t) {
+      vec3 c = load_in(n + ivec2(t % 3 - 1, t / 3 - 1));
+      lo = min(lo, c);
+      hi = max(hi, c);
+    }
+    vec2 motion = imageLoad(gbuffer_motion, n).xy * (out_size / in_size);
+    vec2 previous = vec2(o) + 0.5 + motion;
+    if (is_finite(motion.x) && is_finite(motion.y) && all(greaterThanEqual(previous, vec2(0.0))) &&
+        all(lessThan(previous, out_size))) {
+      vec3 h = clamp(bilinear_history(previous - 0.5), lo, hi);
+      result = mix(current, h, push.history_weight);
+    }
+  }
+  hdr_out.p[uint(o.y) * push.out_width + uint(o.x)] = vec4(result, 1.0);
+}
