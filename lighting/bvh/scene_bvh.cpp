@@ -75,6 +75,7 @@ void SceneBvh::set_instances(std::span<const BvhInstanceDesc> instances) {
     inst.node_offset = mesh_node_offset_[desc.mesh];
     inst.triangle_offset = mesh_triangle_offset_[desc.mesh];
     inst.user_id = desc.user_id;
+    inst.flags = desc.flags;
     instances_.push_back(inst);
     instance_meshes_.push_back(desc.mesh);
     const MeshBvh& mesh = meshes_[desc.mesh];

@@ -17,6 +17,7 @@ struct BvhInstanceDesc {
   std::uint32_t mesh = 0;           // id returned by SceneBvh::add_mesh
   glm::mat4 object_to_world{1.0f};  // must be invertible (affine)
   std::uint32_t user_id = 0;        // returned in hits (e.g. the ECS entity)
+  std::uint32_t flags = 0;          // gpu::kBvhInstance* (alpha-tested material)
 };
 
 class SceneBvh {

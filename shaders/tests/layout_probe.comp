@@ -20,6 +20,7 @@
 #include "shared/rng.h"
 #include "shared/sampling.h"
 #include "shared/scene.h"
+#include "shared/textures.h"
 #include "shared/tonemap.h"
 
 layout(local_size_x = 1) in;
@@ -43,6 +44,8 @@ layout(std430, binding = 14) buffer BvhHitProbe { BvhHit bvh_hits[]; };
 layout(std430, binding = 15) buffer RestirPushProbe { RestirPush restir_pushes[]; };
 layout(std430, binding = 16) buffer RestirSurfaceProbe { RestirSurface restir_surfaces[]; };
 layout(std430, binding = 17) buffer GpuEnvironmentProbe { GpuEnvironment gpu_environments[]; };
+layout(std430, binding = 18) buffer GpuTextureProbe { GpuTexture gpu_textures[]; };
+layout(std430, binding = 19) buffer GpuTexturedEmitterProbe { GpuTexturedEmitter gpu_textured_emitters[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -64,4 +67,6 @@ void main() {
   restir_pushes[0] = restir_pushes[1];
   restir_surfaces[0] = restir_surfaces[1];
   gpu_environments[0] = gpu_environments[1];
+  gpu_textures[0] = gpu_textures[1];
+  gpu_textured_emitters[0] = gpu_textured_emitters[1];
 }
