@@ -119,9 +119,7 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
                                       : ref.name},
            {"size", fmt::format("{}x{}", img.width, img.height)},
            {"mips", img.levels},
-           {"encoding", img.format == gpu::kTexelHalf    ? "rgba16f"
-                        : img.format == gpu::kTexelSrgb8 ? "rgba8 srgb"
-                                                         : "rgba8 linear"},
+           {"encoding", img.format == gpu::kTexelHalf ? "rgba16f linear" : "rgba8 linear"},
            {"bytes", img.bytes}});
     }
     std::size_t alpha_tested = 0;
@@ -134,8 +132,8 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
         {"why", fmt::format("{} material texture slots over {} decoded images",
                             textures.records().size(), textures.images().size())},
         {"images", list},
-        {"textured_emissive_triangles", scene.textured_emitters.size()},
-        {"alpha_tested_materials", alpha_tested},
+        {"textured_lights", scene.textured_emitters.size()},
+        {"alpha_tested", alpha_tested},
         {"bytes", bytes},
         {"memory", mib(bytes)}};
   }

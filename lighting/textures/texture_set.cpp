@@ -50,12 +50,6 @@ void append_level(const std::vector<glm::vec4>& level, std::uint32_t format,
         out.push_back(glm::packHalf2x16(glm::vec2(c.r, c.g)));
         out.push_back(glm::packHalf2x16(glm::vec2(c.b, c.a)));
         break;
-      case gpu::kTexelSrgb8:
-        out.push_back(glm::packUnorm4x8(glm::vec4(gpu::linear_to_srgb(glm::clamp(c.r, 0.0f, 1.0f)),
-                                                  gpu::linear_to_srgb(glm::clamp(c.g, 0.0f, 1.0f)),
-                                                  gpu::linear_to_srgb(glm::clamp(c.b, 0.0f, 1.0f)),
-                                                  c.a)));
-        break;
       default: out.push_back(glm::packUnorm4x8(c)); break;
     }
   }
@@ -73,13 +67,19 @@ std::string image_place(const Level& level, std::uint32_t index) {
 
 TextureSet TextureSet::build(const Level& level) {
   TextureSet set;
-  std::map<std::pair<std::uint32_t, bool>, std::uint32_t> image_of;  // (image, srgb) -> images_
+  // (source, srgb) -> images_: an image is decoded once per colour space however many
+  // ImageRefs name it (an asset placed several times imports its images each time). The source
+  // is the file path, or the embedded bytes themselves.
+  std::map<std::pair<std::string, bool>, std::uint32_t> image_of;
   auto image = [&](std::uint32_t index, bool srgb, const std::string& use) -> std::uint32_t {
-    if (auto it = image_of.find({index, srgb}); it != image_of.end()) return it->second;
     if (index >= level.images.size())
       throw InputError(fmt::format("{}: {} names image {} of {}", level.source.string(), use,
                                    index, level.images.size()));
     const ImageRef& ref = level.images[index];
+    std::string source =
+        ref.path.empty() ? "data:" + std::string(ref.embedded.begin(), ref.embedded.end())
+                         : "file:" + ref.path.string();
+    if (auto it = image_of.find({source, srgb}); it != image_of.end()) return it->second;
     const std::string where = fmt::format("{} (used by {})", image_place(level, index), use);
     runtime::DecodedImage decoded =
         ref.path.empty()
@@ -90,8 +90,7 @@ TextureSet TextureSet::build(const Level& level) {
     img.srgb = srgb;
     img.width = decoded.width;
     img.height = decoded.height;
-    img.format = decoded.high_dynamic_range ? gpu::kTexelHalf
-                                            : (srgb ? gpu::kTexelSrgb8 : gpu::kTexelUnorm8);
+    img.format = decoded.high_dynamic_range || srgb ? gpu::kTexelHalf : gpu::kTexelUnorm8;
     img.linear.resize(std::size_t{img.width} * img.height);
     for (std::size_t i = 0; i < img.linear.size(); ++i) {
       const float* p = &decoded.rgba[4 * i];
@@ -119,7 +118,7 @@ TextureSet TextureSet::build(const Level& level) {
     img.bytes = (set.texels_.size() - img.first_word) * sizeof(std::uint32_t);
     set.images_.push_back(std::move(img));
     const auto id = static_cast<std::uint32_t>(set.images_.size() - 1);
-    image_of[{index, srgb}] = id;
+    image_of[{std::move(source), srgb}] = id;
     return id;
   };
   auto record = [&](const TextureRef& t, bool srgb, const std::string& use) -> std::uint32_t {

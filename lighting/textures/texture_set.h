@@ -1,5 +1,5 @@
-// The material textures of a level, ready to upload: every referenced image decoded once per
-// colour space it is used in (sRGB for base colour and emission, as glTF requires; linear for
+// The material textures of a level, ready to upload: every referenced image (by file or by
+// embedded bytes: duplicates are decoded once) decoded once per colour space it is used in (sRGB for base colour and emission, as glTF requires; linear for
 // metallic-roughness and normals), its mip chain box-filtered in linear light, packed into one
 // texel array (shared/textures.h encodings: RGBA8 sRGB / RGBA8 linear / RGBA16F for HDR
 // sources), and one GpuTexture record per material texture slot (image + glTF sampler +

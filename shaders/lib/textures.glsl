@@ -1,6 +1,6 @@
 // Software texture sampling from the scene's texel array (shared/textures.h): texel fetch per
 // encoding, bilinear filtering within a level with glTF wrap modes, linear blend between mip
-// levels. Texels are decoded to linear before filtering (sRGB textures filter in linear light).
+// levels. Texels are linear (sRGB colour was decoded at load), so filtering is in linear light.
 // Needs the blocks scene_textures (GpuTexture t[]) and scene_texels (uint w[]) declared by
 // lib/scene_buffers.glsl. Why not a bindless array of sampled images: see
 // lighting/textures/texture_set.h.
@@ -15,11 +15,7 @@ vec4 texture_texel(uint first, uint format, uint index) {
     uint b = scene_texels.w[first + 2u * index + 1u];
     return vec4(unpackHalf2x16(a), unpackHalf2x16(b));
   }
-  vec4 c = unpackUnorm4x8(scene_texels.w[first + index]);
-  if (format == kTexelSrgb8) {
-    c.rgb = vec3(srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b));
-  }
-  return c;
+  return unpackUnorm4x8(scene_texels.w[first + index]);
 }
 
 // One level: `first` word, w x h texels; uv in level-0 normalised units.

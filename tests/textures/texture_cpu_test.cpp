@@ -225,17 +225,17 @@ TEST(TextureSet, ColourSpaceByUseAndMipChain) {
   const lighting::TextureImage& colour = set.image_of(set.material_textures(0).x);
   const lighting::TextureImage& data = set.image_of(set.material_textures(0).y);
   EXPECT_TRUE(colour.srgb);
-  EXPECT_EQ(colour.format, gpu::kTexelSrgb8);
+  EXPECT_EQ(colour.format, gpu::kTexelHalf);  // decoded at load, kept linear
   EXPECT_EQ(data.format, gpu::kTexelUnorm8);
   EXPECT_NEAR(colour.linear[0].r, srgb_decode(188.0 / 255.0), 1e-6);
   EXPECT_NEAR(data.linear[0].r, 188.0 / 255.0, 1e-6);
   EXPECT_EQ(set.material_textures(0).z, gpu::kNoTexture);
-  // 4x2 -> 2x1 -> 1x1: 3 levels; the last is the mean of level 0 in linear light, stored sRGB.
+  // 4x2 -> 2x1 -> 1x1: 3 levels; the last is the mean of level 0 in linear light.
   EXPECT_EQ(colour.levels, 3u);
-  const std::uint32_t last = colour.first_word + 4 * 2 + 2 * 1;
-  const glm::vec4 stored = glm::unpackUnorm4x8(set.texels()[last]);
-  EXPECT_NEAR(srgb_decode(stored.r), 0.5 * srgb_decode(188.0 / 255.0), 2e-3);
-  EXPECT_EQ(set.texel_bytes(), 2u * (8 + 2 + 1) * 4);
+  const std::uint32_t last = colour.first_word + 2 * (4 * 2 + 2 * 1);  // two words per texel
+  const glm::vec2 stored = glm::unpackHalf2x16(set.texels()[last]);
+  EXPECT_NEAR(stored.x, 0.5 * srgb_decode(188.0 / 255.0), 1e-3);
+  EXPECT_EQ(set.texel_bytes(), (2u + 1u) * (8 + 2 + 1) * 4);  // half (colour) + rgba8 (data)
 }
 
 TEST(TextureSet, WrapModesAndBilinear) {
