@@ -25,6 +25,7 @@
 #include "lighting/scene/frame_constants.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/image/image_encode.h"
+#include "runtime/image/image_io.h"
 #include "tests/runtime/gpu_test_support.h"
 #include "tests/textures/textured_assets.h"
 
@@ -442,6 +443,63 @@ TEST_F(TextureRenderTest, FlatNormalMapIsNeutralTiltedMatchesClosedForm) {
     total += plain.pixels[i];
   }
   EXPECT_GT(change, 0.1 * total);
+}
+
+// The environment map convention (docs/levels.md) is Blender's world texture: a map whose four
+// column quadrants (and two halves, top and bottom) differ in colour, seen along directions
+// computed here from Cycles' equirectangular formula (u = 1/2 - atan2(y, x) / 2pi, v from the
+// bottom = 1 - acos(z) / pi, in Blender's Z-up axes = our (x, -z, y)); rotation_deg turns the map
+// in the world (map_to_world = R).
+TEST_F(TextureRenderTest, EnvironmentQuadrantsFollowBlendersConvention) {
+  const glm::dvec3 quadrant[4] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}};
+  runtime::ImageRGBA32F map(16, 8);
+  for (std::uint32_t y = 0; y < 8; ++y)
+    for (std::uint32_t x = 0; x < 16; ++x) {
+      const glm::dvec3 c = quadrant[x / 4] * (y < 4 ? 1.0 : 0.25);
+      float* p = map.at(x, y);
+      p[0] = static_cast<float>(c.r);
+      p[1] = static_cast<float>(c.g);
+      p[2] = static_cast<float>(c.b);
+      p[3] = 1.0f;
+    }
+  const auto dir = std::filesystem::temp_directory_path() / "lantern_texture_render_test";
+  std::filesystem::create_directories(dir);
+  runtime::write_image(dir / "quadrants.exr", map);
+  // Blender's (u, v-from-top) -> our world direction (map not rotated).
+  auto blender_direction = [](double u, double v_top) {
+    const double a = 2.0 * kPi * (0.5 - u);  // atan2(b.y, b.x)
+    const double polar = v_top * kPi;        // acos(b.z)
+    const glm::dvec3 b(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar));
+    return glm::dvec3(b.x, b.z, -b.y);
+  };
+  for (const float yaw_deg : {0.0f, 90.0f}) {
+    const glm::quat rotation = glm::quat(glm::radians(glm::vec3(0.0f, yaw_deg, 0.0f)));
+    for (int q = 0; q < 4; ++q)
+      for (const double v_top : {0.35, 0.65}) {
+        const glm::dvec3 map_dir = blender_direction(0.125 + 0.25 * q, v_top);
+        const glm::dvec3 world_dir = glm::dquat(rotation) * map_dir;
+        Level level;
+        level.name = "quadrants";
+        level.meshes.push_back(make_plane(glm::vec2(1.0f)));
+        level.materials.push_back(make_lambert(0.5f));
+        Instance far_below;
+        far_below.transform.translation = glm::vec3(0.0f, -500.0f, 0.0f);
+        far_below.world = far_below.transform.matrix();
+        level.instances.push_back(far_below);
+        level.environment = EnvironmentMap{dir / "quadrants.exr", 1.0f, rotation};
+        level.camera.position = glm::vec3(0.0f);
+        level.camera.orientation =
+            look_at_orientation(glm::vec3(0.0f), glm::vec3(world_dir));
+        level.camera.yfov = 0.3f;
+        level.has_camera = true;
+        const runtime::ImageRGBA32F image = render(level, "baseline", 1);
+        const glm::dvec3 expected = quadrant[q] * (v_top < 0.5 ? 1.0 : 0.25);
+        const float* got = image.at(kWidth / 2, kHeight / 2);
+        for (int k = 0; k < 3; ++k)
+          EXPECT_NEAR(got[k], expected[k], 1e-4)
+              << "yaw " << yaw_deg << " quadrant " << q << " v " << v_top << " channel " << k;
+      }
+  }
 }
 
 }  // namespace
