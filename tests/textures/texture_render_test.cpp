@@ -26,6 +26,7 @@
 #include "runtime/gpu/shader_library.h"
 #include "runtime/image/image_encode.h"
 #include "runtime/image/image_io.h"
+#include "tests/gbuffer/gbuffer_harness.h"
 #include "tests/runtime/gpu_test_support.h"
 #include "tests/textures/textured_assets.h"
 
@@ -443,6 +444,78 @@ TEST_F(TextureRenderTest, FlatNormalMapIsNeutralTiltedMatchesClosedForm) {
     total += plain.pixels[i];
   }
   EXPECT_GT(change, 0.1 * total);
+}
+
+// Both G-buffer methods on textured, alpha-masked content: the albedo is the sRGB-decoded texture
+// at the pixel's texcoord (closed form, half precision), and the camera sees the floor through
+// the cut-out half of a masked quad (ids) and the quad's opaque half elsewhere.
+TEST_F(TextureRenderTest, BothGBufferMethodsSampleTexturesAndCutOut) {
+  constexpr std::uint32_t kTex = 32;
+  constexpr double kQuadY = 1.0;
+  Level level = base_level("gbuffer_methods");
+  level.meshes.push_back(make_plane(glm::vec2(1.0f, 1.0f)));
+  const std::vector<std::uint8_t> texels = smooth_rgba8(kTex, kTex);
+  Material floor = make_lambert(1.0f);
+  floor.base_color_texture.image = test::add_png(level, kTex, kTex, texels);
+  level.materials.push_back(floor);
+  Material mask = make_lambert(0.3f);
+  mask.alpha_mode = AlphaMode::Mask;
+  mask.base_color_texture.sampler.mag_linear = false;
+  mask.base_color_texture.image = test::add_png(
+      level, 8, 8, test::make_rgba8(8, 8, [](std::uint32_t x, std::uint32_t) {
+        return glm::vec4(1.0f, 1.0f, 1.0f, x < 4 ? 1.0f : 0.0f);
+      }));
+  level.materials.push_back(mask);
+  level.instances.push_back(Instance{});
+  Instance quad;
+  quad.mesh = 1;
+  quad.material = 1;
+  quad.transform.translation = glm::vec3(0.0f, static_cast<float>(kQuadY), 0.0f);
+  quad.world = quad.transform.matrix();
+  level.instances.push_back(quad);
+  const TestTexture tex = decode(kTex, kTex, texels, true);
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  const gpu::FrameConstants fc = lighting::make_frame_constants(level.camera, kWidth, kHeight, 0, 1, {});
+  std::vector<test::GBufferImages> images;
+  for (const lighting::GBufferMethod method :
+       {lighting::GBufferMethod::Forward, lighting::GBufferMethod::Visibility}) {
+    test::GBufferHarness harness(device, shaders, scene, {.method = method});
+    images.push_back(*harness.render(fc, true));
+  }
+  int floor_pixels = 0, through_cut = 0, opaque = 0;
+  for (std::uint32_t y = 0; y < kHeight; ++y)
+    for (std::uint32_t x = 0; x < kWidth; ++x) {
+      // Skip pixels whose footprint straddles the quad's outline or its alpha edge (z = 0).
+      int state = -1;
+      bool edge = false;
+      for (const glm::dvec2 d : {glm::dvec2(0.5), glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(1, 1)}) {
+        const glm::dvec3 q = at_height(camera_ray(level, x + d.x, y + d.y), kQuadY);
+        const bool inside = std::abs(q.x) <= 0.5 && std::abs(q.z) <= 0.5;
+        const int s = !inside ? 0 : (q.z < 0.0 ? 2 : 1);  // 0 outside, 1 cut out, 2 opaque
+        edge = edge || (state >= 0 && s != state);
+        state = s;
+      }
+      if (edge) continue;
+      const glm::dvec3 p = at_height(camera_ray(level, x + 0.5, y + 0.5), 0.0);
+      const glm::dvec2 uv = floor_uv(p);
+      const glm::dvec3 rho(tex.bilinear(uv.x, uv.y));
+      for (std::size_t m = 0; m < images.size(); ++m) {
+        const test::GBufferImages& g = images[m];
+        const std::size_t i = g.index(x, y);
+        if (state == 2) {
+          EXPECT_EQ(g.ids[i].x, 1u) << "method " << m << " pixel " << x << "," << y;
+          continue;
+        }
+        EXPECT_EQ(g.ids[i].x, 0u) << "method " << m << " pixel " << x << "," << y;
+        for (int k = 0; k < 3; ++k)
+          EXPECT_NEAR(g.albedo_roughness[i][k], rho[k], 2e-3 * rho[k] + 1e-4)
+              << "method " << m << " pixel " << x << "," << y << " channel " << k;
+      }
+      (state == 2 ? opaque : state == 1 ? through_cut : floor_pixels)++;
+    }
+  EXPECT_GE(through_cut, 100);
+  EXPECT_GE(opaque, 100);
+  EXPECT_GE(floor_pixels, 300);
 }
 
 // The environment map convention (docs/levels.md) is Blender's world texture: a map whose four
