@@ -5,6 +5,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <cstring>
+#include <map>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -28,9 +32,22 @@ gpu::GpuMaterial to_gpu_material(const Material& m, glm::uvec4 textures) {
 }
 
 // The GpuTexturedEmitter records and texture means of every instance whose emissive material
-// has an emissive texture (instance order, triangle order; uvs in the light's winding).
+// has an emissive texture (instance order, triangle order; uvs in the light's winding). Means are
+// cached by (texture record contents, the three uvs): instances of one asset, or the repeated
+// panels of a generated level, integrate each distinct triangle once.
 void build_textured_emitters(const Level& level, SceneData& scene) {
   scene.instance_emitter_record.assign(level.instances.size(), gpu::kNoTexture);
+  using Key = std::array<std::uint32_t, 16 + 6>;
+  std::map<Key, glm::vec3> cache;
+  auto mean_of = [&](std::uint32_t texture, const glm::vec2 (&uv)[3]) {
+    Key key{};
+    std::memcpy(key.data(), &scene.textures.records()[texture], sizeof(gpu::GpuTexture));
+    std::memcpy(key.data() + 16, uv, sizeof(uv));
+    auto [it, inserted] = cache.try_emplace(key);
+    if (inserted)
+      it->second = integrate_texture_over_triangle(scene.textures, texture, uv[0], uv[1], uv[2]);
+    return it->second;
+  };
   for (std::size_t i = 0; i < level.instances.size(); ++i) {
     const Instance& inst = level.instances[i];
     const Material& material = level.materials.at(inst.material);
@@ -50,8 +67,7 @@ void build_textured_emitters(const Level& level, SceneData& scene) {
       e.uv01 = glm::vec4(uv[0], uv[1]);
       e.uv2_tex = glm::vec4(uv[2], glm::uintBitsToFloat(texture), 0.0f);
       scene.textured_emitters.push_back(e);
-      scene.textured_emitter_means.push_back(
-          integrate_texture_over_triangle(scene.textures, texture, uv[0], uv[1], uv[2]));
+      scene.textured_emitter_means.push_back(mean_of(texture, uv));
     }
   }
 }
@@ -221,7 +237,11 @@ SceneData build_scene_data(const Level& level) {
 
   // Lights: the table keeps the order of the emitters, so each instance's first emissive
   // triangle light is found by counting.
+  const auto integrate_start = std::chrono::steady_clock::now();
   build_textured_emitters(level, scene);
+  scene.textured_emitter_ms = std::chrono::duration<double, std::milli>(
+                                  std::chrono::steady_clock::now() - integrate_start)
+                                  .count();
   const std::vector<LightEmitter> emitters =
       extract_light_emitters(level, scene.scene_radius(), &scene);
   std::uint32_t light_index = 0;

@@ -35,6 +35,7 @@ struct SceneData {
   std::vector<gpu::GpuTexturedEmitter> textured_emitters;
   std::vector<std::uint32_t> instance_emitter_record;
   std::vector<glm::vec3> textured_emitter_means;
+  double textured_emitter_ms = 0.0;  // wall time of integrating the means at load
   glm::vec3 bounds_min{0.0f};  // world-space box of all instances
   glm::vec3 bounds_max{0.0f};
   // Radius of the world box's bounding sphere (>= a small positive floor): sizes directional

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "lighting/lights/environment_map.h"
 #include "lighting/scene/scene_data.h"
@@ -134,6 +135,8 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
         {"images", list},
         {"textured_lights", scene.textured_emitters.size()},
         {"alpha_tested", alpha_tested},
+        {"load_ms", std::round(textures.build_ms() * 10.0) / 10.0},
+        {"integrate_ms", std::round(scene.textured_emitter_ms * 10.0) / 10.0},
         {"bytes", bytes},
         {"memory", mib(bytes)}};
   }

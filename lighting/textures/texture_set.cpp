@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 
@@ -66,6 +67,7 @@ std::string image_place(const Level& level, std::uint32_t index) {
 }  // namespace
 
 TextureSet TextureSet::build(const Level& level) {
+  const auto start = std::chrono::steady_clock::now();
   TextureSet set;
   // (source, srgb) -> images_: an image is decoded once per colour space however many
   // ImageRefs name it (an asset placed several times imports its images each time). The source
@@ -150,6 +152,8 @@ TextureSet TextureSet::build(const Level& level) {
     slots.w = record(mat.normal_texture, false, use("normalTexture"));
     set.material_.push_back(slots);
   }
+  set.build_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return set;
 }
 

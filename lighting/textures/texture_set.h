@@ -54,6 +54,8 @@ class TextureSet {
   const glm::uvec4& material_textures(std::size_t material) const { return material_[material]; }
   bool empty() const { return records_.empty(); }
   std::uint64_t texel_bytes() const { return texels_.size() * sizeof(std::uint32_t); }
+  // Wall time build() took (decode, colour conversion, mip chains, packing).
+  double build_ms() const { return build_ms_; }
 
   // Level-0 bilinear sample of record `record` at mesh texcoord `uv` (transform, wrap applied),
   // linear RGBA: what the GPU's texture_sample returns at lod 0, on the CPU.
@@ -67,6 +69,7 @@ class TextureSet {
   std::vector<std::uint32_t> texels_;
   std::vector<TextureImage> images_;
   std::vector<glm::uvec4> material_;
+  double build_ms_ = 0.0;
 };
 
 // The mean of `texture` (a record of `set`) over the triangle with texcoords uv0..uv2: the

@@ -23,17 +23,14 @@ struct GBufferMaterial {
   vec3 shading_normal;
 };
 
-// Texcoord of one texture record at level of detail from the pixel footprint.
-float gbuffer_texture_lod(uint texture, vec4 duv) {
+// Texture record `texture` at uv, level of detail from the pixel footprint `duv` (through the
+// texture transform's linear part). The record is loaded once (every storage-buffer load is a
+// per-lane gather on lavapipe).
+vec4 gbuffer_texture(uint texture, vec2 uv, vec4 duv) {
   GpuTexture t = scene_textures.t[texture];
-  // The footprint goes through the transform's linear part.
   vec2 ax = vec2(dot(t.transform_u.xy, duv.xy), dot(t.transform_v.xy, duv.xy));
   vec2 ay = vec2(dot(t.transform_u.xy, duv.zw), dot(t.transform_v.xy, duv.zw));
-  return texture_lod(t, vec4(ax, ay));
-}
-
-vec4 gbuffer_texture(uint texture, vec2 uv, vec4 duv) {
-  return texture_sample(texture, uv, gbuffer_texture_lod(texture, duv));
+  return texture_sample_record(t, uv, texture_lod(t, vec4(ax, ay)));
 }
 
 // True when the material is alpha-tested (MASK) and the point is cut out.

@@ -42,10 +42,9 @@ vec4 texture_sample_level(GpuTexture t, uint first, uint w, uint h, vec2 uv, boo
   return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
-// Record `index` at texcoord `uv` (before the texture transform) with level of detail `lod`
+// Texture record `t` at texcoord `uv` (before the texture transform) with level of detail `lod`
 // (shared/textures.h texture_lod; 0 = level 0). Linear RGBA.
-vec4 texture_sample(uint index, vec2 uv, float lod) {
-  GpuTexture t = scene_textures.t[index];
+vec4 texture_sample_record(GpuTexture t, vec2 uv, float lod) {
   uv = texture_transform_uv(t, uv);
   uint filter_bits = t.format.w;
   uint levels = t.size.z;
@@ -72,6 +71,11 @@ vec4 texture_sample(uint index, vec2 uv, float lod) {
     c = mix(c, c1, blend);
   }
   return c;
+}
+
+// The same for record `index` of the scene's texture records.
+vec4 texture_sample(uint index, vec2 uv, float lod) {
+  return texture_sample_record(scene_textures.t[index], uv, lod);
 }
 
 #endif
