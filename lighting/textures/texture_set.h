@@ -6,14 +6,19 @@
 // KHR_texture_transform). A level without textures builds nothing (empty arrays).
 //
 // Why a texel array sampled in software rather than a bindless array of sampled images
-// (descriptor indexing) or an atlas: the same record + array is read by every stage that needs
-// a texture -- the forward G-buffer fragment shader, the visibility resolve, the BVH's alpha
-// test inside compute traversal and the light evaluation of every integrator -- through the one
-// scene-buffer table, without samplers, image layouts or a second descriptor kind in the render
-// graph; on lavapipe a sampled-image fetch is itself JIT-compiled software filtering, so the
-// hardware path saves little (measured: README "Textures"); an atlas needs padding for wrap
-// modes and mips and still software wrap. A real GPU would switch to bindless images behind
-// lib/textures.glsl's texture_sample.
+// (descriptor indexing) or an atlas, by measurement on lavapipe 25 (tests/textures/
+// texture_sampling_bench, README "Measured"): a hardware bilinear sample costs 3-11 ns, the
+// software one 16-30 ns (rgba8 / rgba16f; 53 ns for sRGB8 decoded per texel, hence colour is
+// stored linear in half floats), so a fully textured G-buffer costs 3-4x an untextured one here.
+// The software path is kept because the same record + array is read by every stage that needs a
+// texture -- the forward G-buffer fragment shader, the visibility resolve, the BVH's alpha test
+// inside compute traversal and the light evaluation of every integrator -- through the one
+// scene-buffer table (one slot per buffer, bound by name with the push descriptors every pass
+// uses), without samplers, image layouts or a second descriptor kind in the render graph. A
+// bindless array needs a descriptor-set path beside the push descriptors (they hold no large
+// arrays), bound in all those passes; an atlas needs padding for wrap modes and mips and still
+// software wrap. Where G-buffer time matters (real GPUs, texture-heavy frames) the bindless array
+// goes behind lib/textures.glsl's texture_sample_record, the G-buffer first.
 #pragma once
 
 #include <cstdint>
