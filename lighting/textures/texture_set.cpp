@@ -17,9 +17,12 @@ namespace {
 
 std::uint32_t wrap_mode(TextureWrap w) {
   switch (w) {
-    case TextureWrap::ClampToEdge: return gpu::kWrapClamp;
-    case TextureWrap::MirroredRepeat: return gpu::kWrapMirror;
-    case TextureWrap::Repeat: break;
+    case TextureWrap::ClampToEdge:
+      return gpu::kWrapClamp;
+    case TextureWrap::MirroredRepeat:
+      return gpu::kWrapMirror;
+    case TextureWrap::Repeat:
+      break;
   }
   return gpu::kWrapRepeat;
 }
@@ -37,8 +40,9 @@ std::vector<glm::vec4> downsample(const std::vector<glm::vec4>& src, std::uint32
     for (std::uint32_t x = 0; x < nw; ++x) {
       const std::uint32_t x0 = std::min(2 * x, w - 1), x1 = std::min(2 * x + 1, w - 1);
       const std::uint32_t y0 = std::min(2 * y, h - 1), y1 = std::min(2 * y + 1, h - 1);
-      out[std::size_t{y} * nw + x] = 0.25f * (src[std::size_t{y0} * w + x0] + src[std::size_t{y0} * w + x1] +
-                                              src[std::size_t{y1} * w + x0] + src[std::size_t{y1} * w + x1]);
+      out[std::size_t{y} * nw + x] =
+          0.25f * (src[std::size_t{y0} * w + x0] + src[std::size_t{y0} * w + x1] +
+                   src[std::size_t{y1} * w + x0] + src[std::size_t{y1} * w + x1]);
     }
   return out;
 }
@@ -51,7 +55,9 @@ void append_level(const std::vector<glm::vec4>& level, std::uint32_t format,
         out.push_back(glm::packHalf2x16(glm::vec2(c.r, c.g)));
         out.push_back(glm::packHalf2x16(glm::vec2(c.b, c.a)));
         break;
-      default: out.push_back(glm::packUnorm4x8(c)); break;
+      default:
+        out.push_back(glm::packUnorm4x8(c));
+        break;
     }
   }
 }
@@ -75,12 +81,12 @@ TextureSet TextureSet::build(const Level& level) {
   std::map<std::pair<std::string, bool>, std::uint32_t> image_of;
   auto image = [&](std::uint32_t index, bool srgb, const std::string& use) -> std::uint32_t {
     if (index >= level.images.size())
-      throw InputError(fmt::format("{}: {} names image {} of {}", level.source.string(), use,
-                                   index, level.images.size()));
+      throw InputError(fmt::format("{}: {} names image {} of {}", level.source.string(), use, index,
+                                   level.images.size()));
     const ImageRef& ref = level.images[index];
-    std::string source =
-        ref.path.empty() ? "data:" + std::string(ref.embedded.begin(), ref.embedded.end())
-                         : "file:" + ref.path.string();
+    std::string source = ref.path.empty()
+                             ? "data:" + std::string(ref.embedded.begin(), ref.embedded.end())
+                             : "file:" + ref.path.string();
     if (auto it = image_of.find({source, srgb}); it != image_of.end()) return it->second;
     const std::string where = fmt::format("{} (used by {})", image_place(level, index), use);
     runtime::DecodedImage decoded =
@@ -98,8 +104,8 @@ TextureSet TextureSet::build(const Level& level) {
       const float* p = &decoded.rgba[4 * i];
       glm::vec4 c(p[0], p[1], p[2], p[3]);
       if (srgb && !decoded.high_dynamic_range)
-        c = glm::vec4(gpu::srgb_to_linear(c.r), gpu::srgb_to_linear(c.g),
-                      gpu::srgb_to_linear(c.b), c.a);
+        c = glm::vec4(gpu::srgb_to_linear(c.r), gpu::srgb_to_linear(c.g), gpu::srgb_to_linear(c.b),
+                      c.a);
       img.linear[i] = c;
     }
     img.first_word = static_cast<std::uint32_t>(set.texels_.size());
@@ -133,8 +139,8 @@ TextureSet TextureSet::build(const Level& level) {
                           filter_bits(t.sampler));
     // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv.
     const float c = std::cos(t.rotation), s = std::sin(t.rotation);
-    g.transform_u = glm::vec4(c * t.scale.x, -s * t.scale.y, t.offset.x,
-                              static_cast<float>(t.texcoord));
+    g.transform_u =
+        glm::vec4(c * t.scale.x, -s * t.scale.y, t.offset.x, static_cast<float>(t.texcoord));
     g.transform_v = glm::vec4(s * t.scale.x, c * t.scale.y, t.offset.y, 0.0f);
     set.records_.push_back(g);
     set.record_image_.push_back(id);
@@ -167,8 +173,7 @@ glm::vec4 TextureSet::sample(std::uint32_t record, glm::vec2 uv) const {
   const glm::vec2 st = gpu::texture_transform_uv(t, uv);
   const int w = static_cast<int>(img.width), h = static_cast<int>(img.height);
   auto texel = [&](int x, int y) {
-    return img.linear[static_cast<std::size_t>(gpu::texture_wrap(y, h, t.format.z)) *
-                          img.width +
+    return img.linear[static_cast<std::size_t>(gpu::texture_wrap(y, h, t.format.z)) * img.width +
                       static_cast<std::size_t>(gpu::texture_wrap(x, w, t.format.y))];
   };
   if ((t.format.w & gpu::kFilterMagLinear) == 0u)
@@ -189,8 +194,8 @@ glm::vec3 integrate_texture_over_triangle(const TextureSet& set, std::uint32_t t
   const glm::vec2 a = gpu::texture_transform_uv(t, uv1) - gpu::texture_transform_uv(t, uv0);
   const glm::vec2 b = gpu::texture_transform_uv(t, uv2) - gpu::texture_transform_uv(t, uv0);
   const double texel_area =
-      0.5 * std::abs(static_cast<double>(a.x) * b.y - static_cast<double>(a.y) * b.x) *
-      img.width * img.height;
+      0.5 * std::abs(static_cast<double>(a.x) * b.y - static_cast<double>(a.y) * b.x) * img.width *
+      img.height;
   // n x n sub-triangles: about four samples per covered texel, from 4 x 4 to 64 x 64.
   const int n = std::clamp(static_cast<int>(std::ceil(std::sqrt(4.0 * texel_area))), 4, 64);
   glm::dvec3 sum(0.0);

@@ -1,9 +1,10 @@
 // The material textures of a level, ready to upload: every referenced image (by file or by
-// embedded bytes: duplicates are decoded once) decoded once per colour space it is used in (sRGB for base colour and emission, as glTF requires; linear for
-// metallic-roughness and normals), its mip chain box-filtered in linear light, packed into one
-// texel array (shared/textures.h encodings: RGBA8 sRGB / RGBA8 linear / RGBA16F for HDR
-// sources), and one GpuTexture record per material texture slot (image + glTF sampler +
-// KHR_texture_transform). A level without textures builds nothing (empty arrays).
+// embedded bytes: duplicates are decoded once) decoded once per colour space it is used in (sRGB
+// for base colour and emission, as glTF requires; linear for metallic-roughness and normals), its
+// mip chain box-filtered in linear light, packed into one texel array (shared/textures.h encodings:
+// RGBA8 sRGB / RGBA8 linear / RGBA16F for HDR sources), and one GpuTexture record per material
+// texture slot (image + glTF sampler + KHR_texture_transform). A level without textures builds
+// nothing (empty arrays).
 //
 // Why a texel array sampled in software rather than a bindless array of sampled images
 // (descriptor indexing) or an atlas, by measurement on lavapipe 25 (tests/textures/
@@ -40,7 +41,7 @@ struct TextureImage {
   std::uint32_t levels = 0;
   std::uint32_t format = gpu::kTexelUnorm8;
   std::uint32_t first_word = 0;
-  std::uint64_t bytes = 0;      // all levels in the texel array
+  std::uint64_t bytes = 0;        // all levels in the texel array
   std::vector<glm::vec4> linear;  // level 0, linear RGBA (for integrating emission on the CPU)
 };
 

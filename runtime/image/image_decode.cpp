@@ -28,9 +28,10 @@ std::string extension_for(std::span<const std::uint8_t> b, const std::string& mi
   if (starts({0x89, 'P', 'N', 'G'})) return ".png";
   if (starts({0xff, 0xd8, 0xff})) return ".jpg";
   if (starts({0x76, 0x2f, 0x31, 0x01})) return ".exr";
-  throw InputError(fmt::format("{}: embedded image is not PNG, JPEG or EXR (MIME type '{}', {} "
-                               "bytes)",
-                               where, mime, b.size()));
+  throw InputError(
+      fmt::format("{}: embedded image is not PNG, JPEG or EXR (MIME type '{}', {} "
+                  "bytes)",
+                  where, mime, b.size()));
 }
 
 // glTF colour and alpha are straight (unassociated): OpenImageIO would premultiply PNG colour by

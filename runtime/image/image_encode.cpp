@@ -19,8 +19,8 @@ std::vector<std::uint8_t> encode(std::uint32_t width, std::uint32_t height, int 
   if (!out) throw RuntimeError(fmt::format("encode {}: {}", extension, OIIO::geterror()));
   OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), channels, stored);
   spec.attribute("oiio:UnassociatedAlpha", 1);  // texture content: straight alpha, as given
-  if (!out->set_ioproxy(&proxy) || !out->open(name, spec) ||
-      !out->write_image(given, pixels) || !out->close())
+  if (!out->set_ioproxy(&proxy) || !out->open(name, spec) || !out->write_image(given, pixels) ||
+      !out->close())
     throw RuntimeError(fmt::format("encode {}: {}", extension, out->geterror()));
   return {proxy.buffer().begin(), proxy.buffer().end()};
 }
@@ -31,11 +31,13 @@ std::vector<std::uint8_t> encode_rgba8(std::uint32_t width, std::uint32_t height
                                        std::span<const std::uint8_t> rgba8,
                                        const std::string& extension) {
   if (rgba8.size() != 4ull * width * height)
-    throw RuntimeError(fmt::format("encode_rgba8: {} bytes for {}x{}", rgba8.size(), width, height));
+    throw RuntimeError(
+        fmt::format("encode_rgba8: {} bytes for {}x{}", rgba8.size(), width, height));
   if (extension == ".jpg" || extension == ".jpeg") {  // JPEG has no alpha
     std::vector<std::uint8_t> rgb;
     rgb.reserve(3ull * width * height);
-    for (std::size_t i = 0; i < rgba8.size(); i += 4) rgb.insert(rgb.end(), &rgba8[i], &rgba8[i] + 3);
+    for (std::size_t i = 0; i < rgba8.size(); i += 4)
+      rgb.insert(rgb.end(), &rgba8[i], &rgba8[i] + 3);
     return encode(width, height, 3, OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT8, rgb.data(),
                   extension);
   }
@@ -47,8 +49,7 @@ std::vector<std::uint8_t> encode_exr(std::uint32_t width, std::uint32_t height,
                                      std::span<const float> rgba) {
   if (rgba.size() != 4ull * width * height)
     throw RuntimeError(fmt::format("encode_exr: {} floats for {}x{}", rgba.size(), width, height));
-  return encode(width, height, 4, OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT, rgba.data(),
-                ".exr");
+  return encode(width, height, 4, OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT, rgba.data(), ".exr");
 }
 
 }  // namespace lantern::runtime

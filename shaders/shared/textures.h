@@ -89,8 +89,8 @@ LANTERN_FUNC uint texture_level_words(uint w, uint h, uint format) {
 
 // Whether any of the material's slots names a texture.
 LANTERN_FUNC bool material_textured(GpuMaterial m) {
-  return m.textures.x != kNoTexture || m.textures.y != kNoTexture ||
-         m.textures.z != kNoTexture || m.textures.w != kNoTexture;
+  return m.textures.x != kNoTexture || m.textures.y != kNoTexture || m.textures.z != kNoTexture ||
+         m.textures.w != kNoTexture;
 }
 
 // The material an integrator shades a G-buffer pixel with: the record, but base colour,

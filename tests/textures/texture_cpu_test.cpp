@@ -61,8 +61,8 @@ Level load_quad(const TexturedQuadOptions& o, const std::string& name) {
 }
 
 TEST(ImageDecode, PngDecodesAsStored) {
-  const std::vector<std::uint8_t> texels = {0, 64, 128, 255, 10, 20, 30, 40,
-                                            255, 0, 0, 255, 188, 188, 188, 255};
+  const std::vector<std::uint8_t> texels = {0,   64, 128, 255, 10,  20,  30,  40,
+                                            255, 0,  0,   255, 188, 188, 188, 255};
   const runtime::DecodedImage img =
       runtime::decode_image_bytes(test::png_of(2, 2, texels), "image/png", 64, "png");
   ASSERT_EQ(img.width, 2u);
@@ -73,7 +73,8 @@ TEST(ImageDecode, PngDecodesAsStored) {
 }
 
 TEST(ImageDecode, JpegAndHalfExrAndSignatureSniffing) {
-  const auto flat = test::make_rgba8(8, 8, [](auto, auto) { return glm::vec4(0.5f, 0.25f, 0.75f, 1); });
+  const auto flat =
+      test::make_rgba8(8, 8, [](auto, auto) { return glm::vec4(0.5f, 0.25f, 0.75f, 1); });
   const std::vector<std::uint8_t> jpeg = runtime::encode_rgba8(8, 8, flat, ".jpg");
   const runtime::DecodedImage j = runtime::decode_image_bytes(jpeg, "", 64, "jpeg");  // sniffed
   EXPECT_NEAR(j.at(3, 3)[0], 0.5f, 0.02f);
@@ -91,24 +92,29 @@ TEST(ImageDecode, JpegAndHalfExrAndSignatureSniffing) {
 TEST(ImageDecode, BadInputIsOneErrorNamingTheImage) {
   const std::vector<std::uint8_t> png = test::png_of(16, 16, gradient_rgba8(16, 16));
   std::vector<std::uint8_t> truncated(png.begin(), png.begin() + static_cast<long>(png.size() / 2));
-  EXPECT_NE(input_error_of([&] { runtime::decode_image_bytes(truncated, "image/png", 64, "sign.png"); })
-                .find("sign.png"),
+  EXPECT_NE(input_error_of([&] {
+              runtime::decode_image_bytes(truncated, "image/png", 64, "sign.png");
+            }).find("sign.png"),
             std::string::npos);
   const std::vector<std::uint8_t> garbage(200, 0x5a);
-  EXPECT_NE(input_error_of([&] { runtime::decode_image_bytes(garbage, "", 64, "x"); })
-                .find("not PNG, JPEG or EXR"),
+  EXPECT_NE(input_error_of([&] {
+              runtime::decode_image_bytes(garbage, "", 64, "x");
+            }).find("not PNG, JPEG or EXR"),
             std::string::npos);
   EXPECT_NE(input_error_of([&] { runtime::decode_image_bytes(garbage, "image/png", 64, "x"); }),
             "");
-  EXPECT_NE(input_error_of([&] { runtime::decode_image_bytes({}, "image/png", 64, "x"); })
-                .find("no bytes"),
+  EXPECT_NE(input_error_of([&] {
+              runtime::decode_image_bytes({}, "image/png", 64, "x");
+            }).find("no bytes"),
             std::string::npos);
   const std::vector<std::uint8_t> wide = test::png_of(65, 1, std::vector<std::uint8_t>(65 * 4, 9));
-  EXPECT_NE(input_error_of([&] { runtime::decode_image_bytes(wide, "image/png", 64, "wide"); })
-                .find("larger than the 64x64 texture limit"),
+  EXPECT_NE(input_error_of([&] {
+              runtime::decode_image_bytes(wide, "image/png", 64, "wide");
+            }).find("larger than the 64x64 texture limit"),
             std::string::npos);
-  EXPECT_NE(input_error_of([&] { runtime::decode_image_file(scratch("none.png"), 64, "m"); })
-                .find("not found"),
+  EXPECT_NE(input_error_of([&] {
+              runtime::decode_image_file(scratch("none.png"), 64, "m");
+            }).find("not found"),
             std::string::npos);
 }
 
@@ -117,7 +123,8 @@ TEST(GltfTextures, ImagesFromDataUriBufferViewAndFileDecodeAlike) {
   TexturedQuadOptions o;
   o.image_bytes = test::png_of(8, 4, texels);
   std::vector<glm::vec4> first;
-  for (ImageStorage storage : {ImageStorage::DataUri, ImageStorage::BufferView, ImageStorage::File}) {
+  for (ImageStorage storage :
+       {ImageStorage::DataUri, ImageStorage::BufferView, ImageStorage::File}) {
     o.storage = storage;
     o.image_file = scratch("quad_image.png");
     const Level level = load_quad(o, "storage");
@@ -137,8 +144,8 @@ TEST(GltfTextures, SamplerTransformTexcoordSetsAndAlphaModes) {
   TexturedQuadOptions o;
   o.image_bytes = test::png_of(4, 4, gradient_rgba8(4, 4));
   o.sampler = {{"magFilter", 9728}, {"minFilter", 9985}, {"wrapS", 33071}, {"wrapT", 33648}};
-  o.texture_transform = {{"offset", {0.5, 0.25}}, {"rotation", 0.5}, {"scale", {2.0, 3.0}},
-                         {"texCoord", 1}};
+  o.texture_transform = {
+      {"offset", {0.5, 0.25}}, {"rotation", 0.5}, {"scale", {2.0, 3.0}}, {"texCoord", 1}};
   o.with_texcoord1 = true;
   o.alpha_mode = "BLEND";
   const Level level = load_quad(o, "sampler");
@@ -167,7 +174,8 @@ TEST(GltfTextures, SamplerTransformTexcoordSetsAndAlphaModes) {
   const glm::vec2 uv(0.3f, 0.7f);
   const glm::vec2 s = uv * glm::vec2(2.0f, 3.0f);
   const float c = std::cos(0.5f), sn = std::sin(0.5f);
-  const glm::vec2 expected = glm::vec2(c * s.x - sn * s.y, sn * s.x + c * s.y) + glm::vec2(0.5f, 0.25f);
+  const glm::vec2 expected =
+      glm::vec2(c * s.x - sn * s.y, sn * s.x + c * s.y) + glm::vec2(0.5f, 0.25f);
   const glm::vec2 got = gpu::texture_transform_uv(g, uv);
   EXPECT_NEAR(got.x, expected.x, 1e-5f);
   EXPECT_NEAR(got.y, expected.y, 1e-5f);
@@ -255,9 +263,9 @@ TEST(TextureSet, WrapModesAndBilinear) {
   level.materials.push_back(m);
   const lighting::TextureSet set = lighting::TextureSet::build(level);
   const std::uint32_t r = set.material_textures(0).y;
-  EXPECT_NEAR(set.sample(r, {0.25f, 0.5f}).r, 0.0f, 1e-6f);   // texel 0 centre
-  EXPECT_NEAR(set.sample(r, {0.5f, 0.5f}).r, 0.5f, 1e-6f);    // between the texels
-  EXPECT_NEAR(set.sample(r, {0.0f, 0.5f}).r, 0.5f, 1e-6f);    // repeat: blends texel 1
+  EXPECT_NEAR(set.sample(r, {0.25f, 0.5f}).r, 0.0f, 1e-6f);  // texel 0 centre
+  EXPECT_NEAR(set.sample(r, {0.5f, 0.5f}).r, 0.5f, 1e-6f);   // between the texels
+  EXPECT_NEAR(set.sample(r, {0.0f, 0.5f}).r, 0.5f, 1e-6f);   // repeat: blends texel 1
 }
 
 // The mean of a texture over a triangle: a ramp in u has the value at the centroid.
@@ -287,7 +295,8 @@ TEST(TextureSet, TexturedEmitterPowerFollowsTheTexture) {
   Level level;
   level.meshes.push_back(make_plane(glm::vec2(2.0f, 2.0f)));  // two triangles, uv 0..1
   const auto texels = test::make_rgba8(16, 16, [](std::uint32_t x, std::uint32_t y) {
-    return x >= y ? glm::vec4(0, 0, 0, 1) : glm::vec4(1, 1, 1, 1);  // black on and above the diagonal
+    return x >= y ? glm::vec4(0, 0, 0, 1)
+                  : glm::vec4(1, 1, 1, 1);  // black on and above the diagonal
   });
   Material emitter = make_lambert(0.0f);
   emitter.emissive_factor = glm::vec3(2.0f);
@@ -320,8 +329,8 @@ TEST(TextureSet, TexturedEmitterPowerFollowsTheTexture) {
   // Fully black: exactly zero.
   Level dark = level;
   dark.images.clear();
-  dark.materials[0].emissive_texture.image =
-      test::add_png(dark, 4, 4, test::make_rgba8(4, 4, [](auto, auto) { return glm::vec4(0, 0, 0, 1); }));
+  dark.materials[0].emissive_texture.image = test::add_png(
+      dark, 4, 4, test::make_rgba8(4, 4, [](auto, auto) { return glm::vec4(0, 0, 0, 1); }));
   const lighting::SceneData dark_scene = lighting::build_scene_data(dark);
   for (const lighting::LightEmitter& e :
        lighting::extract_light_emitters(dark, dark_scene.scene_radius(), &dark_scene))

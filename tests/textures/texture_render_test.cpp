@@ -14,9 +14,9 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
-#include <optional>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,11 +62,13 @@ struct TestTexture {
     };
     const long i = static_cast<long>(fx), j = static_cast<long>(fy);
     const double a = x - fx, b = y - fy;
-    return (1 - b) * ((1 - a) * at(i, j) + a * at(i + 1, j)) + b * ((1 - a) * at(i, j + 1) + a * at(i + 1, j + 1));
+    return (1 - b) * ((1 - a) * at(i, j) + a * at(i + 1, j)) +
+           b * ((1 - a) * at(i, j + 1) + a * at(i + 1, j + 1));
   }
 };
 
-TestTexture decode(std::uint32_t w, std::uint32_t h, const std::vector<std::uint8_t>& rgba8, bool srgb) {
+TestTexture decode(std::uint32_t w, std::uint32_t h, const std::vector<std::uint8_t>& rgba8,
+                   bool srgb) {
   TestTexture t{w, h, {}};
   for (std::size_t i = 0; i < std::size_t{w} * h; ++i) {
     glm::dvec4 c;
@@ -104,7 +106,9 @@ Light point_light() {
 }
 
 // make_plane({6, 6})'s texcoords at floor point (x, 0, z): u along +z, v along +x.
-glm::dvec2 floor_uv(glm::dvec3 p) { return {(p.z + 3.0) / 6.0, (p.x + 3.0) / 6.0}; }
+glm::dvec2 floor_uv(glm::dvec3 p) {
+  return {(p.z + 3.0) / 6.0, (p.x + 3.0) / 6.0};
+}
 
 struct Ray {
   glm::dvec3 origin, dir;
@@ -118,7 +122,9 @@ Ray camera_ray(const Level& level, double x, double y) {
   return {glm::dvec3(level.camera.position),
           glm::normalize(glm::dvec3(glm::vec3(b) / b.w - glm::vec3(a) / a.w))};
 }
-glm::dvec3 at_height(const Ray& r, double h) { return r.origin + r.dir * ((h - r.origin.y) / r.dir.y); }
+glm::dvec3 at_height(const Ray& r, double h) {
+  return r.origin + r.dir * ((h - r.origin.y) / r.dir.y);
+}
 
 class TextureRenderTest : public runtime::test::GpuTest {
  protected:
@@ -155,9 +161,10 @@ class TextureRenderTest : public runtime::test::GpuTest {
 
 // Compares `image` with `expected` (per pixel rgb; nullopt = not compared) per 16x9 block and
 // overall. Returns the number of compared pixels.
-int compare_blocks(const runtime::ImageRGBA32F& image,
-                   const std::function<std::optional<glm::dvec3>(std::uint32_t, std::uint32_t)>& expected,
-                   double block_tolerance, double mean_tolerance, const std::string& what) {
+int compare_blocks(
+    const runtime::ImageRGBA32F& image,
+    const std::function<std::optional<glm::dvec3>(std::uint32_t, std::uint32_t)>& expected,
+    double block_tolerance, double mean_tolerance, const std::string& what) {
   std::vector<glm::dvec2> blocks((kWidth / kBlockW) * (kHeight / kBlockH), glm::dvec2(0.0));
   glm::dvec2 total(0.0);
   int compared = 0;
@@ -244,14 +251,17 @@ TEST_F(TextureRenderTest, EmissiveTexturedQuadMatchesQuadrature) {
   for (int i = 0; i < kCells; ++i)
     for (int j = 0; j < kCells; ++j) {
       const double x = -kQuadHalf + (i + 0.5) * cell, z = -kQuadHalf + (j + 0.5) * cell;
-      const glm::dvec4 t = tex.bilinear((kQuadHalf - z) / (2 * kQuadHalf), (x + kQuadHalf) / (2 * kQuadHalf));
+      const glm::dvec4 t =
+          tex.bilinear((kQuadHalf - z) / (2 * kQuadHalf), (x + kQuadHalf) / (2 * kQuadHalf));
       radiance[static_cast<std::size_t>(i * kCells + j)] = glm::dvec3(kFactor) * glm::dvec3(t);
       position[static_cast<std::size_t>(i * kCells + j)] = {x, z};
     }
   auto expected = [&](std::uint32_t x, std::uint32_t y) -> std::optional<glm::dvec3> {
-    for (const glm::dvec2 d : {glm::dvec2(0.5), glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(1, 1)}) {
+    for (const glm::dvec2 d : {glm::dvec2(0.5), glm::dvec2(0, 0), glm::dvec2(1, 0),
+                               glm::dvec2(0, 1), glm::dvec2(1, 1)}) {
       const glm::dvec3 q = at_height(camera_ray(level, x + d.x, y + d.y), kQuadHeight);
-      if (std::abs(q.x) <= kQuadHalf + 1e-3 && std::abs(q.z) <= kQuadHalf + 1e-3) return std::nullopt;
+      if (std::abs(q.x) <= kQuadHalf + 1e-3 && std::abs(q.z) <= kQuadHalf + 1e-3)
+        return std::nullopt;
     }
     const glm::dvec3 p = at_height(camera_ray(level, x + 0.5, y + 0.5), 0.0);
     glm::dvec3 e(0.0);
@@ -264,7 +274,8 @@ TEST_F(TextureRenderTest, EmissiveTexturedQuadMatchesQuadrature) {
   };
   compare_blocks(render(level, "reference", 16), expected, 0.05, 0.005, "reference");
   compare_blocks(render(level, "baseline", 64), expected, 0.05, 0.005, "baseline");
-  compare_blocks(render_mean(level, "restir", 16, 4), expected, 0.05, 0.01, "restir (4 x 16 frames)");
+  compare_blocks(render_mean(level, "restir", 16, 4), expected, 0.05, 0.01,
+                 "restir (4 x 16 frames)");
 }
 
 // An alpha-masked 1 m quad at height 0.75 under a point light at (0, 1.5, 0): its texels with
@@ -278,10 +289,10 @@ TEST_F(TextureRenderTest, AlphaCutoutCastsTheCutOutShadow) {
   mask.alpha_mode = AlphaMode::Mask;
   mask.alpha_cutoff = 0.5f;
   mask.base_color_texture.sampler.mag_linear = false;
-  mask.base_color_texture.image = test::add_png(
-      level, 8, 8, test::make_rgba8(8, 8, [](std::uint32_t x, std::uint32_t) {
-        return glm::vec4(1.0f, 1.0f, 1.0f, x < 4 ? 1.0f : 0.0f);
-      }));
+  mask.base_color_texture.image =
+      test::add_png(level, 8, 8, test::make_rgba8(8, 8, [](std::uint32_t x, std::uint32_t) {
+                      return glm::vec4(1.0f, 1.0f, 1.0f, x < 4 ? 1.0f : 0.0f);
+                    }));
   level.materials.push_back(mask);
   level.instances.push_back(Instance{});
   Instance occluder;
@@ -304,7 +315,8 @@ TEST_F(TextureRenderTest, AlphaCutoutCastsTheCutOutShadow) {
   int through_cut = 0, shadow = 0;
   auto expected = [&](std::uint32_t x, std::uint32_t y) -> std::optional<glm::dvec3> {
     bool first = true, state_blocked = false, state_shadow = false;
-    for (const glm::dvec2 d : {glm::dvec2(0.5), glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(1, 1)}) {
+    for (const glm::dvec2 d : {glm::dvec2(0.5), glm::dvec2(0, 0), glm::dvec2(1, 0),
+                               glm::dvec2(0, 1), glm::dvec2(1, 1)}) {
       const Ray r = camera_ray(level, x + d.x, y + d.y);
       const bool blocked = opaque(at_height(r, kOccluderY));
       const bool s = shadowed(at_height(r, 0.0));
@@ -397,17 +409,21 @@ TEST_F(TextureRenderTest, FlatNormalMapIsNeutralTiltedMatchesClosedForm) {
   };
   auto constant_exr = [](glm::vec3 n) {
     std::vector<float> texels;
-    for (int i = 0; i < 16; ++i) texels.insert(texels.end(), {0.5f * n.x + 0.5f, 0.5f * n.y + 0.5f, 0.5f * n.z + 0.5f, 1.0f});
+    for (int i = 0; i < 16; ++i)
+      texels.insert(texels.end(), {0.5f * n.x + 0.5f, 0.5f * n.y + 0.5f, 0.5f * n.z + 0.5f, 1.0f});
     return runtime::encode_exr(4, 4, texels);
   };
   const runtime::ImageRGBA32F plain = render(level_with(std::nullopt, false, 0), "baseline", 1);
   // Flat, exactly representable in half floats: the same image up to rounding.
-  const runtime::ImageRGBA32F flat = render(level_with(constant_exr({0, 0, 1}), true, 4), "baseline", 1);
+  const runtime::ImageRGBA32F flat =
+      render(level_with(constant_exr({0, 0, 1}), true, 4), "baseline", 1);
   // Flat in 8 bits: (128, 128, 255) is 0.4% off (0, 0, 1).
   const runtime::ImageRGBA32F flat8 = render(
-      level_with(test::png_of(4, 4, test::make_rgba8(4, 4, [](auto, auto) {
-                   return glm::vec4(128 / 255.0f, 128 / 255.0f, 1, 1);
-                 })),
+      level_with(test::png_of(4, 4,
+                              test::make_rgba8(4, 4,
+                                               [](auto, auto) {
+                                                 return glm::vec4(128 / 255.0f, 128 / 255.0f, 1, 1);
+                                               })),
                  false, 4),
       "baseline", 1);
   double worst = 0.0, worst8 = 0.0;
@@ -422,8 +438,10 @@ TEST_F(TextureRenderTest, FlatNormalMapIsNeutralTiltedMatchesClosedForm) {
 
   // Tilted by 30 degrees towards +u (world +z): n' = (0, cos, sin).
   const double a = 30.0 * kPi / 180.0;
-  const Level tilted_level = level_with(
-      constant_exr(glm::vec3(static_cast<float>(std::sin(a)), 0.0f, static_cast<float>(std::cos(a)))), true, 4);
+  const Level tilted_level =
+      level_with(constant_exr(glm::vec3(static_cast<float>(std::sin(a)), 0.0f,
+                                        static_cast<float>(std::cos(a)))),
+                 true, 4);
   const glm::dvec3 n(0.0, std::cos(a), std::sin(a));
   auto expected = [&](std::uint32_t x, std::uint32_t y) -> std::optional<glm::dvec3> {
     const Ray r = camera_ray(tilted_level, x + 0.5, y + 0.5);
@@ -461,10 +479,10 @@ TEST_F(TextureRenderTest, BothGBufferMethodsSampleTexturesAndCutOut) {
   Material mask = make_lambert(0.3f);
   mask.alpha_mode = AlphaMode::Mask;
   mask.base_color_texture.sampler.mag_linear = false;
-  mask.base_color_texture.image = test::add_png(
-      level, 8, 8, test::make_rgba8(8, 8, [](std::uint32_t x, std::uint32_t) {
-        return glm::vec4(1.0f, 1.0f, 1.0f, x < 4 ? 1.0f : 0.0f);
-      }));
+  mask.base_color_texture.image =
+      test::add_png(level, 8, 8, test::make_rgba8(8, 8, [](std::uint32_t x, std::uint32_t) {
+                      return glm::vec4(1.0f, 1.0f, 1.0f, x < 4 ? 1.0f : 0.0f);
+                    }));
   level.materials.push_back(mask);
   level.instances.push_back(Instance{});
   Instance quad;
@@ -475,7 +493,8 @@ TEST_F(TextureRenderTest, BothGBufferMethodsSampleTexturesAndCutOut) {
   level.instances.push_back(quad);
   const TestTexture tex = decode(kTex, kTex, texels, true);
   const lighting::SceneData scene = lighting::build_scene_data(level);
-  const gpu::FrameConstants fc = lighting::make_frame_constants(level.camera, kWidth, kHeight, 0, 1, {});
+  const gpu::FrameConstants fc =
+      lighting::make_frame_constants(level.camera, kWidth, kHeight, 0, 1, {});
   std::vector<test::GBufferImages> images;
   for (const lighting::GBufferMethod method :
        {lighting::GBufferMethod::Forward, lighting::GBufferMethod::Visibility}) {
@@ -488,7 +507,8 @@ TEST_F(TextureRenderTest, BothGBufferMethodsSampleTexturesAndCutOut) {
       // Skip pixels whose footprint straddles the quad's outline or its alpha edge (z = 0).
       int state = -1;
       bool edge = false;
-      for (const glm::dvec2 d : {glm::dvec2(0.5), glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(1, 1)}) {
+      for (const glm::dvec2 d : {glm::dvec2(0.5), glm::dvec2(0, 0), glm::dvec2(1, 0),
+                                 glm::dvec2(0, 1), glm::dvec2(1, 1)}) {
         const glm::dvec3 q = at_height(camera_ray(level, x + d.x, y + d.y), kQuadY);
         const bool inside = std::abs(q.x) <= 0.5 && std::abs(q.z) <= 0.5;
         const int s = !inside ? 0 : (q.z < 0.0 ? 2 : 1);  // 0 outside, 1 cut out, 2 opaque
@@ -542,7 +562,8 @@ TEST_F(TextureRenderTest, EnvironmentQuadrantsFollowBlendersConvention) {
   auto blender_direction = [](double u, double v_top) {
     const double a = 2.0 * kPi * (0.5 - u);  // atan2(b.y, b.x)
     const double polar = v_top * kPi;        // acos(b.z)
-    const glm::dvec3 b(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar));
+    const glm::dvec3 b(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a),
+                       std::cos(polar));
     return glm::dvec3(b.x, b.z, -b.y);
   };
   for (const float yaw_deg : {0.0f, 90.0f}) {
@@ -561,8 +582,7 @@ TEST_F(TextureRenderTest, EnvironmentQuadrantsFollowBlendersConvention) {
         level.instances.push_back(far_below);
         level.environment = EnvironmentMap{dir / "quadrants.exr", 1.0f, rotation};
         level.camera.position = glm::vec3(0.0f);
-        level.camera.orientation =
-            look_at_orientation(glm::vec3(0.0f), glm::vec3(world_dir));
+        level.camera.orientation = look_at_orientation(glm::vec3(0.0f), glm::vec3(world_dir));
         level.camera.yfov = 0.3f;
         level.has_camera = true;
         const runtime::ImageRGBA32F image = render(level, "baseline", 1);

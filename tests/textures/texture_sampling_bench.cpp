@@ -25,9 +25,10 @@ int main() {
   runtime::Device device(runtime::DeviceOptions{});
   runtime::ShaderLibrary shaders;
   constexpr std::uint32_t kSize = 512;
-  const std::vector<std::uint8_t> rgba8 = test::make_rgba8(kSize, kSize, [](std::uint32_t x, std::uint32_t y) {
-    return glm::vec4((x ^ y) % 256 / 255.0f, x % 256 / 255.0f, y % 256 / 255.0f, 1.0f);
-  });
+  const std::vector<std::uint8_t> rgba8 =
+      test::make_rgba8(kSize, kSize, [](std::uint32_t x, std::uint32_t y) {
+        return glm::vec4((x ^ y) % 256 / 255.0f, x % 256 / 255.0f, y % 256 / 255.0f, 1.0f);
+      });
   // Software paths: the texture set's own texels and records (mips included, lod 0 sampled): the
   // image as a colour texture (sRGB decoded at load, rgba16f) and as a data texture (rgba8).
   Level level;
@@ -37,8 +38,10 @@ int main() {
   level.materials.push_back(m);
   const lighting::TextureSet set = lighting::TextureSet::build(level);
   auto storage = [&](auto values, const char* name) {
-    runtime::Buffer b(device, {.size = values.size_bytes(), .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               .memory = runtime::MemoryUsage::DeviceLocal, .name = name});
+    runtime::Buffer b(device, {.size = values.size_bytes(),
+                               .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               .memory = runtime::MemoryUsage::DeviceLocal,
+                               .name = name});
     runtime::upload_buffer(device, b, values);
     return b;
   };
@@ -48,11 +51,16 @@ int main() {
   const std::vector<gpu::GpuTexture> rgba8_record = {set.records()[set.material_textures(0).y]};
   runtime::Buffer half_records = storage(std::span(half_record), "bench.half_record");
   runtime::Buffer rgba8_records = storage(std::span(rgba8_record), "bench.rgba8_record");
-  runtime::Buffer out(device, {.size = 640 * 360 * 16, .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               .memory = runtime::MemoryUsage::DeviceLocal, .name = "bench.out"});
+  runtime::Buffer out(device, {.size = 640 * 360 * 16,
+                               .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               .memory = runtime::MemoryUsage::DeviceLocal,
+                               .name = "bench.out"});
   // Hardware path: the same level-0 texels in an sRGB image with a linear/repeat sampler.
-  runtime::Image image(device, {.width = kSize, .height = kSize, .format = VK_FORMAT_R8G8B8A8_SRGB,
-                                .usage = VK_IMAGE_USAGE_SAMPLED_BIT, .name = "bench.image"});
+  runtime::Image image(device, {.width = kSize,
+                                .height = kSize,
+                                .format = VK_FORMAT_R8G8B8A8_SRGB,
+                                .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
+                                .name = "bench.image"});
   runtime::upload_image(device, image, std::as_bytes(std::span(rgba8)),
                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -65,8 +73,9 @@ int main() {
     const bool hardware = mode == 2;
     runtime::ComputePipeline pipeline(
         device, shaders.load("tests/texture_sampling_bench.comp"),
-        runtime::ComputePipelineDesc{.name = "bench.texture_sampling",
-                                     .constants = runtime::SpecConstants().set("kHardware", hardware)});
+        runtime::ComputePipelineDesc{
+            .name = "bench.texture_sampling",
+            .constants = runtime::SpecConstants().set("kHardware", hardware)});
     std::vector<double> ms;
     for (int run = 0; run < 10; ++run) {
       device.submit_and_wait([&](VkCommandBuffer cmd) {

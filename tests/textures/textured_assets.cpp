@@ -60,9 +60,11 @@ nlohmann::json textured_quad_gltf(const TexturedQuadOptions& o) {
   const std::uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
   std::vector<std::uint8_t> bin(sizeof(positions) + sizeof(uv0) + sizeof(uv1) + sizeof(indices));
   std::size_t at = 0;
-  for (const auto& [data, size] : std::initializer_list<std::pair<const void*, std::size_t>>{
-           {positions, sizeof(positions)}, {uv0, sizeof(uv0)}, {uv1, sizeof(uv1)},
-           {indices, sizeof(indices)}}) {
+  for (const auto& [data, size] :
+       std::initializer_list<std::pair<const void*, std::size_t>>{{positions, sizeof(positions)},
+                                                                  {uv0, sizeof(uv0)},
+                                                                  {uv1, sizeof(uv1)},
+                                                                  {indices, sizeof(indices)}}) {
     std::memcpy(bin.data() + at, data, size);
     at += size;
   }
@@ -76,7 +78,8 @@ nlohmann::json textured_quad_gltf(const TexturedQuadOptions& o) {
                           {{"buffer", 0}, {"byteOffset", 112}, {"byteLength", 24}}};
   nlohmann::json image = {{"name", "quad_image"}};
   if (o.storage == ImageStorage::BufferView) {
-    views.push_back({{"buffer", 0}, {"byteOffset", image_offset}, {"byteLength", o.image_bytes.size()}});
+    views.push_back(
+        {{"buffer", 0}, {"byteOffset", image_offset}, {"byteLength", o.image_bytes.size()}});
     image["bufferView"] = 4;
     image["mimeType"] = o.mime_type;
   } else if (o.storage == ImageStorage::DataUri) {
@@ -104,14 +107,20 @@ nlohmann::json textured_quad_gltf(const TexturedQuadOptions& o) {
          {"uri", "data:application/octet-stream;base64," + base64(bin)}}}},
       {"bufferViews", views},
       {"accessors",
-       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
-         {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", 4},
+         {"type", "VEC3"},
+         {"min", {0, 0, 0}},
+         {"max", {1, 1, 0}}},
         {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
         {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
         {{"bufferView", 3}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}},
       {"images", {image}},
       {"materials", {material}},
-      {"meshes", {{{"name", "quad"}, {"primitives", {{{"attributes", attributes}, {"indices", 3}, {"material", 0}}}}}}},
+      {"meshes",
+       {{{"name", "quad"},
+         {"primitives", {{{"attributes", attributes}, {"indices", 3}, {"material", 0}}}}}}},
       {"nodes", {{{"mesh", 0}, {"name", "quad"}}}},
       {"scenes", {{{"nodes", {0}}}}},
       {"scene", 0},

@@ -17,8 +17,9 @@
 namespace lantern::test {
 
 // rgba8 texels of a w x h image from f(x, y) -> RGBA in [0, 1] (encoded values, as stored).
-std::vector<std::uint8_t> make_rgba8(std::uint32_t w, std::uint32_t h,
-                                     const std::function<glm::vec4(std::uint32_t, std::uint32_t)>& f);
+std::vector<std::uint8_t> make_rgba8(
+    std::uint32_t w, std::uint32_t h,
+    const std::function<glm::vec4(std::uint32_t, std::uint32_t)>& f);
 std::vector<std::uint8_t> png_of(std::uint32_t w, std::uint32_t h,
                                  const std::vector<std::uint8_t>& rgba8);
 std::string base64(const std::vector<std::uint8_t>& bytes);
