@@ -34,6 +34,7 @@ namespace lantern {
 namespace {
 
 using lighting::OfflineRenderRequest;
+using lighting::VisibilitySetting;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr std::uint32_t kWidth = 64;
@@ -130,10 +131,12 @@ class TextureRenderTest : public runtime::test::GpuTest {
  protected:
   runtime::ImageRGBA32F render(const Level& level, const std::string& integrator,
                                std::uint32_t frames, std::uint32_t seed = 1,
-                               std::vector<std::pair<std::string, std::string>> settings = {}) {
+                               std::vector<std::pair<std::string, std::string>> settings = {},
+                               VisibilitySetting visibility = VisibilitySetting::Auto) {
     OfflineRenderRequest request;
     request.integrator.name = integrator;
     request.integrator.settings = std::move(settings);
+    request.integrator.visibility = visibility;
     if (integrator == "reference") request.integrator.spp = 16;
     request.width = kWidth;
     request.height = kHeight;
@@ -338,8 +341,15 @@ TEST_F(TextureRenderTest, AlphaCutoutCastsTheCutOutShadow) {
     const double d2 = glm::dot(to, to);
     return 0.5 / kPi * glm::dvec3(kLightColor) * (to.y / std::sqrt(d2)) / d2;
   };
-  for (const char* integrator : {"baseline", "restir"}) {
-    const runtime::ImageRGBA32F image = render(level, integrator, 2);
+  struct Run {
+    const char* integrator;
+    VisibilitySetting visibility;
+  };
+  for (const Run run : {Run{"baseline", VisibilitySetting::Bvh}, Run{"restir", VisibilitySetting::Bvh},
+                        Run{"baseline", VisibilitySetting::RayQuery}}) {
+    if (run.visibility == VisibilitySetting::RayQuery && !device.caps().ray_query) continue;
+    const char* integrator = run.integrator;
+    const runtime::ImageRGBA32F image = render(level, integrator, 2, 1, {}, run.visibility);
     through_cut = shadow = 0;
     for (std::uint32_t y = 0; y < kHeight; ++y)
       for (std::uint32_t x = 0; x < kWidth; ++x) {
