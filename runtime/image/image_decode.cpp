@@ -8,7 +8,10 @@
 #include <fmt/format.h>
 
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <memory>
+#include <vector>
 
 #include "engine/core/error.h"
 
@@ -32,6 +35,40 @@ std::string extension_for(std::span<const std::uint8_t> b, const std::string& mi
       fmt::format("{}: embedded image is not PNG, JPEG or EXR (MIME type '{}', {} "
                   "bytes)",
                   where, mime, b.size()));
+}
+
+// OpenEXR 3.1 allocates every header attribute at the size the file claims before reading it
+// (Imf::OpaqueAttribute::readValueFrom): a 60-byte file claiming a 1.7 GB attribute is a 1.7 GB
+// allocation (found by scripts/fuzz.sh, tests/fuzz/regressions/image/). Walk the header first:
+// every attribute (name\0 type\0 int32 size, value) must fit in the bytes the file has.
+void check_exr_header(std::span<const std::uint8_t> b, const std::string& where) {
+  if (b.size() < 8 || b[0] != 0x76 || b[1] != 0x2f || b[2] != 0x31 || b[3] != 0x01) return;
+  std::size_t at = 8;  // magic + version
+  auto fail = [&](const std::string& what) {
+    throw InputError(fmt::format("{}: malformed EXR header: {}", where, what));
+  };
+  auto c_string = [&]() {
+    const std::size_t start = at;
+    while (at < b.size() && b[at] != 0) ++at;
+    if (at >= b.size()) fail("attribute name or type runs past the end of the file");
+    ++at;
+    return std::string(reinterpret_cast<const char*>(b.data() + start), at - 1 - start);
+  };
+  for (int attributes = 0;; ++attributes) {
+    if (at >= b.size()) fail("no end of header");
+    if (b[at] == 0) return;  // end of the (single-part) header
+    if (attributes > 1024) fail("more than 1024 attributes");
+    const std::string name = c_string();
+    c_string();  // type
+    if (at + 4 > b.size()) fail(fmt::format("attribute '{}' has no size", name));
+    std::int32_t size = 0;
+    std::memcpy(&size, b.data() + at, 4);  // little-endian, as the format and this machine
+    at += 4;
+    if (size < 0 || static_cast<std::size_t>(size) > b.size() - at)
+      fail(fmt::format("attribute '{}' claims {} bytes, {} remain in the file", name, size,
+                       b.size() - at));
+    at += static_cast<std::size_t>(size);
+  }
 }
 
 // glTF colour and alpha are straight (unassociated): OpenImageIO would premultiply PNG colour by
@@ -84,6 +121,17 @@ DecodedImage decode_image_file(const std::filesystem::path& path, std::uint32_t 
                                const std::string& where) {
   if (!std::filesystem::is_regular_file(path))
     throw InputError(fmt::format("{}: image file {} not found", where, path.string()));
+  {
+    std::ifstream file(path, std::ios::binary);
+    char magic[4] = {};
+    file.read(magic, 4);
+    if (file && std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0) {  // EXR: check its header
+      file.seekg(0);
+      const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(file),
+                                            std::istreambuf_iterator<char>()};
+      check_exr_header(bytes, fmt::format("{} ({})", where, path.string()));
+    }
+  }
   const OIIO::ImageSpec config = straight_alpha();
   auto in = OIIO::ImageInput::open(path.string(), &config);
   if (!in)
@@ -95,6 +143,7 @@ DecodedImage decode_image_file(const std::filesystem::path& path, std::uint32_t 
 DecodedImage decode_image_bytes(std::span<const std::uint8_t> bytes, const std::string& mime_type,
                                 std::uint32_t max_side, const std::string& where) {
   if (bytes.empty()) throw InputError(fmt::format("{}: embedded image has no bytes", where));
+  check_exr_header(bytes, where);
   const std::string name = "embedded" + extension_for(bytes, mime_type, where);
   OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
   const OIIO::ImageSpec config = straight_alpha();

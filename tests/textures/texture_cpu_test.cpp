@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -111,6 +112,18 @@ TEST(ImageDecode, BadInputIsOneErrorNamingTheImage) {
   EXPECT_NE(input_error_of([&] {
               runtime::decode_image_bytes(wide, "image/png", 64, "wide");
             }).find("larger than the 64x64 texture limit"),
+            std::string::npos);
+  // An EXR header attribute claiming more bytes than the file has is refused before OpenEXR
+  // allocates it (the fuzzer's out-of-memory input: a 1.7 GB attribute in 613 bytes).
+  std::vector<float> flat_texels(4 * 4, 0.5f);
+  std::vector<std::uint8_t> exr = runtime::encode_exr(2, 2, flat_texels);
+  std::size_t size_at = 8;  // magic + version; then the first attribute's name\0 type\0
+  for (int strings = 0; strings < 2; ++size_at)
+    if (exr.at(size_at) == 0) ++strings;
+  const std::uint32_t huge = 0x7fff0000u;
+  std::memcpy(exr.data() + size_at, &huge, 4);
+  EXPECT_NE(input_error_of([&] { runtime::decode_image_bytes(exr, "image/x-exr", 64, "x"); })
+                .find("malformed EXR header"),
             std::string::npos);
   EXPECT_NE(input_error_of([&] {
               runtime::decode_image_file(scratch("none.png"), 64, "m");
