@@ -43,21 +43,31 @@ std::string extension_for(std::span<const std::uint8_t> b, const std::string& mi
 // every attribute (name\0 type\0 int32 size, value) must fit in the bytes the file has.
 void check_exr_header(std::span<const std::uint8_t> b, const std::string& where) {
   if (b.size() < 8 || b[0] != 0x76 || b[1] != 0x2f || b[2] != 0x31 || b[3] != 0x01) return;
+  const std::uint32_t flags = b[5] | (b[6] << 8) | (b[7] << 16);
+  const bool multipart = (flags & 0x10) != 0;  // version bit 12
+  // Names and types longer than OpenEXR's limit (31 chars, 255 with long names) would be parsed
+  // differently by OpenEXR than here: refused, so an accepted header is read alike by both.
+  const std::size_t max_name = (flags & 0x04) != 0 ? 255 : 31;  // version bit 10
   std::size_t at = 8;  // magic + version
   auto fail = [&](const std::string& what) {
     throw InputError(fmt::format("{}: malformed EXR header: {}", where, what));
   };
   auto c_string = [&]() {
     const std::size_t start = at;
-    while (at < b.size() && b[at] != 0) ++at;
-    if (at >= b.size()) fail("attribute name or type runs past the end of the file");
+    while (at < b.size() && b[at] != 0 && at - start <= max_name) ++at;
+    if (at >= b.size() || b[at] != 0 || at - start > max_name)
+      fail("an attribute name or type is unterminated or longer than OpenEXR allows");
     ++at;
     return std::string(reinterpret_cast<const char*>(b.data() + start), at - 1 - start);
   };
   for (int attributes = 0;; ++attributes) {
     if (at >= b.size()) fail("no end of header");
-    if (b[at] == 0) return;  // end of the (single-part) header
-    if (attributes > 1024) fail("more than 1024 attributes");
+    if (b[at] == 0) {  // end of one header; a multi-part file ends its list with an empty one
+      ++at;
+      if (!multipart || (at < b.size() && b[at] == 0)) return;
+      continue;
+    }
+    if (attributes > 4096) fail("more than 4096 attributes");
     const std::string name = c_string();
     c_string();  // type
     if (at + 4 > b.size()) fail(fmt::format("attribute '{}' has no size", name));
