@@ -6,7 +6,7 @@
 # the target and leaves the input in build-fuzz/artifacts/<target>/: fix the loader, copy the input
 # to tests/fuzz/regressions/<target>/ (fuzz_replay_test replays it in every build).
 #
-# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=60] [targets...]   (targets: level_json gltf)
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=60] [targets...]   (targets: level_json gltf image)
 #   LANTERN_FUZZ_RUNS=N   stop each target after N executions instead of after SECONDS.
 #   LANTERN_FUZZ_JOBS=N   parallel fuzzing processes per target (default 1).
 set -euo pipefail
@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(level_json gltf)
+[ ${#targets[@]} -eq 0 ] && targets=(level_json gltf image)
 build=${LANTERN_FUZZ_BUILD:-build-fuzz}
 cc=$(command -v clang-14 || command -v clang)
 cxx=$(command -v clang++-14 || command -v clang++)
@@ -29,6 +29,7 @@ cmake --build "$build" -j "$(nproc)" --target "${targets[@]/#/fuzz_}"
 export TMPDIR=$PWD/$build/tmp
 mkdir -p "$TMPDIR"
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1"
+export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 status=0
 for t in "${targets[@]}"; do

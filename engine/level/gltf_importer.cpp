@@ -35,6 +35,7 @@ struct Importer {
   std::size_t material_base = 0;
   std::size_t image_base = 0;
   std::optional<std::uint32_t> default_material;
+  std::size_t blend_materials = 0;  // alphaMode BLEND, rendered as MASK (one warning per file)
   std::map<std::pair<int, int>, std::uint32_t>
       mesh_of_primitive;              // (mesh, primitive) -> level mesh
   std::vector<glm::mat4> node_world;  // filled while traversing
@@ -70,15 +71,75 @@ struct Importer {
     }
   }
 
-  TextureRef texture(int texture_index, int texcoord, const std::string& place) const {
+  TextureSampler sampler(int index, const std::string& place) const {
+    TextureSampler out;
+    if (index < 0) return out;
+    if (static_cast<std::size_t>(index) >= model.samplers.size())
+      fail(place, fmt::format("sampler {} does not exist", index));
+    const tinygltf::Sampler& s = model.samplers[static_cast<std::size_t>(index)];
+    auto wrap = [&](int mode) {
+      switch (mode) {
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::MirroredRepeat;
+        case TINYGLTF_TEXTURE_WRAP_REPEAT: return TextureWrap::Repeat;
+        default: fail(place, fmt::format("sampler {} has unknown wrap mode {}", index, mode));
+      }
+    };
+    out.wrap_s = wrap(s.wrapS);
+    out.wrap_t = wrap(s.wrapT);
+    out.mag_linear = s.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST;
+    switch (s.minFilter) {
+      case TINYGLTF_TEXTURE_FILTER_NEAREST: out = {out.wrap_s, out.wrap_t, out.mag_linear, false, false, false}; break;
+      case TINYGLTF_TEXTURE_FILTER_LINEAR: out.mipmaps = false; break;
+      case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: out.min_linear = false; out.mip_linear = false; break;
+      case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: out.mip_linear = false; break;
+      case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: out.min_linear = false; break;
+      default: break;  // LINEAR_MIPMAP_LINEAR or unset
+    }
+    return out;
+  }
+
+  TextureRef texture(int texture_index, int texcoord, const tinygltf::ExtensionMap& extensions,
+                     const std::string& place) const {
     if (texture_index < 0) return {};
     if (static_cast<std::size_t>(texture_index) >= model.textures.size())
       fail(place, fmt::format("texture {} does not exist", texture_index));
-    const int source = model.textures[static_cast<std::size_t>(texture_index)].source;
+    const tinygltf::Texture& tex = model.textures[static_cast<std::size_t>(texture_index)];
+    const int source = tex.source;
     if (source < 0 || static_cast<std::size_t>(source) >= model.images.size())
       fail(place, fmt::format("texture {} has no valid image source ({})", texture_index, source));
-    return TextureRef{static_cast<std::int32_t>(image_base + static_cast<std::size_t>(source)),
-                      static_cast<std::uint32_t>(std::max(texcoord, 0))};
+    if (texcoord < 0 || texcoord > 1)
+      fail(place, fmt::format("texture {} uses TEXCOORD_{} (sets 0 and 1 are supported)",
+                              texture_index, texcoord));
+    TextureRef ref;
+    ref.image = static_cast<std::int32_t>(image_base + static_cast<std::size_t>(source));
+    ref.texcoord = static_cast<std::uint32_t>(texcoord);
+    ref.sampler = sampler(tex.sampler, fmt::format("{} texture {}", place, texture_index));
+    if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end()) {
+      const tinygltf::Value& t = it->second;
+      auto vec2_of = [&](const char* key, glm::vec2 fallback) {
+        if (!t.Has(key)) return fallback;
+        const tinygltf::Value& v = t.Get(key);
+        if (!v.IsArray() || v.ArrayLen() != 2)
+          fail(place, fmt::format("KHR_texture_transform {} is not two numbers", key));
+        return glm::vec2(static_cast<float>(v.Get(0).GetNumberAsDouble()),
+                         static_cast<float>(v.Get(1).GetNumberAsDouble()));
+      };
+      ref.offset = vec2_of("offset", ref.offset);
+      ref.scale = vec2_of("scale", ref.scale);
+      if (t.Has("rotation"))
+        ref.rotation = static_cast<float>(t.Get("rotation").GetNumberAsDouble());
+      if (t.Has("texCoord")) {
+        const int set = t.Get("texCoord").GetNumberAsInt();
+        if (set < 0 || set > 1)
+          fail(place, fmt::format("KHR_texture_transform texCoord {} (sets 0 and 1 are supported)",
+                                  set));
+        ref.texcoord = static_cast<std::uint32_t>(set);
+      }
+      if (!all_finite(ref.offset) || !all_finite(ref.scale) || !std::isfinite(ref.rotation))
+        fail(place, "KHR_texture_transform is not finite");
+    }
+    return ref;
   }
 
   void import_materials() {
@@ -116,12 +177,27 @@ struct Importer {
         fail(place, "negative emission (emissiveFactor × emissiveStrength must be ≥ 0)");
       if (!std::isfinite(m.emissive_strength) || !all_finite(m.emissive_factor))
         fail(place, "emission is not finite");
-      m.base_color_texture =
-          texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, place);
+      m.base_color_texture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                     pbr.baseColorTexture.extensions, place);
       m.metallic_roughness_texture =
-          texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, place);
-      m.normal_texture = texture(src.normalTexture.index, src.normalTexture.texCoord, place);
-      m.emissive_texture = texture(src.emissiveTexture.index, src.emissiveTexture.texCoord, place);
+          texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                  pbr.metallicRoughnessTexture.extensions, place);
+      m.normal_texture = texture(src.normalTexture.index, src.normalTexture.texCoord,
+                                 src.normalTexture.extensions, place);
+      m.normal_scale = static_cast<float>(src.normalTexture.scale);
+      m.emissive_texture = texture(src.emissiveTexture.index, src.emissiveTexture.texCoord,
+                                   src.emissiveTexture.extensions, place);
+      if (src.alphaMode == "MASK") {
+        m.alpha_mode = AlphaMode::Mask;
+      } else if (src.alphaMode == "BLEND") {
+        m.alpha_mode = AlphaMode::Blend;
+        ++blend_materials;
+      } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
+        fail(place, fmt::format("unknown alphaMode '{}'", src.alphaMode));
+      }
+      m.alpha_cutoff = m.alpha_mode == AlphaMode::Mask ? static_cast<float>(src.alphaCutoff) : 0.5f;
+      if (!std::isfinite(m.alpha_cutoff) || !std::isfinite(m.normal_scale))
+        fail(place, "alphaCutoff or normalTexture.scale is not finite");
       level.materials.push_back(std::move(m));
     }
   }
@@ -140,6 +216,33 @@ struct Importer {
       level.materials.push_back(m);
     }
     return *default_material;
+  }
+
+  const Material* gltf_material(int index) const {
+    if (index < 0 || static_cast<std::size_t>(index) >= model.materials.size()) return nullptr;
+    return &level.materials[material_base + static_cast<std::size_t>(index)];
+  }
+  bool material_textured(int index) const {
+    const Material* m = gltf_material(index);
+    return m != nullptr && m->textured();
+  }
+  // The texcoord set every texture of glTF material `index` uses (0 without textures).
+  int texcoord_set(int index, const std::string& place) const {
+    const Material* m = gltf_material(index);
+    if (m == nullptr) return 0;
+    int set = -1;
+    for (const TextureRef* t : {&m->base_color_texture, &m->metallic_roughness_texture,
+                                &m->normal_texture, &m->emissive_texture}) {
+      if (!t->present()) continue;
+      const int s = static_cast<int>(t->texcoord);
+      if (set >= 0 && s != set)
+        throw InputError(fmt::format(
+            "{}: material {} '{}' mixes TEXCOORD_{} and TEXCOORD_{} (one set per material is "
+            "supported)",
+            place, index, m->name, set, s));
+      set = s;
+    }
+    return std::max(set, 0);
   }
 
   std::uint32_t level_mesh(int mesh_index, int primitive_index) {
@@ -163,7 +266,16 @@ struct Importer {
     mesh.name = src.name;
     mesh.positions = accessors.vec3s(pos);
     if (int a = attribute("NORMAL"); a >= 0) mesh.normals = accessors.vec3s(a);
-    if (int a = attribute("TEXCOORD_0"); a >= 0) mesh.uvs = accessors.vec2s(a, true);
+    // One texcoord set per vertex: the one the primitive's material samples (TEXCOORD_0 when it
+    // samples none).
+    const int set = texcoord_set(prim.material, place);
+    const std::string uv_name = fmt::format("TEXCOORD_{}", set);
+    if (int a = attribute(uv_name.c_str()); a >= 0) {
+      mesh.uvs = accessors.vec2s(a, true);
+    } else if (set > 0 || material_textured(prim.material)) {
+      throw InputError(fmt::format("{}: material {} samples {}, which the primitive does not have",
+                                   place, prim.material, uv_name));
+    }
     if (prim.indices >= 0) {
       mesh.indices = accessors.indices(prim.indices);
     } else {
@@ -486,6 +598,9 @@ GltfImport import_gltf(const std::filesystem::path& file, const glm::mat4& place
   im.node_instances.assign(model.nodes.size(), {});
   im.import_images();
   im.import_materials();
+  if (im.blend_materials > 0)
+    log::warn("{}: {} material(s) with alphaMode BLEND rendered as MASK at cutoff 0.5",
+              file.string(), im.blend_materials);
 
   GltfImport result;
   result.first_instance = level.instances.size();

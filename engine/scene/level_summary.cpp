@@ -86,8 +86,14 @@ std::string to_text(const LevelSummary& s) {
   for (const auto& [section, value] : s.enabled) {
     out += fmt::format("  {}\n", section);
     if (value.is_object()) {
-      for (const auto& [key, field] : value.items())
-        out += fmt::format("    {:<16}{}\n", key, text(field));
+      for (const auto& [key, field] : value.items()) {
+        if (field.is_array() && !field.empty() && field.front().is_object()) {  // one per line
+          out += fmt::format("    {}\n", key);
+          for (const auto& item : field) out += fmt::format("      {}\n", text(item));
+        } else {
+          out += fmt::format("    {:<16}{}\n", key, text(field));
+        }
+      }
     } else if (value.is_array()) {
       for (const auto& item : value) out += fmt::format("    {}\n", text(item));
     } else {

@@ -70,7 +70,7 @@ std::vector<SceneBvh::Merged> SceneBvh::choose_merged(
   std::size_t total = 0;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const BvhInstanceDesc& desc = instances[i];
-    if (!desc.fixed || moved_fixed_[i] || mesh_deforms_[desc.mesh]) continue;
+    if (!desc.fixed || desc.flags != 0 || moved_fixed_[i] || mesh_deforms_[desc.mesh]) continue;
     const std::size_t count = meshes_[desc.mesh].triangle_count();
     if (count == 0 || total + count > cap) continue;
     total += count;
@@ -182,6 +182,7 @@ void SceneBvh::set_instances(std::span<const BvhInstanceDesc> instances) {
     inst.node_offset = packed ? mesh_node_offset_[desc.mesh] : 0u;
     inst.triangle_offset = packed ? mesh_triangle_offset_[desc.mesh] : 0u;
     inst.user_id = desc.user_id;
+    inst.flags = desc.flags;
     instances_.push_back(inst);
     instance_meshes_.push_back(desc.mesh);
     const MeshBvh& mesh = meshes_[desc.mesh];

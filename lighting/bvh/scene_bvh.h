@@ -21,9 +21,11 @@ struct BvhInstanceDesc {
   std::uint32_t mesh = 0;           // id returned by SceneBvh::add_mesh
   glm::mat4 object_to_world{1.0f};  // must be invertible (affine)
   std::uint32_t user_id = 0;        // returned in hits (e.g. the ECS entity)
-  // The instance never moves (and its mesh never deforms): its triangles may join the one
-  // world-space tree of fixed geometry. An instance declared fixed that later moves is taken out
-  // of that tree by the set_instances that sees it move (a rebuild of the tree: slow, once).
+  std::uint32_t flags = 0;          // gpu::kBvhInstance* (alpha-tested material)
+  // The instance never moves (and its mesh never deforms) and is not alpha-tested: its
+  // triangles may join the one
+  // world-space tree of fixed geometry. An instance declared fixed that later moves is taken
+  // out of that tree by the set_instances that sees it move (a rebuild of the tree: slow, once).
   bool fixed = false;
 };
 

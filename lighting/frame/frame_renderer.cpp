@@ -62,7 +62,8 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
   }
   if (!integrator_) throw InputError("frame renderer: no integrator");
   scene_ = std::make_unique<GpuScene>(device, std::move(level), integrator_->visibility());
-  gbuffer_ = std::make_unique<GBufferPass>(device, shaders);
+  gbuffer_ = std::make_unique<GBufferPass>(
+      device, shaders, GBufferPassOptions{.textured = !scene_->data().textures.empty()});
   denoiser_ = std::make_unique<Denoiser>(device, shaders);
   upscaler_ = std::make_unique<Upscaler>(device, shaders);
   output_ = std::make_unique<runtime::ComputePipeline>(

@@ -8,6 +8,8 @@
 // gbuffer (one indirect draw per instance). Auto picks per frame (GBufferPass::method_for).
 #include "lighting/gbuffer/gbuffer_pass.h"
 
+#include "shared/textures.h"
+
 #include <fmt/format.h>
 
 #include <array>
@@ -87,7 +89,8 @@ struct CullData {
 };
 
 struct VisibilityData {
-  BufferHandle draw, clip;
+  SceneHandles scene;
+  BufferHandle draw, clip, triangles;
   ImageHandle visibility, depth;
 };
 
@@ -105,15 +108,18 @@ struct ForwardData {
   ImageHandle depth;
 };
 
+// `textured`: the kTextured specialisation constant of the fragment stage.
 runtime::GraphicsPipelineDesc raster_desc(const char* name, std::vector<VkFormat> colors,
-                                          bool depth) {
+                                          bool depth, bool textured) {
   return runtime::GraphicsPipelineDesc{.name = name,
                                        .color_formats = std::move(colors),
                                        .depth_format = depth ? kDepthFormat : VK_FORMAT_UNDEFINED,
                                        .cull_mode = VK_CULL_MODE_NONE,
                                        .depth_test = depth,
                                        .depth_write = depth,
-                                       .depth_compare = VK_COMPARE_OP_LESS};
+                                       .depth_compare = VK_COMPARE_OP_LESS,
+                                       .constants = runtime::SpecConstants().set("kTextured",
+                                                                                 textured)};
 }
 
 GBufferHandles handles(const std::array<ImageHandle, 6>& colors) {
@@ -140,7 +146,7 @@ GBufferPass::GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shader
                                      .constants = runtime::SpecConstants().set("kForward", true)});
     forward_raster_.emplace(device, shaders.load("gbuffer/gbuffer.vert"),
                             shaders.load("gbuffer/gbuffer.frag"),
-                            raster_desc("gbuffer", colors, true));
+                            raster_desc("gbuffer", colors, true, options_.textured));
   }
   if (options_.method != GBufferMethod::Forward) {
     draws_.emplace(
@@ -151,10 +157,10 @@ GBufferPass::GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shader
                   runtime::ComputePipelineDesc{.name = "gbuffer.cull", .constants = {}});
     raster_.emplace(device, shaders.load("gbuffer/gbuffer_visibility.vert"),
                     shaders.load("gbuffer/gbuffer_visibility.frag"),
-                    raster_desc("gbuffer", {kVisibilityFormat}, true));
+                    raster_desc("gbuffer", {kVisibilityFormat}, true, options_.textured));
     resolve_.emplace(device, shaders.load("gbuffer/gbuffer_resolve.vert"),
                      shaders.load("gbuffer/gbuffer_resolve.frag"),
-                     raster_desc("gbuffer.resolve", colors, false));
+                     raster_desc("gbuffer.resolve", colors, false, options_.textured));
   }
 }
 
@@ -281,6 +287,10 @@ GBufferHandles GBufferPass::add_visibility(RenderGraph& graph, const SceneHandle
   const VisibilityData& v = graph.add_pass<VisibilityData>(
       "gbuffer", PassKind::Graphics,
       [&](PassBuilder& b, VisibilityData& data) {
+        data.scene = scene;
+        scene.declare_reads(b, *raster_);
+        data.triangles = c.triangles;
+        b.read(c.triangles, Access::StorageRead);
         data.draw = c.draw;
         b.read(c.draw, Access::IndirectBuffer);
         data.clip = c.clip;
@@ -299,7 +309,9 @@ GBufferHandles GBufferPass::add_visibility(RenderGraph& graph, const SceneHandle
         const runtime::DepthTarget depth{.view = ctx.view(data.depth), .clear = 1.0f};
         runtime::begin_rendering(device_, cmd, VkExtent2D{width, height}, targets, &depth);
         runtime::Bindings bindings(*raster_);
-        bindings.buffer("gbuffer_clip", ctx.buffer(data.clip), 0, VK_WHOLE_SIZE);
+        data.scene.bind(bindings, ctx);
+        bindings.buffer("gbuffer_clip", ctx.buffer(data.clip), 0, VK_WHOLE_SIZE)
+            .buffer("gbuffer_triangles", ctx.buffer(data.triangles), 0, VK_WHOLE_SIZE);
         raster_->bind(cmd, bindings);
         vkCmdDrawIndirect(cmd, ctx.buffer(data.draw), 0, 1, kDrawCommandBytes);
         runtime::end_rendering(device_, cmd);
@@ -425,7 +437,10 @@ void GBufferPass::warm_up() {
   vertices[2].position_u = glm::vec4(-1.0f, 3.0f, 0.5f, 0.0f);
   for (gpu::GpuVertex& v : vertices) v.normal_v = glm::vec4(0.0f, 0.0f, 1.0f, 0.0f);
   const std::array<std::uint32_t, 3> indices = {0, 1, 2};
-  const gpu::GpuMaterial material{};
+  gpu::GpuMaterial material{};
+  material.textures = glm::uvec4(gpu::kNoTexture);  // the textured variant samples nothing
+  const gpu::GpuTexture texture_stand_in{};
+  const std::array<std::uint32_t, 4> texel_stand_in{};
   gpu::GpuInstance instance{};
   instance.object_to_world = glm::mat4(1.0f);
   instance.prev_object_to_world = glm::mat4(1.0f);
@@ -446,6 +461,9 @@ void GBufferPass::warm_up() {
   buffers.push_back(make(std::span<const std::uint32_t>(indices), "warm_up.indices"));
   buffers.push_back(make(std::span<const gpu::GpuMaterial>(&material, 1), "warm_up.materials"));
   buffers.push_back(make(std::span<const gpu::GpuInstance>(&instance, 1), "warm_up.instances"));
+  buffers.push_back(
+      make(std::span<const gpu::GpuTexture>(&texture_stand_in, 1), "warm_up.textures"));
+  buffers.push_back(make(std::span<const std::uint32_t>(texel_stand_in), "warm_up.texels"));
 
   RenderGraph graph;
   runtime::graph::GraphExecutor executor(device_);
@@ -464,6 +482,8 @@ void GBufferPass::warm_up() {
     scene[gpu::kSceneIndices] = import(2);
     scene[gpu::kSceneMaterials] = import(3);
     scene[gpu::kSceneInstances] = import(4);
+    scene[gpu::kSceneTextures] = import(5);
+    scene[gpu::kSceneTexels] = import(6);
     const GBufferHandles out = add_method(graph, scene, 1, 1, 1, 1, method);
     // Keep the passes alive: a consumer of one of their images.
     struct Keep {};

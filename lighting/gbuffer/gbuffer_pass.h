@@ -52,6 +52,10 @@ inline constexpr std::uint64_t kForwardPixelsPerTriangle = 16;
 
 struct GBufferPassOptions {
   GBufferMethod method = GBufferMethod::Auto;
+  // The scene has material textures (GpuScene::textured()): compiles the texture sampling and
+  // alpha-cutout path into the fragment stages (specialisation constant kTextured); without, the
+  // pipelines are the untextured ones.
+  bool textured = false;
 };
 
 class GBufferPass {

@@ -53,7 +53,7 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
 
   // Emitters in the order build_scene_data put them in the light table: emissive instances'
   // triangles in instance order, then analytic lights.
-  emitters_ = extract_light_emitters(*level_, scene_radius_);
+  emitters_ = extract_light_emitters(*level_, scene_radius_, &data_);
   std::uint32_t first = 0;
   for (std::size_t i = 0; i < level_->instances.size(); ++i) {
     const Instance& inst = level_->instances[i];
@@ -257,7 +257,7 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
     scratch.clear();
     const Mesh& mesh = level_->meshes[level_->instances[e.instance].mesh];
     append_triangle_emitters(mesh, e.world, e.radiance * std::max(scale, 0.0f), e.instance,
-                             scratch);
+                             scratch, emitter_texture_range(data_, e.instance));
     std::copy(scratch.begin(), scratch.end(), emitters_.begin() + e.first);
     mark_dirty(gpu::kSceneLights, std::uint64_t{e.first} * sizeof(gpu::GpuLight),
                std::uint64_t{e.first + e.count} * sizeof(gpu::GpuLight));

@@ -63,6 +63,12 @@ constexpr std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers = {{
      [](const Sources& s) { return s.env_marginal; }, kBuffer},
     {gpu::kSceneEnvConditional, "scene.env_conditional", "env_conditional", nullptr, true,
      [](const Sources& s) { return s.env_conditional; }, kBuffer},
+    {gpu::kSceneTextures, "scene.textures", "scene_textures", nullptr, true,
+     [](const Sources& s) { return bytes_of(s.data->textures.records()); }, kBuffer},
+    {gpu::kSceneTexels, "scene.texels", "scene_texels", nullptr, true,
+     [](const Sources& s) { return bytes_of(s.data->textures.texels()); }, kBuffer},
+    {gpu::kSceneTexturedEmitters, "scene.textured_emitters", "scene_textured_emitters", nullptr,
+     true, [](const Sources& s) { return bytes_of(s.data->textured_emitters); }, kBuffer},
     {gpu::kSceneTlas, "scene.tlas", "scene_tlas", nullptr, false, nullptr,
      SceneResourceKind::AccelerationStructure},
 }};

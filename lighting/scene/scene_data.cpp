@@ -5,6 +5,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <cstring>
+#include <map>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -16,23 +20,80 @@
 namespace lantern::lighting {
 namespace {
 
-gpu::GpuMaterial to_gpu_material(const Material& m) {
+// `textures`: GpuMaterial.textures from the TextureSet (all kNoTexture without textures).
+gpu::GpuMaterial to_gpu_material(const Material& m, glm::uvec4 textures) {
   gpu::GpuMaterial g{};
   g.base_color = m.base_color;
-  g.emission = glm::vec4(m.emitted_radiance(), 0.0f);
-  g.params = glm::vec4(m.roughness, m.metallic, m.specular_factor, 0.0f);
-  g.textures = glm::uvec4(gpu::kNoTexture);
+  g.emission = glm::vec4(m.emitted_radiance(), textures.w != gpu::kNoTexture ? m.normal_scale : 0.0f);
+  g.params = glm::vec4(m.roughness, m.metallic, m.specular_factor,
+                       m.alpha_tested() ? m.alpha_cutoff : 0.0f);
+  g.textures = textures;
   return g;
 }
 
+// The GpuTexturedEmitter records and texture means of every instance whose emissive material
+// has an emissive texture (instance order, triangle order; uvs in the light's winding). Means are
+// cached by (texture record contents, the three uvs): instances of one asset, or the repeated
+// panels of a generated level, integrate each distinct triangle once.
+void build_textured_emitters(const Level& level, SceneData& scene) {
+  scene.instance_emitter_record.assign(level.instances.size(), gpu::kNoTexture);
+  using Key = std::array<std::uint32_t, 16 + 6>;
+  std::map<Key, glm::vec3> cache;
+  auto mean_of = [&](std::uint32_t texture, const glm::vec2 (&uv)[3]) {
+    Key key{};
+    std::memcpy(key.data(), &scene.textures.records()[texture], sizeof(gpu::GpuTexture));
+    std::memcpy(key.data() + 16, uv, sizeof(uv));
+    auto [it, inserted] = cache.try_emplace(key);
+    if (inserted)
+      it->second = integrate_texture_over_triangle(scene.textures, texture, uv[0], uv[1], uv[2]);
+    return it->second;
+  };
+  for (std::size_t i = 0; i < level.instances.size(); ++i) {
+    const Instance& inst = level.instances[i];
+    const Material& material = level.materials.at(inst.material);
+    if (!material.emissive() || !material.emissive_texture.present()) continue;
+    const std::uint32_t texture = scene.textures.material_textures(inst.material).z;
+    const Mesh& mesh = level.meshes.at(inst.mesh);
+    const bool mirrored = glm::determinant(glm::mat3(inst.world)) < 0.0f;
+    scene.instance_emitter_record[i] = static_cast<std::uint32_t>(scene.textured_emitters.size());
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      glm::vec2 uv[3];
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = mesh.indices[3 * t + static_cast<std::size_t>(k)];
+        uv[k] = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0.0f);
+      }
+      if (mirrored) std::swap(uv[1], uv[2]);
+      gpu::GpuTexturedEmitter e{};
+      e.uv01 = glm::vec4(uv[0], uv[1]);
+      e.uv2_tex = glm::vec4(uv[2], glm::uintBitsToFloat(texture), 0.0f);
+      scene.textured_emitters.push_back(e);
+      scene.textured_emitter_means.push_back(mean_of(texture, uv));
+    }
+  }
+}
+
 }  // namespace
+
+std::uint32_t instance_bvh_flags(const Level& level, const Instance& instance) {
+  return instance.material < level.materials.size() &&
+                 level.materials[instance.material].alpha_tested()
+             ? gpu::kBvhInstanceAlphaTested
+             : 0u;
+}
 
 float SceneData::scene_radius() const {
   return std::max(0.5f * glm::length(bounds_max - bounds_min), 1e-3f);
 }
 
+EmitterTextureRange emitter_texture_range(const SceneData& scene, std::size_t instance) {
+  if (instance >= scene.instance_emitter_record.size()) return {};
+  return {scene.instance_emitter_record[instance], &scene.textured_emitter_means};
+}
+
 void append_triangle_emitters(const Mesh& mesh, const glm::mat4& world, const glm::vec3& radiance,
-                              std::uint32_t instance, std::vector<LightEmitter>& out) {
+                              std::uint32_t instance, std::vector<LightEmitter>& out,
+                              EmitterTextureRange texture) {
+  const bool textured = texture.first_record != gpu::kNoTexture && texture.means != nullptr;
   const float luminance = gpu::luminance(radiance);
   const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
   const std::size_t count = mesh.triangle_count();
@@ -51,6 +112,12 @@ void append_triangle_emitters(const Mesh& mesh, const glm::mat4& world, const gl
     e.light.p2 = glm::vec4(p[2] - p[0], 0.0f);
     e.light.radiance = glm::vec4(radiance, 0.0f);
     e.power = gpu::finite_positive_or_zero(luminance * area * gpu::kPi);
+    if (textured) {
+      const std::uint32_t record = texture.first_record + static_cast<std::uint32_t>(t);
+      e.light.radiance.w = glm::uintBitsToFloat(record + 1u);
+      const glm::vec3 mean = (*texture.means)[record];
+      e.power = gpu::finite_positive_or_zero(gpu::luminance(radiance * mean) * area * gpu::kPi);
+    }
     out.push_back(e);
   }
 }
@@ -87,14 +154,17 @@ LightEmitter analytic_emitter(std::uint32_t index, LightType type, const glm::ve
   return e;
 }
 
-std::vector<LightEmitter> extract_light_emitters(const Level& level, float scene_radius) {
+std::vector<LightEmitter> extract_light_emitters(const Level& level, float scene_radius,
+                                                 const SceneData* scene) {
   std::vector<LightEmitter> emitters;
   for (std::size_t i = 0; i < level.instances.size(); ++i) {
     const Instance& inst = level.instances[i];
     const Material& material = level.materials.at(inst.material);
     if (!material.emissive()) continue;
     append_triangle_emitters(level.meshes.at(inst.mesh), inst.world, material.emitted_radiance(),
-                             static_cast<std::uint32_t>(i), emitters);
+                             static_cast<std::uint32_t>(i), emitters,
+                             scene != nullptr ? emitter_texture_range(*scene, i)
+                                              : EmitterTextureRange{});
   }
   for (std::size_t k = 0; k < level.lights.size(); ++k) {
     const Light& light = level.lights[k];
@@ -111,16 +181,22 @@ std::vector<BvhInstanceDesc> bvh_instance_descs(const Level& level) {
   descs.reserve(level.instances.size());
   for (std::size_t i = 0; i < level.instances.size(); ++i) {
     const Instance& inst = level.instances[i];
-    const bool fixed = !inst.behaviour || !behaviour_moves(*inst.behaviour);
-    descs.push_back({inst.mesh, inst.world, static_cast<std::uint32_t>(i), fixed});
+    const std::uint32_t flags = instance_bvh_flags(level, inst);
+    // Alpha-tested instances stay instanced: the merged tree's record carries no flags.
+    const bool fixed = flags == 0 && (!inst.behaviour || !behaviour_moves(*inst.behaviour));
+    descs.push_back({inst.mesh, inst.world, static_cast<std::uint32_t>(i), flags, fixed});
   }
   return descs;
 }
 
 SceneData build_scene_data(const Level& level) {
   SceneData scene;
-  for (const Material& m : level.materials) scene.materials.push_back(to_gpu_material(m));
-  if (scene.materials.empty()) scene.materials.push_back(to_gpu_material(Material{}));
+  scene.textures = TextureSet::build(level);
+  for (std::size_t m = 0; m < level.materials.size(); ++m)
+    scene.materials.push_back(
+        to_gpu_material(level.materials[m], scene.textures.material_textures(m)));
+  if (scene.materials.empty())
+    scene.materials.push_back(to_gpu_material(Material{}, glm::uvec4(gpu::kNoTexture)));
 
   // Meshes: concatenated vertex/index arrays and one BLAS each.
   std::vector<std::uint32_t> first_vertex;
@@ -171,7 +247,13 @@ SceneData build_scene_data(const Level& level) {
 
   // Lights: the table keeps the order of the emitters, so each instance's first emissive
   // triangle light is found by counting.
-  const std::vector<LightEmitter> emitters = extract_light_emitters(level, scene.scene_radius());
+  const auto integrate_start = std::chrono::steady_clock::now();
+  build_textured_emitters(level, scene);
+  scene.textured_emitter_ms = std::chrono::duration<double, std::milli>(
+                                  std::chrono::steady_clock::now() - integrate_start)
+                                  .count();
+  const std::vector<LightEmitter> emitters =
+      extract_light_emitters(level, scene.scene_radius(), &scene);
   std::uint32_t light_index = 0;
   for (std::size_t i = 0; i < level.instances.size(); ++i) {
     const Instance& inst = level.instances[i];

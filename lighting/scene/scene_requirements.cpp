@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "lighting/lights/environment_map.h"
 #include "lighting/scene/scene_data.h"
@@ -10,6 +11,7 @@
 #include "shared/bvh.h"
 #include "shared/lights.h"
 #include "shared/scene.h"
+#include "shared/textures.h"
 
 namespace lantern::lighting {
 namespace {
@@ -103,6 +105,46 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
                                  {"bytes", geometry_bytes},
                                  {"memory", mib(geometry_bytes)}};
 
+  // Material textures: decoded, mip-mapped texels and one record per material slot, only when a
+  // material references an image.
+  const TextureSet& textures = scene.textures;
+  if (textures.empty()) {
+    summary.enabled["textures"] = {
+        {"structure", "none (1-element stand-ins are bound; the G-buffer's textured path is "
+                      "compiled out)"},
+        {"why", "no material references an image"},
+        {"bytes", 0}};
+  } else {
+    nlohmann::json list = nlohmann::json::array();
+    for (const TextureImage& img : textures.images()) {
+      const ImageRef& ref = level.images[img.image];
+      list.push_back(
+          {{"image", ref.name.empty() ? (ref.path.empty() ? fmt::format("embedded {}", img.image)
+                                                          : ref.path.filename().string())
+                                      : ref.name},
+           {"size", fmt::format("{}x{}", img.width, img.height)},
+           {"mips", img.levels},
+           {"encoding", img.format == gpu::kTexelHalf ? "rgba16f linear" : "rgba8 linear"},
+           {"bytes", img.bytes}});
+    }
+    std::size_t alpha_tested = 0;
+    for (const Material& m : level.materials) alpha_tested += m.alpha_tested() ? 1 : 0;
+    const std::uint64_t bytes = textures.texel_bytes() +
+                                array_bytes<gpu::GpuTexture>(textures.records().size()) +
+                                array_bytes<gpu::GpuTexturedEmitter>(scene.textured_emitters.size());
+    summary.enabled["textures"] = {
+        {"structure", "software-sampled texel array (bilinear, trilinear mips) + records"},
+        {"why", fmt::format("{} material texture slots over {} decoded images",
+                            textures.records().size(), textures.images().size())},
+        {"images", list},
+        {"textured_lights", scene.textured_emitters.size()},
+        {"alpha_tested", alpha_tested},
+        {"load_ms", std::round(textures.build_ms() * 10.0) / 10.0},
+        {"integrate_ms", std::round(scene.textured_emitter_ms * 10.0) / 10.0},
+        {"bytes", bytes},
+        {"memory", mib(bytes)}};
+  }
+
   // Per-frame images at this size: the G-buffer of shaders/shared/gbuffer.h (4 rgba32f, 1
   // rgba16f, 1 rgba32ui, D32 depth) and the HDR radiance buffer.
   const std::uint64_t pixels = std::uint64_t{width} * height;
@@ -120,6 +162,7 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
                          ? "visibility: rayquery (LANTERN_VISIBILITY_RAY_QUERY)"
                          : "visibility: bvh (texel nodes)");
   if (level.environment) variants.push_back("environment sampling: on");
+  if (!textures.empty()) variants.push_back("gbuffer: textured (kTextured)");
   summary.enabled["shader_variants"] = variants;
 }
 

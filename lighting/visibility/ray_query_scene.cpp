@@ -120,6 +120,10 @@ void RayQueryScene::write_instances(const SceneBvh& bvh, std::uint32_t slot) {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 4; ++c) rows[4 * r + c] = m[c][r];
     records.push_back(runtime::make_instance_record(rows, static_cast<std::uint32_t>(i), blas));
+    // Alpha-tested instances report candidate hits, which the shaders' query loop confirms
+    // where the material is not cut out (shaders/lib/visibility.glsl).
+    if ((instances[i].flags & gpu::kBvhInstanceAlphaTested) != 0u)
+      records.back().flags |= VK_GEOMETRY_INSTANCE_FORCE_NO_OPAQUE_BIT_KHR;
   }
   ensure_tlas_capacity(static_cast<std::uint32_t>(records.size()));
   if (!records.empty())

@@ -4,7 +4,10 @@
 // only where the camera sees the front face (counter-clockwise winding, GpuMaterial.emission is
 // one-sided). Motion = previous pixel position - current pixel centre, in pixels, from the
 // interpolated previous clip position; a point behind the previous camera gets
-// kGBufferNoPreviousPixel (prev far off-screen). No output is NaN or Inf.
+// kGBufferNoPreviousPixel (prev far off-screen). No output is NaN or Inf. With kTextured (the
+// scene has material textures) the material's textures apply (gbuffer/gbuffer_material.glsl,
+// level of detail from the raster's texcoord derivatives) and alpha-tested points are discarded;
+// without, the textured path is compiled out.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -12,13 +15,16 @@
 #include "shared/common_math.h"
 #include "shared/gbuffer.h"
 #include "lib/scene_buffers.glsl"
+#include "gbuffer/gbuffer_material.glsl"
 
+layout(constant_id = 0) const bool kTextured = false;
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_shading_normal;
 layout(location = 2) in vec4 in_prev_clip;
 layout(location = 3) flat in vec3 in_geometric_normal;
 layout(location = 4) flat in uvec3 in_ids;
+layout(location = 5) in vec2 in_uv;
 
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_normal;
@@ -48,9 +54,26 @@ void main() {
   if (dot(ns, ng_facing) < 0.0) ns = -ns;
 
   GpuMaterial material = scene_materials.m[in_ids.y];
+  vec3 base_color = material.base_color.rgb;
+  vec2 params = material.params.xy;
+  vec3 material_emission = material.emission.rgb;
+  if (kTextured) {
+    // Derivatives first: none after the discard.
+    vec2 uv_dx = dFdx(in_uv);
+    vec2 uv_dy = dFdy(in_uv);
+    vec3 p_dx = dFdx(in_world);
+    vec3 p_dy = dFdy(in_world);
+    vec4 duv = vec4(uv_dx, uv_dy);
+    if (gbuffer_alpha_cut(material, in_uv, duv)) discard;
+    GBufferMaterial g = gbuffer_material(material, in_uv, duv, ns, p_dx, p_dy, uv_dx, uv_dy);
+    base_color = g.base_color;
+    params = vec2(g.roughness, g.metallic);
+    material_emission = g.emission;
+    ns = g.shading_normal;
+  }
   // The instance's emission scale (flicker, GpuInstance.bvh.z) as in the light records.
   float emission_scale = uintBitsToFloat(scene_instances.i[in_ids.x].bvh.z);
-  vec3 emission = front ? finite_or_zero(material.emission.rgb * emission_scale) : vec3(0.0);
+  vec3 emission = front ? finite_or_zero(material_emission * emission_scale) : vec3(0.0);
 
   // gl_FragCoord.w = 1 / clip w, and clip w is the linear view depth (w = -z_view).
   float view_depth = max(finite_or_zero(1.0 / gl_FragCoord.w), 1e-30);
@@ -68,8 +91,8 @@ void main() {
   out_position = vec4(position, view_depth);
   out_normal = vec4(oct_encode(ns), oct_encode(ng_facing));
   out_albedo_roughness =
-      vec4(finite_or_zero(material.base_color.rgb), finite_or_zero(material.params.x));
-  out_emission_metallic = vec4(emission, finite_or_zero(material.params.y));
+      vec4(finite_or_zero(base_color), finite_or_zero(params.x));
+  out_emission_metallic = vec4(emission, finite_or_zero(params.y));
   out_ids = uvec4(in_ids, 0u);
   out_motion = vec4(motion, 0.0, 0.0);
 }

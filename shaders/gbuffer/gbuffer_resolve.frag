@@ -13,6 +13,12 @@ layout(std430, binding = PASS_BINDING(0)) restrict readonly buffer TriangleBuffe
 } gbuffer_triangles;
 layout(binding = PASS_BINDING(1), r32ui) uniform restrict readonly uimage2D gbuffer_visibility;
 
+#include "gbuffer/gbuffer_material.glsl"
+
+// The scene has material textures (GBufferPassOptions::textured): else the textured path is
+// compiled out.
+layout(constant_id = 0) const bool kTextured = false;
+
 #include "gbuffer/gbuffer_resolve.glsl"
 
 layout(location = 0) out vec4 out_position;

@@ -8,7 +8,10 @@
 // sign, which the flip towards the geometric normal removes), so world_to_object is not loaded:
 // on lavapipe every per-pixel load from a storage buffer is a per-lane gather, the cost of this
 // pass. Needs the blocks frame_constants, scene_vertices, scene_indices, scene_materials and
-// scene_instances declared by the includer.
+// scene_instances declared by the includer. When the includer has included
+// gbuffer/gbuffer_material.glsl and declares the specialisation constant kTextured, textured
+// materials apply with the level of detail from ray differentials (the pixel's neighbours' rays
+// against the triangle's plane) and gbuffer_resolve_alpha_cut is available.
 #ifndef LANTERN_GBUFFER_RESOLVE_GLSL
 #define LANTERN_GBUFFER_RESOLVE_GLSL
 
@@ -43,6 +46,72 @@ GBufferTexel gbuffer_sky_texel() {
   return g;
 }
 
+// Barycentrics (b1, b2) where the camera ray through image point `point` (pixels from the
+// top-left; a pixel centre is pixel + 0.5) meets the plane of the world triangle (w0, w0 + e1,
+// w0 + e2); the centroid when edge-on or degenerate.
+vec2 gbuffer_ray_barycentrics(vec2 point, vec3 w0, vec3 e1, vec3 e2) {
+  vec2 size = vec2(frame_constants.frame.frame.xy);
+  vec2 ndc = point / size * 2.0 - 1.0;
+  mat4 inv_view_proj = frame_constants.frame.inv_view_proj;
+  vec4 a = inv_view_proj * vec4(ndc, 0.0, 1.0);
+  vec4 b = inv_view_proj * vec4(ndc, 0.5, 1.0);
+  vec3 dir = b.xyz / b.w - a.xyz / a.w;
+  vec3 origin = frame_constants.frame.camera_position.xyz;
+  vec3 q = cross(dir, e2);
+  float det = dot(e1, q);
+  vec3 s = origin - w0;
+  vec3 r = cross(s, e1);
+  float b1 = dot(s, q) / det;
+  float b2 = dot(dir, r) / det;
+  if (!(is_finite(b1) && is_finite(b2))) return vec2(1.0 / 3.0);
+  return vec2(b1, b2);
+}
+
+// The texcoords of a triangle's corners (GpuVertex position_u.w, normal_v.w).
+vec2 gbuffer_vertex_uv(uint vertex) {
+  return vec2(scene_vertices.v[vertex].position_u.w, scene_vertices.v[vertex].normal_v.w);
+}
+
+#ifdef LANTERN_GBUFFER_MATERIAL_GLSL
+// Texcoord footprint of pixel `pixel` on a triangle with corner uvs uv0 + (0, duv1, duv2): the
+// uv at the pixel centre (xy) and at the centres one pixel right and one down (ray
+// differentials against the triangle's plane), as (du/dx, dv/dx, du/dy, dv/dy).
+vec4 gbuffer_uv_footprint(vec2 centre, vec2 uv_centre, vec3 w0, vec3 e1, vec3 e2, vec2 uv0,
+                          vec2 duv1, vec2 duv2) {
+  vec2 bx = gbuffer_ray_barycentrics(centre + vec2(1.0, 0.0), w0, e1, e2);
+  vec2 by = gbuffer_ray_barycentrics(centre + vec2(0.0, 1.0), w0, e1, e2);
+  vec2 uv_x = uv0 + bx.x * duv1 + bx.y * duv2;
+  vec2 uv_y = uv0 + by.x * duv1 + by.y * duv2;
+  return vec4(uv_x - uv_centre, uv_y - uv_centre);
+}
+
+// Whether the alpha-tested material of `hit` cuts the surface out at `pixel` (gbuffer.visibility
+// discards there, so the depth test keeps what lies behind).
+bool gbuffer_resolve_alpha_cut(uvec2 pixel, uvec2 hit) {
+  uvec4 geometry = scene_instances.i[hit.x].geometry;
+  GpuMaterial material = scene_materials.m[geometry.x];
+  if (!(material.params.w > 0.0)) return false;
+  uint base = geometry.y + 3u * hit.y;
+  uint i0 = geometry.w + scene_indices.i[base];
+  uint i1 = geometry.w + scene_indices.i[base + 1u];
+  uint i2 = geometry.w + scene_indices.i[base + 2u];
+  mat4 object_to_world = scene_instances.i[hit.x].object_to_world;
+  vec3 p0 = scene_vertices.v[i0].position_u.xyz;
+  vec3 w0 = (object_to_world * vec4(p0, 1.0)).xyz;
+  vec3 e1 = mat3(object_to_world) * (scene_vertices.v[i1].position_u.xyz - p0);
+  vec3 e2 = mat3(object_to_world) * (scene_vertices.v[i2].position_u.xyz - p0);
+  // The raster's (jittered) sample position of the pixel.
+  vec2 centre = vec2(pixel) + 0.5 + frame_constants.frame.jitter.xy;
+  vec2 b = gbuffer_ray_barycentrics(centre, w0, e1, e2);
+  vec2 uv0 = gbuffer_vertex_uv(i0);
+  vec2 duv1 = gbuffer_vertex_uv(i1) - uv0;
+  vec2 duv2 = gbuffer_vertex_uv(i2) - uv0;
+  vec2 uv = uv0 + b.x * duv1 + b.y * duv2;
+  return gbuffer_alpha_cut(material, uv, gbuffer_uv_footprint(centre, uv, w0, e1, e2, uv0, duv1,
+                                                               duv2));
+}
+#endif
+
 // `pixel` from the top-left; `hit` = (instance, triangle) the raster found there.
 GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
   uint instance = hit.x;
@@ -65,23 +134,10 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
   vec2 size = vec2(frame_constants.frame.frame.xy);
   vec2 centre = vec2(pixel) + 0.5;
   vec2 sample_position = centre + frame_constants.frame.jitter.xy;
-  vec2 ndc = sample_position / size * 2.0 - 1.0;
-  mat4 inv_view_proj = frame_constants.frame.inv_view_proj;
-  vec4 a = inv_view_proj * vec4(ndc, 0.0, 1.0);
-  vec4 b = inv_view_proj * vec4(ndc, 0.5, 1.0);
-  vec3 dir = b.xyz / b.w - a.xyz / a.w;
   vec3 origin = frame_constants.frame.camera_position.xyz;
-
-  vec3 q = cross(dir, e2);
-  float det = dot(e1, q);
-  vec3 s = origin - w0;
-  vec3 r = cross(s, e1);
-  float b1 = dot(s, q) / det;
-  float b2 = dot(dir, r) / det;
-  if (!(is_finite(b1) && is_finite(b2))) {  // edge-on or degenerate: the centroid
-    b1 = 1.0 / 3.0;
-    b2 = 1.0 / 3.0;
-  }
+  vec2 bary = gbuffer_ray_barycentrics(sample_position, w0, e1, e2);
+  float b1 = bary.x;
+  float b2 = bary.y;
   float b0 = 1.0 - b1 - b2;
 
   vec3 position = gbuffer_finite_or_zero(w0 + b1 * e1 + b2 * e2);
@@ -109,13 +165,28 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
 
   uint material_index = geometry.x;
   vec3 base_color = scene_materials.m[material_index].base_color.rgb;
+  vec3 material_emission = scene_materials.m[material_index].emission.rgb;
+  vec2 params = scene_materials.m[material_index].params.xy;
+#ifdef LANTERN_GBUFFER_MATERIAL_GLSL
+  if (kTextured) {
+    GpuMaterial material = scene_materials.m[material_index];
+    vec2 uv0 = gbuffer_vertex_uv(i0);
+    vec2 duv1 = gbuffer_vertex_uv(i1) - uv0;
+    vec2 duv2 = gbuffer_vertex_uv(i2) - uv0;
+    vec2 uv = uv0 + b1 * duv1 + b2 * duv2;
+    vec4 duv = gbuffer_uv_footprint(sample_position, uv, w0, e1, e2, uv0, duv1, duv2);
+    GBufferMaterial g = gbuffer_material(material, uv, duv, ns, e1, e2, duv1, duv2);
+    base_color = g.base_color;
+    material_emission = g.emission;
+    params = vec2(g.roughness, g.metallic);
+    ns = g.shading_normal;
+  }
+#endif
   // The instance's emission scale (the snapshot's flicker, GpuInstance.bvh.z) multiplies the
   // material's emission, as it does for the light records sampled by the integrators.
   float emission_scale = uintBitsToFloat(scene_instances.i[instance].bvh.z);
-  vec3 emission = front ? gbuffer_finite_or_zero(scene_materials.m[material_index].emission.rgb *
-                                                 emission_scale)
-                        : vec3(0.0);
-  vec2 params = scene_materials.m[material_index].params.xy;
+  vec3 emission =
+      front ? gbuffer_finite_or_zero(material_emission * emission_scale) : vec3(0.0);
 
   float view_depth =
       max(gbuffer_finite_or_zero((frame_constants.frame.view_proj * vec4(position, 1.0)).w),

@@ -5,7 +5,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-layout(std430, binding = 0) readonly buffer ClipBuffer { vec4 p[]; } gbuffer_clip;
+#include "shared/scene_bindings.h"
+
+// After the scene's slots: the fragment stage reads the scene buffers (alpha cutouts).
+layout(std430, binding = kPassBindingBase) readonly buffer ClipBuffer { vec4 p[]; } gbuffer_clip;
 
 layout(location = 0) flat out uint out_entry;
 

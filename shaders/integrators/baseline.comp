@@ -27,6 +27,7 @@
 #include "shared/rng.h"
 #include "shared/sampling.h"
 #include "shared/scene.h"
+#include "shared/textures.h"
 
 layout(local_size_x = kBaselineTileSize, local_size_y = kBaselineTileSize) in;
 
@@ -37,6 +38,7 @@ layout(binding = PASS_BINDING(1), rgba32f) uniform readonly image2D gbuffer_posi
 layout(binding = PASS_BINDING(2), rgba32f) uniform readonly image2D gbuffer_normal;
 layout(binding = PASS_BINDING(3), rgba32f) uniform readonly image2D gbuffer_emission_metallic;
 layout(binding = PASS_BINDING(4), rgba32ui) uniform readonly uimage2D gbuffer_ids;
+layout(binding = PASS_BINDING(5), rgba16f) uniform readonly image2D gbuffer_albedo_roughness;
 
 layout(push_constant) uniform Push { BaselinePush push; };
 
@@ -76,13 +78,16 @@ vec3 shade_pixel(uvec2 pixel) {
   if (gbuffer_is_sky(position.w)) return env_sky_radiance(fc, pixel);
   vec4 normals = imageLoad(gbuffer_normal, p);
   uvec4 ids = imageLoad(gbuffer_ids, p);
-  GpuMaterial mat = scene_materials.m[ids.y];
+  vec4 emission_metallic = imageLoad(gbuffer_emission_metallic, p);
+  GpuMaterial mat = material_at_gbuffer(scene_materials.m[ids.y],
+                                        imageLoad(gbuffer_albedo_roughness, p),
+                                        emission_metallic.w);
   vec3 x = position.xyz;
   vec3 v = normalize(fc.camera_position.xyz - x);
   vec3 n = oct_decode(normals.xy);   // shading normal, facing the camera
   vec3 ng = oct_decode(normals.zw);  // geometric normal, facing the camera
   if (dot(n, ng) < 0.0) n = -n;
-  vec3 result = imageLoad(gbuffer_emission_metallic, p).rgb;
+  vec3 result = emission_metallic.rgb;
   float p_env = env_header.env.params.x;  // 0 without a map; 1 when no emitter has power
   if (frame_constants.frame.counts.x > 0u || p_env > 0.0) {
     uint rng = frame_rng(pixel, kBaselineRngPass);

@@ -32,6 +32,7 @@
 #include "shared/rng.h"
 #include "shared/sampling.h"
 #include "shared/scene.h"
+#include "shared/textures.h"
 
 layout(local_size_x = kReferenceTileSize, local_size_y = kReferenceTileSize) in;
 
@@ -42,6 +43,7 @@ layout(binding = PASS_BINDING(1), rgba32f) uniform readonly image2D gbuffer_posi
 layout(binding = PASS_BINDING(2), rgba32f) uniform readonly image2D gbuffer_normal;
 layout(binding = PASS_BINDING(3), rgba32f) uniform readonly image2D gbuffer_emission_metallic;
 layout(binding = PASS_BINDING(4), rgba32ui) uniform readonly uimage2D gbuffer_ids;
+layout(binding = PASS_BINDING(5), rgba16f) uniform readonly image2D gbuffer_albedo_roughness;
 layout(push_constant) uniform Push { ReferencePush push; };
 
 struct SurfaceHit {
@@ -81,7 +83,8 @@ SurfaceHit surface_at(VisHit hit) {
 // same value light sampling uses), else the material's emission.
 vec3 emitted(SurfaceHit s, GpuMaterial mat, vec3 dir) {
   if (dot(s.geometric_normal, dir) >= 0.0) return vec3(0.0);
-  return s.light != kInvalidLight ? scene_lights.l[s.light].radiance.rgb : mat.emission.rgb;
+  return s.light != kInvalidLight ? light_eval_radiance(scene_lights.l[s.light], s.position)
+                                   : mat.emission.rgb;
 }
 
 float power_heuristic(float a, float b) {
@@ -203,8 +206,11 @@ vec3 shade_pixel(uvec2 pixel) {
   if (gbuffer_is_sky(position.w)) return env_sky_radiance(fc, pixel);
   vec4 normals = imageLoad(gbuffer_normal, p);
   uvec4 ids = imageLoad(gbuffer_ids, p);
-  GpuMaterial mat = scene_materials.m[ids.y];
-  vec3 result = imageLoad(gbuffer_emission_metallic, p).rgb;
+  vec4 emission_metallic = imageLoad(gbuffer_emission_metallic, p);
+  GpuMaterial mat = material_at_gbuffer(scene_materials.m[ids.y],
+                                        imageLoad(gbuffer_albedo_roughness, p),
+                                        emission_metallic.w);
+  vec3 result = emission_metallic.rgb;
 
   Shading sh;
   sh.x = position.xyz;

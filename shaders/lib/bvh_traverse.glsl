@@ -85,6 +85,17 @@ uvec4 bvh_fetch_instance_offsets(uint instance) {
   return bvh_instance_texel(kBvhInstanceTexels * instance + 8u);
 }
 
+// The alpha-test hook (shared/bvh_traverse.h): the scene's material cutout where the scene
+// buffers are declared (lib/scene_buffers.glsl defines scene_alpha_accept before including
+// this), else every hit counts (standalone visibility probes).
+bool bvh_accept_hit(uint instance, uint primitive, float u, float v) {
+#ifdef LANTERN_SCENE_ALPHA_TEST
+  return scene_alpha_accept(instance, primitive, u, v);
+#else
+  return true;
+#endif
+}
+
 #include "shared/bvh_traverse.h"
 
 #endif

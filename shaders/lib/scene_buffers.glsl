@@ -6,7 +6,9 @@
 //   light_previous_to_current.index[] (uint per last frame's light: its current index or
 //   kInvalidLight), the BVH (lib/bvh_traverse.glsl: bvh_header, bvh_*_texels; in the rayquery
 //   variant instead the TLAS scene_tlas at kSceneTlas) and the
-//   environment (lib/environment.glsl: env_header, env_texels, env_marginal, env_conditional).
+//   environment (lib/environment.glsl: env_header, env_texels, env_marginal, env_conditional),
+//   the material textures scene_textures.t[], scene_texels.w[], scene_textured_emitters.e[]
+//   (lib/textures.glsl's texture_sample).
 // Then lib/visibility.glsl's vis_trace_closest / vis_visible and frame_rng are available. A pass
 // declares its own resources from kPassBindingBase on: layout(binding = PASS_BINDING(0)).
 #ifndef LANTERN_LIB_SCENE_BUFFERS_GLSL
@@ -19,6 +21,7 @@
 #include "shared/rng.h"
 #include "shared/scene.h"
 #include "shared/scene_bindings.h"
+#include "shared/textures.h"
 
 #define PASS_BINDING(i) (kPassBindingBase + (i))
 
@@ -46,6 +49,51 @@ layout(std430, binding = kSceneLightAlias) restrict readonly buffer AliasBuffer 
 layout(std430, binding = kSceneLightPreviousToCurrent) restrict readonly buffer RemapBuffer {
   uint index[];
 } light_previous_to_current;
+
+// Material textures (shared/textures.h; one zeroed stand-in element each when the level has
+// none, and then no material or light names a record).
+layout(std430, binding = kSceneTextures) restrict readonly buffer TextureBuffer {
+  GpuTexture t[];
+} scene_textures;
+layout(std430, binding = kSceneTexels) restrict readonly buffer TexelBuffer {
+  uint w[];
+} scene_texels;
+layout(std430, binding = kSceneTexturedEmitters) restrict readonly buffer TexturedEmitterBuffer {
+  GpuTexturedEmitter e[];
+} scene_textured_emitters;
+#include "lib/textures.glsl"
+
+// Radiance factor of a textured triangle light (GpuLight.radiance.w names its record) at
+// barycentrics (b1, b2): the emissive texture at the interpolated uv, at the record's level of
+// detail. shared/light_eval.h's light_eval_radiance calls it.
+vec3 scene_textured_emitter_radiance(uint record, float b1, float b2) {
+  GpuTexturedEmitter e = scene_textured_emitters.e[record];
+  vec2 uv = (1.0 - b1 - b2) * e.uv01.xy + b1 * e.uv01.zw + b2 * e.uv2_tex.xy;
+  return texture_sample(floatBitsToUint(e.uv2_tex.z), uv, e.uv2_tex.w).rgb;
+}
+
+// Whether a ray's hit on triangle `primitive` of `instance` at barycentrics (u, v) counts: false
+// where the instance's alpha-tested material cuts the surface out (base colour alpha x texture
+// alpha below the cutoff; texture level 0). The BVH asks only for instances flagged
+// kBvhInstanceAlphaTested (shared/bvh.h), so opaque geometry pays nothing.
+bool scene_alpha_accept(uint instance, uint primitive, float u, float v) {
+  uvec4 geometry = scene_instances.i[instance].geometry;
+  GpuMaterial m = scene_materials.m[geometry.x];
+  float cutoff = m.params.w;
+  if (!(cutoff > 0.0)) return true;
+  float alpha = m.base_color.a;
+  if (m.textures.x != kNoTexture) {
+    uint base = geometry.y + 3u * primitive;
+    GpuVertex v0 = scene_vertices.v[geometry.w + scene_indices.i[base]];
+    GpuVertex v1 = scene_vertices.v[geometry.w + scene_indices.i[base + 1u]];
+    GpuVertex v2 = scene_vertices.v[geometry.w + scene_indices.i[base + 2u]];
+    vec2 uv = (1.0 - u - v) * vec2(v0.position_u.w, v0.normal_v.w) +
+              u * vec2(v1.position_u.w, v1.normal_v.w) + v * vec2(v2.position_u.w, v2.normal_v.w);
+    alpha *= texture_sample(m.textures.x, uv, 0.0).a;
+  }
+  return alpha >= cutoff;
+}
+#define LANTERN_SCENE_ALPHA_TEST
 
 #define VIS_BINDING_BASE kSceneBvhHeader
 #define VIS_TLAS_BINDING kSceneTlas

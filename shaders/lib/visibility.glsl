@@ -56,16 +56,32 @@ struct VisHit {
 layout(set = VIS_DESCRIPTOR_SET, binding = VIS_TLAS_BINDING) uniform accelerationStructureEXT
     scene_tlas;
 
+// A candidate (non-opaque: alpha-tested) triangle counts where its material is not cut out (the
+// same test as the BVH's leaf hook, lib/scene_buffers.glsl's scene_alpha_accept).
+void vis_confirm_alpha_candidate(rayQueryEXT query) {
+  if (rayQueryGetIntersectionTypeEXT(query, false) != gl_RayQueryCandidateIntersectionTriangleEXT)
+    return;
+#ifdef LANTERN_SCENE_ALPHA_TEST
+  vec2 b = rayQueryGetIntersectionBarycentricsEXT(query, false);
+  if (!scene_alpha_accept(uint(rayQueryGetIntersectionInstanceCustomIndexEXT(query, false)),
+                          uint(rayQueryGetIntersectionPrimitiveIndexEXT(query, false)), b.x, b.y))
+    return;
+#endif
+  rayQueryConfirmIntersectionEXT(query);
+}
+
 bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {
   hit = VisHit(0u, 0u, 0.0, 0.0, tmax);
   // NaN/infinite rays miss, as in the BVH backend (ray query leaves them undefined).
   float finite_check = dot(origin, origin) + dot(dir, dir);
   if (isnan(finite_check) || isinf(finite_check) || !(tmax > 0.0)) return false;
   rayQueryEXT query;
-  // All geometry is opaque: the loop runs once and commits the closest triangle itself.
-  rayQueryInitializeEXT(query, scene_tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, dir,
+  // Opaque geometry commits itself; alpha-tested instances (TLAS FORCE_NO_OPAQUE) stop the loop
+  // at each candidate, confirmed where the material is not cut out.
+  rayQueryInitializeEXT(query, scene_tlas, gl_RayFlagsNoneEXT, 0xFF, origin, 0.0, dir,
                         min(tmax, kVisInfinity));
   while (rayQueryProceedEXT(query)) {
+    vis_confirm_alpha_candidate(query);
   }
   if (rayQueryGetIntersectionTypeEXT(query, true) != gl_RayQueryCommittedIntersectionTriangleEXT)
     return false;
@@ -86,10 +102,10 @@ bool vis_visible(vec3 origin, vec3 target) {
   float finite_check = dot(origin, origin) + dot(dir, dir);
   if (isnan(finite_check) || isinf(finite_check)) return true;
   rayQueryEXT query;
-  rayQueryInitializeEXT(query, scene_tlas,
-                        gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFF, origin,
+  rayQueryInitializeEXT(query, scene_tlas, gl_RayFlagsTerminateOnFirstHitEXT, 0xFF, origin,
                         t_epsilon, dir, 1.0 - t_epsilon);
   while (rayQueryProceedEXT(query)) {
+    vis_confirm_alpha_candidate(query);
   }
   return rayQueryGetIntersectionTypeEXT(query, true) == gl_RayQueryCommittedIntersectionNoneEXT;
 }

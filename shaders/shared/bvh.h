@@ -36,13 +36,18 @@ LANTERN_STATIC_SIZE(BvhTriangle, 48);
 
 // One placed mesh: the TLAS leaves point at these; the BLAS of the mesh starts at node_offset in
 // the shared node array and its triangles at triangle_offset in the shared triangle array.
+// BvhInstance.flags: the instance's material is alpha-tested, so a triangle hit counts only
+// where bvh_accept_hit says so (shared/bvh_traverse.h; lib/bvh_traverse.glsl's reads the
+// material's cutout through the scene buffers).
+LANTERN_CONST uint kBvhInstanceAlphaTested = 1u;
+
 struct BvhInstance {
   mat4 object_to_world;
   mat4 world_to_object;  // inverse of object_to_world: rays are moved into object space
   uint node_offset;
   uint triangle_offset;
   uint user_id;  // caller's id for the instance (e.g. ECS entity index), returned in hits
-  uint pad0;
+  uint flags;    // kBvhInstance* bits
 };
 LANTERN_STATIC_SIZE(BvhInstance, 144);
 

@@ -3,7 +3,9 @@
 // them before including this file; the C++ ones (below) take a BvhSceneView as first argument.
 //   BvhNode bvh_fetch_node(uint i); BvhTriangle bvh_fetch_triangle(uint i);
 //   mat4 bvh_fetch_world_to_object(uint instance); uvec4 bvh_fetch_instance_offsets(uint instance)
-//   (x = node_offset, y = triangle_offset, z = user_id); BvhSceneHeader bvh_fetch_header().
+//   (x = node_offset, y = triangle_offset, z = user_id, w = flags); BvhSceneHeader
+//   bvh_fetch_header(); and the alpha-test hook bool bvh_accept_hit(uint instance, uint
+//   primitive, float u, float v), asked at each triangle hit of a kBvhInstanceAlphaTested instance.
 #ifndef LANTERN_SHARED_BVH_TRAVERSE_H
 #define LANTERN_SHARED_BVH_TRAVERSE_H
 
@@ -32,8 +34,10 @@ inline mat4 bvh_fetch_world_to_object(const BvhSceneView& scene, uint instance) 
 }
 inline uvec4 bvh_fetch_instance_offsets(const BvhSceneView& scene, uint instance) {
   const BvhInstance& inst = scene.instances[instance];
-  return uvec4(inst.node_offset, inst.triangle_offset, inst.user_id, 0u);
+  return uvec4(inst.node_offset, inst.triangle_offset, inst.user_id, inst.flags);
 }
+// The CPU traversal has no textures: every hit on an alpha-tested instance counts.
+inline bool bvh_accept_hit(const BvhSceneView&, uint, uint, float, float) { return true; }
 }  // namespace lantern::gpu
 
 #define LANTERN_BVH_SCENE_PARAM const BvhSceneView &scene,
@@ -54,7 +58,8 @@ LANTERN_BEGIN_SHARED
 // nearer child is visited first; the farther one is pushed with its entry distance and skipped when
 // popped behind a closer hit. Used for BLASes only: their leaves hold triangles.
 LANTERN_FUNC bool bvh_traverse_blas(LANTERN_BVH_SCENE_PARAM uint node_offset, uint triangle_offset,
-                                    vec3 origin, vec3 direction, float tmin, bool any_hit,
+                                    uint instance, uint instance_flags, vec3 origin,
+                                    vec3 direction, float tmin, bool any_hit,
                                     LANTERN_INOUT(BvhHit) hit) {
   vec3 inv_direction = bvh_safe_reciprocal(direction);
   BvhNode root = bvh_fetch_node(LANTERN_BVH_SCENE node_offset);
@@ -74,7 +79,9 @@ LANTERN_FUNC bool bvh_traverse_blas(LANTERN_BVH_SCENE_PARAM uint node_offset, ui
       for (uint i = 0u; i < count; ++i) {
         BvhTriangle tri = bvh_fetch_triangle(LANTERN_BVH_SCENE triangle_offset + first + i);
         vec3 tuv;
-        if (bvh_ray_triangle(origin, direction, tri, tmin, hit.t, tuv)) {
+        if (bvh_ray_triangle(origin, direction, tri, tmin, hit.t, tuv) &&
+            ((instance_flags & kBvhInstanceAlphaTested) == 0u ||
+             bvh_accept_hit(LANTERN_BVH_SCENE instance, floatBitsToUint(tri.v0.w), tuv.y, tuv.z))) {
           hit.t = tuv.x;
           hit.u = tuv.y;
           hit.v = tuv.z;
@@ -138,8 +145,8 @@ LANTERN_FUNC bool bvh_traverse_instance(LANTERN_BVH_SCENE_PARAM uint instance, v
   uvec4 offsets = bvh_fetch_instance_offsets(LANTERN_BVH_SCENE instance);
   vec3 object_origin = vec3(world_to_object * vec4(origin, 1.0f));
   vec3 object_direction = vec3(world_to_object * vec4(direction, 0.0f));
-  if (!bvh_traverse_blas(LANTERN_BVH_SCENE offsets.x, offsets.y, object_origin, object_direction,
-                         tmin, any_hit, hit))
+  if (!bvh_traverse_blas(LANTERN_BVH_SCENE offsets.x, offsets.y, instance, offsets.w,
+                         object_origin, object_direction, tmin, any_hit, hit))
     return false;
   // Triangles of the merged tree of fixed instances name their own instance (shared/bvh.h).
   uint source = hit.instance;

@@ -2,10 +2,15 @@
 // map, one source for the CPU (lighting/lights/environment_map.h builds the tables; tests run this
 // code) and the GPU (shaders/integrators/reference.comp).
 //
-// Map convention (map space = world space rotated by the level's `rotation_deg`):
-//   column u in [0,1) left to right: azimuth phi = 2 pi u - pi, direction
-//     (sin(theta) sin(phi), cos(theta), -sin(theta) cos(phi)): the image centre looks down -Z
-//     (where a default camera looks), u = 0.75 is +X;
+// Map convention: Blender's world texture (Environment Texture node, equirectangular, default
+// mapping), carried into our +Y-up world by the glTF axis conversion (Blender (x, y, z) = our
+// (x, -z, y)); docs/levels.md "Environment map convention" (and how pbrt-v4 differs). In map
+// space (world space rotated by the level's `rotation_deg`):
+//   column u in [0,1) left to right: azimuth phi = 2 pi (u - 1/2), direction
+//     (sin(theta) cos(phi), cos(theta), sin(theta) sin(phi)): the image centre (u = 0.5) looks
+//     down +X, u = 0.25 is -Z, u = 0.75 is +Z, the left/right edge -X (Blender: centre +X,
+//     0.25 +Y, 0.75 -Y; Cycles' direction_to_equirectangular); as u grows the azimuth turns
+//     from -Z through +X to +Z (clockwise seen from above, +Y);
 //   row v in [0,1) top to bottom: polar angle theta = pi v from +Y (top row = straight up).
 // Texels are piecewise constant (nearest; no filtering), so the sampling density below is
 // exactly proportional to the luminance of what the lookup returns.
@@ -81,16 +86,22 @@ LANTERN_BEGIN_SHARED
 
 // Map-space direction -> (u, v) in [0,1]^2 (see the convention above).
 LANTERN_FUNC vec2 env_direction_to_uv(vec3 d) {
-  float u = env_atan2(d.x, -d.z) * (0.5f * kInvPi) + 0.5f;
+  float u = env_atan2(d.z, d.x) * (0.5f * kInvPi) + 0.5f;
   float v = acos(clamp(d.y, -1.0f, 1.0f)) * kInvPi;
   return vec2(u, v);
+}
+
+// Map-space unit direction of azimuth phi = 2 pi (u - 1/2) and polar angle theta (given by its
+// cosine and sine): the one place the convention above turns angles into a direction.
+LANTERN_FUNC vec3 env_angles_to_direction(float phi, float cos_theta, float sin_theta) {
+  return vec3(sin_theta * cos(phi), cos_theta, sin_theta * sin(phi));
 }
 
 // (u, v) in [0,1]^2 -> map-space unit direction (inverse of env_direction_to_uv).
 LANTERN_FUNC vec3 env_uv_to_direction(vec2 uv) {
   float phi = kTwoPi * uv.x - kPi;
   float theta = kPi * uv.y;
-  return vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
+  return env_angles_to_direction(phi, cos(theta), sin(theta));
 }
 
 // World-space direction <-> (u, v) of the map (the form ReSTIR stores an environment sample in).
@@ -162,7 +173,7 @@ LANTERN_FUNC float env_sample(LANTERN_ENV_PARAM GpuEnvironment env, vec4 u,
   float c1 = cos(kPi * float(y + 1u) / float(h));
   float cos_theta = clamp(mix(c0, c1, jy), -1.0f, 1.0f);
   float sin_theta = sqrt(max(1.0f - cos_theta * cos_theta, 0.0f));
-  vec3 d = vec3(sin_theta * sin(phi), cos_theta, -sin_theta * cos(phi));
+  vec3 d = env_angles_to_direction(phi, cos_theta, sin_theta);
   world_dir = normalize(vec3(env.map_to_world * vec4(d, 0.0f)));
   radiance = vec3(env_fetch_texel(LANTERN_ENV y * w + x));
   return safe_ratio(p, env_texel_solid_angle(env, y));

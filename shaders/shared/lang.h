@@ -47,6 +47,7 @@ using glm::floor;
 using glm::fract;
 using glm::inversesqrt;
 using glm::length;
+using glm::log2;
 using glm::max;
 using glm::min;
 using glm::mix;

@@ -117,6 +117,46 @@ LANTERN_FUNC vec3 light_eval_incident(vec3 l, vec3 radiance, float geometry, vec
   return finite ? max(c, vec3(0.0f)) : vec3(0.0f);
 }
 
+// Barycentrics (b1, b2) of the point y on triangle light `light` (least squares in its plane).
+LANTERN_FUNC vec2 light_eval_triangle_barycentrics(GpuLight light, vec3 y) {
+  vec3 e1 = vec3(light.p1);
+  vec3 e2 = vec3(light.p2);
+  vec3 w = y - vec3(light.p0);
+  float d00 = dot(e1, e1);
+  float d01 = dot(e1, e2);
+  float d11 = dot(e2, e2);
+  float d20 = dot(w, e1);
+  float d21 = dot(w, e2);
+  float denom = d00 * d11 - d01 * d01;
+  if (!(denom > 0.0f)) {
+    return vec2(1.0f / 3.0f, 1.0f / 3.0f);
+  }
+  return vec2((d11 * d20 - d01 * d21) / denom, (d00 * d21 - d01 * d20) / denom);
+}
+
+// The emissive texture factor of textured triangle light record `record` at barycentrics
+// (b1, b2). GLSL: declared here, defined by lib/scene_buffers.glsl (every frame pass includes
+// it; a shader that calls light evaluation without it fails to link). C++: the CPU callers (unit
+// tests of the light math) have no textures: 1.
+#ifdef __cplusplus
+inline vec3 scene_textured_emitter_radiance(uint, float, float) { return vec3(1.0f); }
+#else
+vec3 scene_textured_emitter_radiance(uint record, float b1, float b2);
+#endif
+
+// Emitted radiance of `light` towards its front at its point y: radiance.rgb, times the emissive
+// texture at y for a textured triangle light (radiance.w = uintBitsToFloat(record + 1), see
+// shared/textures.h GpuTexturedEmitter).
+LANTERN_FUNC vec3 light_eval_radiance(GpuLight light, vec3 y) {
+  vec3 radiance = vec3(light.radiance);
+  uint record = floatBitsToUint(light.radiance.w);
+  if (record != 0u && light_kind(light) == kLightTriangle) {
+    vec2 b = light_eval_triangle_barycentrics(light, y);
+    radiance *= scene_textured_emitter_radiance(record - 1u, b.x, b.y);
+  }
+  return radiance;
+}
+
 // Unshadowed contribution c(x, y) of the light point y (light_eval_position's; see the header):
 // zero below either normal, behind a one-sided triangle, outside a spot cone or a punctual range,
 // and for non-finite inputs. Arguments as light_eval_incident. For a caller that also traces the
@@ -129,8 +169,8 @@ LANTERN_FUNC vec3 light_eval_contribution_at(GpuLight light, vec3 y, vec3 x, vec
   if (!(geometry > 0.0f)) {
     return vec3(0.0f);
   }
-  return light_eval_incident(l, vec3(light.radiance), geometry, n, ng, v, albedo, roughness,
-                             metallic, specular);
+  return light_eval_incident(l, light_eval_radiance(light, y), geometry, n, ng, v, albedo,
+                             roughness, metallic, specular);
 }
 
 // The same for sample (light, uv).

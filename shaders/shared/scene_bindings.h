@@ -29,8 +29,11 @@ LANTERN_CONST uint kSceneEnvHeader = 12u;              // GpuEnvironment
 LANTERN_CONST uint kSceneEnvTexels = 13u;              // vec4[] radiance texels
 LANTERN_CONST uint kSceneEnvMarginal = 14u;            // AliasEntry[] over rows
 LANTERN_CONST uint kSceneEnvConditional = 15u;         // AliasEntry[] per row over columns
-LANTERN_CONST uint kSceneTlas = 16u;  // accelerationStructureEXT (ray-query visibility only)
-LANTERN_CONST uint kSceneBufferCount = 17u;
+LANTERN_CONST uint kSceneTextures = 16u;             // GpuTexture[] (shared/textures.h)
+LANTERN_CONST uint kSceneTexels = 17u;               // uint[] every texture's mip chain
+LANTERN_CONST uint kSceneTexturedEmitters = 18u;     // GpuTexturedEmitter[]
+LANTERN_CONST uint kSceneTlas = 19u;  // accelerationStructureEXT (ray-query visibility only)
+LANTERN_CONST uint kSceneBufferCount = 20u;
 
 // First binding of a pass's own resources (set 0).
 LANTERN_CONST uint kPassBindingBase = kSceneBufferCount;

@@ -21,6 +21,7 @@
 #include "shared/rng.h"
 #include "shared/sampling.h"
 #include "shared/scene.h"
+#include "shared/textures.h"
 #include "shared/tonemap.h"
 #include "shared/upscale.h"
 
@@ -48,6 +49,8 @@ layout(std430, binding = 17) buffer GpuEnvironmentProbe { GpuEnvironment gpu_env
 layout(std430, binding = 18) buffer PresampledLightProbe { PresampledLight presampled_lights[]; };
 layout(std430, binding = 19) buffer DenoisePushProbe { DenoisePush denoise_pushes[]; };
 layout(std430, binding = 20) buffer UpscalePushProbe { UpscalePush upscale_pushes[]; };
+layout(std430, binding = 21) buffer GpuTextureProbe { GpuTexture gpu_textures[]; };
+layout(std430, binding = 22) buffer GpuTexturedEmitterProbe { GpuTexturedEmitter gpu_textured_emitters[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -72,4 +75,6 @@ void main() {
   restir_surfaces[0] = restir_surfaces[1];
   gpu_environments[0] = gpu_environments[1];
   presampled_lights[0] = presampled_lights[1];
+  gpu_textures[0] = gpu_textures[1];
+  gpu_textured_emitters[0] = gpu_textured_emitters[1];
 }

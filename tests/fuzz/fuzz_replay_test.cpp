@@ -55,5 +55,8 @@ TEST_F(FuzzReplay, LevelJson) {
 TEST_F(FuzzReplay, Gltf) {
   replay("gltf", lantern::fuzz::gltf);
 }
+TEST_F(FuzzReplay, Image) {
+  replay("image", lantern::fuzz::image);
+}
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "engine/level/level_loader.h"
+#include "lighting/textures/texture_set.h"
+#include "runtime/image/image_decode.h"
 
 namespace lantern::fuzz {
 namespace {
@@ -59,6 +61,33 @@ int level_json(const std::uint8_t* data, std::size_t size) {
 int gltf(const std::uint8_t* data, std::size_t size) {
   const bool glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
   return load(data, size, glb ? "asset.glb" : "asset.gltf");
+}
+
+int image(const std::uint8_t* data, std::size_t size) {
+  Level level;
+  ImageRef ref;
+  ref.name = "fuzzed";
+  ref.embedded.assign(data, data + size);
+  level.images.push_back(ref);
+  Material m;
+  m.base_color_texture.image = 0;
+  m.metallic_roughness_texture.image = 0;
+  level.materials.push_back(m);
+  try {
+    const lighting::TextureSet set = lighting::TextureSet::build(level);
+    (void)set;
+  } catch (const InputError&) {
+  }
+  for (const char* mime : {"image/png", "image/jpeg", "image/x-exr"}) {
+    try {
+      // A smaller cap than the renderer's: decoded images stay within libFuzzer's malloc limit.
+      const runtime::DecodedImage img =
+          runtime::decode_image_bytes({data, size}, mime, 1024, "fuzzed");
+      (void)img;
+    } catch (const InputError&) {
+    }
+  }
+  return 0;
 }
 
 }  // namespace lantern::fuzz

@@ -22,5 +22,10 @@ void cleanup();
 int level_json(const std::uint8_t* data, std::size_t size);
 // A glTF file: .glb if the input starts with the GLB magic "glTF", else .gltf. Returns 0.
 int gltf(const std::uint8_t* data, std::size_t size);
+// An embedded material image (issue 15): the bytes as a level's base-colour and
+// metallic-roughness image through lighting::TextureSet::build (format sniffed from the
+// signature, OpenImageIO decode, size cap, sRGB decode, mip chain), then as a PNG, JPEG and EXR
+// by MIME type straight through runtime::decode_image_bytes. Returns 0.
+int image(const std::uint8_t* data, std::size_t size);
 
 }  // namespace lantern::fuzz

@@ -7,6 +7,8 @@
 // read-back inside the timed frames.
 // Usage: gbuffer_bench [--frames N] [--methods auto,visibility,forward] [level ...]
 //        (default: cornell_lights night_market, 15 frames, forward and visibility)
+//        A level suffixed ":untextured" is the level with every material texture and alpha mode
+//        removed (the same geometry without the textured path: the cost of textures, A/B).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -90,7 +92,15 @@ int main(int argc, char** argv) {
       "level", "size", "triangles", "inst", "method", "total ms", "(min)", "draws", "cull",
       "gbuffer", "resolve", "ratio", "wall ms", "frames");
   for (const std::string& name : levels) {
-    const Level level = load_level_argument(name);
+    const bool untextured = name.size() > 11 && name.ends_with(":untextured");
+    Level level = load_level_argument(untextured ? name.substr(0, name.size() - 11) : name);
+    if (untextured) {
+      for (Material& m : level.materials) {
+        m.base_color_texture = m.metallic_roughness_texture = m.normal_texture =
+            m.emissive_texture = TextureRef{};
+        m.alpha_mode = AlphaMode::Opaque;
+      }
+    }
     const lighting::SceneData scene = lighting::build_scene_data(level);
     std::size_t triangles = 0;
     for (const gpu::GpuInstance& inst : scene.instances) triangles += inst.geometry.z / 3;

@@ -41,7 +41,8 @@ GBufferHarness::GBufferHarness(runtime::Device& device, runtime::ShaderLibrary& 
                                const lighting::SceneData& scene,
                                const lighting::GBufferPassOptions& options)
     : device_(device),
-      pass_(device, shaders, options),
+      pass_(device, shaders,
+            {.method = options.method, .textured = options.textured || !scene.textures.empty()}),
       instances_host_(scene.instances),
       frame_constants_(device, {.size = sizeof(gpu::FrameConstants),
                                 .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -51,6 +52,8 @@ GBufferHarness::GBufferHarness(runtime::Device& device, runtime::ShaderLibrary& 
       indices_(make_storage(device, std::span(scene.indices), "test.indices")),
       materials_(make_storage(device, std::span(scene.materials), "test.materials")),
       instances_(make_storage(device, std::span(scene.instances), "test.instances")),
+      textures_(make_storage(device, std::span(scene.textures.records()), "test.textures")),
+      texels_(make_storage(device, std::span(scene.textures.texels()), "test.texels")),
       executor_(device),
       timer_(device, 16) {}
 
@@ -90,6 +93,8 @@ std::optional<GBufferImages> GBufferHarness::render(const gpu::FrameConstants& c
   scene[gpu::kSceneIndices] = import(indices_);
   scene[gpu::kSceneMaterials] = import(materials_);
   scene[gpu::kSceneInstances] = import(instances_);
+  scene[gpu::kSceneTextures] = import(textures_);
+  scene[gpu::kSceneTexels] = import(texels_);
   const lighting::GBufferHandles g = pass_.add_pass(
       graph_, scene, width, height, std::span<const gpu::GpuInstance>(instances_host_));
   const std::array<ImageHandle, 6> images = {g.position,          g.normal, g.albedo_roughness,

@@ -23,6 +23,7 @@
 #include "shared/restir.h"
 #include "shared/scene.h"
 #include "shared/upscale.h"
+#include "shared/textures.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/gpu/spirv_reflect.h"
 
@@ -131,6 +132,13 @@ const std::vector<StructLayout>& cpp_layouts() {
         LANTERN_MEMBER(GpuInstance, prev_object_to_world),
         LANTERN_MEMBER(GpuInstance, world_to_object), LANTERN_MEMBER(GpuInstance, geometry),
         LANTERN_MEMBER(GpuInstance, bvh)}},
+      {"GpuTexture",
+       sizeof(gpu::GpuTexture),
+       {LANTERN_MEMBER(GpuTexture, size), LANTERN_MEMBER(GpuTexture, format),
+        LANTERN_MEMBER(GpuTexture, transform_u), LANTERN_MEMBER(GpuTexture, transform_v)}},
+      {"GpuTexturedEmitter",
+       sizeof(gpu::GpuTexturedEmitter),
+       {LANTERN_MEMBER(GpuTexturedEmitter, uv01), LANTERN_MEMBER(GpuTexturedEmitter, uv2_tex)}},
       {"BvhNode",
        sizeof(gpu::BvhNode),
        {LANTERN_MEMBER(BvhNode, bounds_min), LANTERN_MEMBER(BvhNode, bounds_max)}},
@@ -142,7 +150,7 @@ const std::vector<StructLayout>& cpp_layouts() {
        sizeof(gpu::BvhInstance),
        {LANTERN_MEMBER(BvhInstance, object_to_world), LANTERN_MEMBER(BvhInstance, world_to_object),
         LANTERN_MEMBER(BvhInstance, node_offset), LANTERN_MEMBER(BvhInstance, triangle_offset),
-        LANTERN_MEMBER(BvhInstance, user_id), LANTERN_MEMBER(BvhInstance, pad0)}},
+        LANTERN_MEMBER(BvhInstance, user_id), LANTERN_MEMBER(BvhInstance, flags)}},
       {"BvhSceneHeader",
        sizeof(gpu::BvhSceneHeader),
        {LANTERN_MEMBER(BvhSceneHeader, tlas_node_offset),

@@ -141,6 +141,10 @@ TEST(GltfImages, TexturesReferenceEmbeddedBytesOrFiles) {
   doc["materials"][0]["emissiveTexture"] = {{"index", 0}};
   doc["materials"][0]["pbrMetallicRoughness"] = {
       {"baseColorTexture", {{"index", 1}, {"texCoord", 0}}}};
+  // Textured materials need the texcoord set they sample (the positions' bytes read as VEC2).
+  doc["accessors"].push_back(
+      {{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+  doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2;
   const auto file = test::scratch("textured.gltf");
   test::write_text(file, doc.dump());
   test::write_text(test::scratch("albedo.png"), "not decoded at load time");

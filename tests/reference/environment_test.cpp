@@ -44,21 +44,37 @@ runtime::ImageRGBA32F test_map(std::uint32_t w, std::uint32_t h) {
 
 const glm::quat kRotation = glm::quat(glm::radians(glm::vec3(20.0f, 70.0f, -10.0f)));
 
-// Map-space (u, v) of a world direction, computed independently of environment.h.
+// Map-space (u, v) of a world direction, computed independently of environment.h: Blender's
+// equirectangular lookup (Cycles direction_to_equirectangular: u = 1/2 - atan2(y, x) / 2pi,
+// v = 1 - acos(z) / pi from the image bottom) on the direction in Blender's Z-up axes, which are
+// our (x, -z, y) (the glTF axis conversion); our rows count from the top.
 glm::dvec2 reference_uv(glm::dvec3 world, const glm::quat& rotation) {
   const glm::dvec3 d = glm::inverse(glm::dquat(rotation)) * world;
-  double phi = std::atan2(d.x, -d.z);  // 0 at -Z, +pi/2 at +X
-  return {phi / (2.0 * kPiD) + 0.5, std::acos(glm::clamp(d.y, -1.0, 1.0)) / kPiD};
+  const glm::dvec3 b(d.x, -d.z, d.y);  // Blender axes
+  const double u = 0.5 - std::atan2(b.y, b.x) / (2.0 * kPiD);
+  const double v_blender = 1.0 - std::acos(glm::clamp(b.z, -1.0, 1.0)) / kPiD;
+  return {u, 1.0 - v_blender};
 }
 
-TEST(EnvironmentMap, ConventionCentreIsMinusZTopIsUpQuarterIsPlusX) {
-  const glm::vec2 centre = gpu::env_direction_to_uv(glm::vec3(0.0f, 0.0f, -1.0f));
+// Blender's world texture: the image centre faces Blender +X (our +X), u = 0.25 Blender +Y (our
+// -Z), u = 0.75 Blender -Y (our +Z); the top row is straight up.
+TEST(EnvironmentMap, ConventionIsBlendersWorldTexture) {
+  const glm::vec2 centre = gpu::env_direction_to_uv(glm::vec3(1.0f, 0.0f, 0.0f));
   EXPECT_NEAR(centre.x, 0.5f, 1e-6f);
   EXPECT_NEAR(centre.y, 0.5f, 1e-6f);
-  EXPECT_NEAR(gpu::env_direction_to_uv(glm::vec3(1.0f, 0.0f, 0.0f)).x, 0.75f, 1e-6f);
-  EXPECT_NEAR(gpu::env_direction_to_uv(glm::vec3(-1.0f, 0.0f, 0.0f)).x, 0.25f, 1e-6f);
+  EXPECT_NEAR(gpu::env_direction_to_uv(glm::vec3(0.0f, 0.0f, -1.0f)).x, 0.25f, 1e-6f);
+  EXPECT_NEAR(gpu::env_direction_to_uv(glm::vec3(0.0f, 0.0f, 1.0f)).x, 0.75f, 1e-6f);
+  EXPECT_NEAR(gpu::env_direction_to_uv(glm::vec3(-1.0f, 0.0f, -1e-6f)).x, 0.0f, 1e-5f);
   EXPECT_NEAR(gpu::env_direction_to_uv(glm::vec3(0.0f, 1.0f, 0.0f)).y, 0.0f, 1e-6f);
   EXPECT_NEAR(gpu::env_direction_to_uv(glm::vec3(0.0f, -1.0f, 0.0f)).y, 1.0f, 1e-6f);
+  for (const glm::vec3 d : {glm::vec3(0.3f, 0.5f, -0.8f), glm::vec3(-0.7f, -0.2f, 0.1f)}) {
+    const glm::vec3 n = glm::normalize(d);
+    const glm::dvec2 ref = reference_uv(glm::dvec3(n), glm::quat(1, 0, 0, 0));
+    EXPECT_NEAR(gpu::env_direction_to_uv(n).x, ref.x, 1e-5);
+    EXPECT_NEAR(gpu::env_direction_to_uv(n).y, ref.y, 1e-5);
+    const glm::vec3 back = gpu::env_uv_to_direction(gpu::env_direction_to_uv(n));
+    EXPECT_NEAR(glm::length(back - n), 0.0f, 1e-5f);
+  }
 }
 
 TEST(EnvironmentMap, LookupReturnsTheTexelOfTheDirection) {

@@ -24,6 +24,7 @@ void run_generator(JsonObject& params, JsonLevelReader& reader) {
     p.lights_per_stall =
         static_cast<std::uint32_t>(params.integer("lights_per_stall", p.lights_per_stall, 0, 64));
     p.sign_quads = static_cast<std::uint32_t>(params.integer("sign_quads", p.sign_quads, 0, 256));
+    if (params.has("sign_texture")) p.sign_texture = reader.existing_file(params, "sign_texture");
     p.movers = static_cast<std::uint32_t>(params.integer("movers", p.movers, 0, 10000));
     p.flicker_fraction = params.number("flicker_fraction", p.flicker_fraction);
     p.moving_light_fraction = params.number("moving_light_fraction", p.moving_light_fraction);

@@ -82,6 +82,21 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
   const Mesh unit_box = make_box(glm::vec3(1.0f));
   const Mesh lantern = make_ico_sphere(0.08f, p.lantern_subdivisions);
   Mesh sign_quad = make_plane(glm::vec2(1.0f));  // faces +Y; rotated to face the aisle
+  // The textured sign panel: a unit quad facing +Z, image x along +X, image y downwards.
+  Mesh sign_panel;
+  sign_panel.name = "sign_panel";
+  sign_panel.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
+  sign_panel.normals.assign(4, glm::vec3(0.0f, 0.0f, 1.0f));
+  sign_panel.uvs = {{0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 0.0f}};
+  sign_panel.indices = {0, 1, 2, 0, 2, 3};
+  std::int32_t sign_image = -1;
+  if (!p.sign_texture.empty()) {
+    ImageRef ref;
+    ref.path = p.sign_texture;
+    ref.name = p.sign_texture.filename().string();
+    builder.level().images.push_back(std::move(ref));
+    sign_image = static_cast<std::int32_t>(builder.level().images.size() - 1);
+  }
   MergedMeshes merged;
   const Material wood = diffuse("market_wood", {0.35f, 0.22f, 0.12f}, 0.7f);
   const Material metal = [] {
@@ -146,9 +161,22 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
                          kGlow[static_cast<std::size_t>(glow)], bin_radiance),
                  lantern, glm::translate(frame, {x, y, 1.25f}));
     }
-    // Sign: a strip of emissive quads on the back wall, facing the aisle.
+    // Sign: a strip of emissive quads on the back wall, facing the aisle (or one textured panel
+    // over the same area).
     const std::uint32_t sign_cols = std::max<std::uint32_t>(1, (p.sign_quads + 1) / 2);
-    for (std::uint32_t q = 0; q < p.sign_quads; ++q) {
+    if (sign_image >= 0 && p.sign_quads > 0) {
+      const std::uint32_t sign_rows = (p.sign_quads + sign_cols - 1) / sign_cols;
+      const glm::vec3 size(0.32f * static_cast<float>(sign_cols),
+                           0.17f * static_cast<float>(sign_rows), 1.0f);
+      const glm::mat4 m = glm::scale(
+          glm::translate(frame, {0.0f, 2.05f + 0.085f * static_cast<float>(sign_rows - 1), -0.94f}),
+          size);
+      Material sign = emitter(fmt::format("market_sign_texture_{}", hue),
+                              kGlow[static_cast<std::size_t>(hue)], 60.0f);
+      sign.emissive_texture.image = sign_image;
+      merged.add(sign, sign_panel, m);
+    }
+    for (std::uint32_t q = 0; sign_image < 0 && q < p.sign_quads; ++q) {
       const float x =
           (static_cast<float>(q % sign_cols) - 0.5f * static_cast<float>(sign_cols - 1)) * 0.32f;
       const float y = 2.05f + 0.17f * static_cast<float>(q / sign_cols);

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <filesystem>
 #include <string>
 
 #include "engine/level/level_builder.h"
@@ -19,6 +20,9 @@ struct NightMarketParams {
   std::uint32_t lantern_subdivisions = 0;      // icosphere level: 20 triangles at 0, x4 per level
   std::uint32_t lights_per_stall = 5;          // one spot over the counter, the rest point bulbs
   std::uint32_t sign_quads = 16;               // emissive quads per stall sign
+  // When set: each stall's sign is one panel (the area the quads would cover) whose emission is
+  // this image (an emissive texture: a textured light), instead of sign_quads flat quads.
+  std::filesystem::path sign_texture;
   std::uint32_t movers = 24;                   // carts orbiting in the aisles; every 4th spins
   float flicker_fraction = 0.3f;               // lights that flicker
   float moving_light_fraction = 0.05f;         // bulbs that swing (orbit a little)
