@@ -60,7 +60,9 @@ std::vector<SceneBvh::Merged> SceneBvh::choose_merged(
     std::span<const BvhInstanceDesc> instances) {
   moved_fixed_.resize(instances.size(), false);
   for (const Merged& m : merged_) {
-    if (m.instance < instances.size() && instances[m.instance].object_to_world != m.object_to_world)
+    if (m.instance >= instances.size()) continue;
+    const BvhInstanceDesc& now = instances[m.instance];
+    if (now.object_to_world != m.object_to_world || now.mesh != m.mesh)
       moved_fixed_[m.instance] = true;
   }
   std::size_t distinct = 0;
@@ -74,7 +76,7 @@ std::vector<SceneBvh::Merged> SceneBvh::choose_merged(
     const std::size_t count = meshes_[desc.mesh].triangle_count();
     if (count == 0 || total + count > cap) continue;
     total += count;
-    chosen.push_back({static_cast<std::uint32_t>(i), desc.object_to_world});
+    chosen.push_back({static_cast<std::uint32_t>(i), desc.mesh, desc.object_to_world});
   }
   return chosen;
 }

@@ -82,11 +82,12 @@ class SceneBvh {
  private:
   struct Merged {
     std::uint32_t instance;
+    std::uint32_t mesh;
     glm::mat4 object_to_world;
     bool operator==(const Merged&) const = default;
   };
   // Which fixed instances join the merged tree (in instance order, within the triangle cap).
-  // Marks merged instances that moved (moved_fixed_: never merged again).
+  // Marks merged instances that moved or changed mesh (moved_fixed_: never merged again).
   std::vector<Merged> choose_merged(std::span<const BvhInstanceDesc> instances);
   void build_merged_tree(std::span<const BvhInstanceDesc> instances);
   // Repacks nodes_/triangles_: BLASes of the meshes TLAS leaves use, then the merged tree.

@@ -10,6 +10,7 @@
 
 #include "engine/level/level_loader.h"
 #include "engine/level/primitives.h"
+#include "lighting/scene/scene_buffers.h"
 #include "shared/color.h"
 #include "shared/common_math.h"
 
@@ -87,3 +88,17 @@ TEST(SceneData, EmissiveTrianglePowerAndFrontFace) {
 
 }  // namespace
 }  // namespace lantern
+
+namespace lantern::lighting {
+namespace {
+
+// The scene table: exactly the device-built rows (the TLAS) have no CPU bytes to upload.
+TEST(SceneBuffers, OnlyDeviceBuiltRowsHaveNoBytes) {
+  for (const SceneBufferRow& row : kSceneBuffers) {
+    EXPECT_EQ(row.bytes == nullptr, row.kind == SceneResourceKind::AccelerationStructure)
+        << row.graph_name;
+  }
+}
+
+}  // namespace
+}  // namespace lantern::lighting
