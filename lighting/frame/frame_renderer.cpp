@@ -49,8 +49,7 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
                              std::shared_ptr<const Level> level,
                              std::unique_ptr<Integrator> integrator, std::uint32_t width,
                              std::uint32_t height, std::uint32_t seed)
-    : device_(device),
-      integrator_(std::move(integrator)),
+    : integrator_(std::move(integrator)),
       width_(width),
       height_(height),
       output_width_(width),

@@ -103,7 +103,6 @@ class FrameRenderer {
   std::uint32_t frames_rendered() const { return frames_; }
 
  private:
-  runtime::Device& device_;
   std::unique_ptr<GpuScene> scene_;
   std::unique_ptr<GBufferPass> gbuffer_;
   std::unique_ptr<Integrator> integrator_;
