@@ -1,7 +1,6 @@
-// DenoisePass: one denoise.* compute pass — its pipeline (shaders/denoise/denoise_<stage>.comp,
-// named "denoise.<stage>"), the scene buffers and G-buffer images its shader uses (declared and
-// bound from the shader's reflection: SceneHandles, GBufferHandles), its own buffers by GLSL
-// name, the push constants, one thread per pixel. What each stage reads and writes is listed
+// DenoisePass: one denoise.* compute pass, a ShaderPass (lighting/frame/shader_pass.h) of
+// shaders/denoise/denoise_<stage>.comp named "denoise.<stage>", with DenoisePush and one thread
+// per pixel. What each stage reads and writes is listed
 // where Denoiser adds it (denoiser.cpp) and in its shader's header.
 #pragma once
 
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "lighting/frame/frame_inputs.h"
+#include "lighting/frame/shader_pass.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/runtime_fwd.h"
 #include "shared/denoise.h"
@@ -18,11 +18,7 @@ namespace lantern::lighting {
 
 class DenoisePass {
  public:
-  struct Buffer {
-    const char* name;
-    runtime::graph::BufferHandle handle;
-    enum Use { Read, Write } use = Read;  // Write: every pixel written, nothing read
-  };
+  using Buffer = ShaderPassBuffer;
 
   DenoisePass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& stage);
 
@@ -32,11 +28,10 @@ class DenoisePass {
                                                 const gpu::DenoisePush& push,
                                                 std::initializer_list<Buffer> buffers) const;
 
-  const runtime::ComputePipeline& pipeline() const { return pipeline_; }
+  const runtime::ComputePipeline& pipeline() const { return pass_.pipeline(); }
 
  private:
-  std::string name_;
-  runtime::ComputePipeline pipeline_;
+  ShaderPass pass_;
 };
 
 }  // namespace lantern::lighting

@@ -1,74 +1,23 @@
-// RestirPass: declare and bind one restir.* pass by name (restir_pass.h).
+// RestirPass: a restir.* ShaderPass with its dispatch over the image's tiles (restir_pass.h).
 #include "lighting/restir/restir_pass.h"
 
-#include <algorithm>
-
 #include "lighting/frame/tile_order.h"
-#include "runtime/gpu/bindings.h"
-#include "runtime/gpu/shader_library.h"
-#include "runtime/graph/pass_context.h"
 
 namespace lantern::lighting {
 
-using runtime::graph::Access;
-using runtime::graph::BufferHandle;
-
 RestirPass::RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
                        const std::string& stage, VisibilityBackend visibility)
-    : name_("restir." + stage),
-      pipeline_(device,
-                shaders.load("restir/restir_" + stage + ".comp", visibility_variant(visibility)),
-                runtime::ComputePipelineDesc{.name = name_, .constants = {}}) {}
+    : pass_(device, shaders, "restir." + stage, "restir/restir_" + stage + ".comp",
+            visibility_variant(visibility)) {}
 
-std::vector<BufferHandle> RestirPass::add(runtime::graph::RenderGraph& graph,
-                                          const FrameInputs& inputs, const gpu::RestirPush& push,
-                                          std::initializer_list<Buffer> buffers,
-                                          std::uint32_t workgroups) const {
-  struct Data {
-    SceneHandles scene;
-    GBufferHandles gbuffer;
-    std::vector<Buffer> buffers;  // handles: the versions this pass reads or writes
-  };
-  const std::uint32_t width = inputs.width;
-  const std::uint32_t height = inputs.height;
-  const Data& data = graph.add_pass<Data>(
-      name_, runtime::graph::PassKind::Compute,
-      [&](runtime::graph::PassBuilder& b, Data& d) {
-        d.scene = inputs.scene_handles;
-        d.gbuffer = inputs.gbuffer;
-        d.scene.declare_reads(b, pipeline_);
-        d.gbuffer.declare_reads(b, pipeline_);
-        for (Buffer buffer : buffers) {
-          if (buffer.use == Buffer::Write) {
-            buffer.handle = b.write(buffer.handle, Access::StorageWrite);
-          } else if (buffer.use == Buffer::ReadWrite) {
-            buffer.handle = b.write(buffer.handle, Access::StorageReadWrite);
-          } else if (std::none_of(d.buffers.begin(), d.buffers.end(), [&](const Buffer& o) {
-                       return o.use == Buffer::Read && o.handle == buffer.handle;
-                     })) {
-            b.read(buffer.handle, Access::StorageRead);
-          }
-          d.buffers.push_back(buffer);
-        }
-      },
-      [this, push, width, height, workgroups](runtime::graph::PassContext& ctx, const Data& d) {
-        runtime::Bindings b(pipeline_);
-        d.scene.bind(b, ctx);
-        d.gbuffer.bind(b, ctx);
-        for (const Buffer& buffer : d.buffers) {
-          b.buffer(buffer.name, ctx.buffer(buffer.handle), 0, VK_WHOLE_SIZE);
-        }
-        pipeline_.bind(ctx.cmd(), b);
-        pipeline_.push_constants(ctx.cmd(), push);
-        pipeline_.dispatch(ctx.cmd(), workgroups != 0
-                                          ? workgroups
-                                          : tile_count(width, height, gpu::kRestirTileSize));
-      });
-  std::vector<BufferHandle> written;
-  for (const Buffer& buffer : data.buffers) {
-    if (buffer.use != Buffer::Read) written.push_back(buffer.handle);
-  }
-  return written;
+std::vector<runtime::graph::BufferHandle> RestirPass::add(runtime::graph::RenderGraph& graph,
+                                                          const FrameInputs& inputs,
+                                                          const gpu::RestirPush& push,
+                                                          std::initializer_list<Buffer> buffers,
+                                                          std::uint32_t workgroups) const {
+  const std::uint32_t groups =
+      workgroups != 0 ? workgroups : tile_count(inputs.width, inputs.height, gpu::kRestirTileSize);
+  return pass_.add(graph, inputs, push, buffers, {.x = groups});
 }
 
 }  // namespace lantern::lighting

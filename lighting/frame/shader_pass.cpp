@@ -1,0 +1,74 @@
+// ShaderPass: declare and bind one compute pass by its shader's names (shader_pass.h).
+#include "lighting/frame/shader_pass.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "runtime/gpu/bindings.h"
+#include "runtime/gpu/shader_library.h"
+#include "runtime/graph/pass_context.h"
+
+namespace lantern::lighting {
+
+using runtime::graph::Access;
+using runtime::graph::BufferHandle;
+
+ShaderPass::ShaderPass(runtime::Device& device, runtime::ShaderLibrary& shaders, std::string name,
+                       const std::string& shader, std::string_view variant)
+    : name_(std::move(name)),
+      pipeline_(device, shaders.load(shader, variant),
+                runtime::ComputePipelineDesc{.name = name_, .constants = {}}) {}
+
+std::vector<BufferHandle> ShaderPass::add_bytes(runtime::graph::RenderGraph& graph,
+                                                const FrameInputs& inputs, const PushBytes& push,
+                                                std::initializer_list<ShaderPassBuffer> buffers,
+                                                ShaderPassDispatch dispatch) const {
+  struct Data {
+    SceneHandles scene;
+    GBufferHandles gbuffer;
+    std::vector<ShaderPassBuffer> buffers;  // handles: the versions this pass reads or writes
+  };
+  const Data& data = graph.add_pass<Data>(
+      name_, runtime::graph::PassKind::Compute,
+      [&](runtime::graph::PassBuilder& b, Data& d) {
+        d.scene = inputs.scene_handles;
+        d.gbuffer = inputs.gbuffer;
+        d.scene.declare_reads(b, pipeline_);
+        d.gbuffer.declare_reads(b, pipeline_);
+        for (ShaderPassBuffer buffer : buffers) {
+          if (buffer.use == ShaderPassBuffer::Write) {
+            buffer.handle = b.write(buffer.handle, Access::StorageWrite);
+          } else if (buffer.use == ShaderPassBuffer::ReadWrite) {
+            buffer.handle = b.write(buffer.handle, Access::StorageReadWrite);
+          } else if (std::none_of(
+                         d.buffers.begin(), d.buffers.end(), [&](const ShaderPassBuffer& o) {
+                           return o.use == ShaderPassBuffer::Read && o.handle == buffer.handle;
+                         })) {
+            b.read(buffer.handle, Access::StorageRead);
+          }
+          d.buffers.push_back(buffer);
+        }
+      },
+      [this, push, dispatch](runtime::graph::PassContext& ctx, const Data& d) {
+        runtime::Bindings b(pipeline_);
+        d.scene.bind(b, ctx);
+        d.gbuffer.bind(b, ctx);
+        for (const ShaderPassBuffer& buffer : d.buffers) {
+          b.buffer(buffer.name, ctx.buffer(buffer.handle), 0, VK_WHOLE_SIZE);
+        }
+        pipeline_.bind(ctx.cmd(), b);
+        pipeline_.push_constants(ctx.cmd(), push.data.data(), push.size);
+        if (dispatch.threads) {
+          pipeline_.dispatch_threads(ctx.cmd(), dispatch.x, dispatch.y);
+        } else {
+          pipeline_.dispatch(ctx.cmd(), dispatch.x, dispatch.y);
+        }
+      });
+  std::vector<BufferHandle> written;
+  for (const ShaderPassBuffer& buffer : data.buffers) {
+    if (buffer.use != ShaderPassBuffer::Read) written.push_back(buffer.handle);
+  }
+  return written;
+}
+
+}  // namespace lantern::lighting
