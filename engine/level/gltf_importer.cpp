@@ -106,6 +106,11 @@ struct Importer {
       fail(place, fmt::format("texture {} does not exist", texture_index));
     const tinygltf::Texture& tex = model.textures[static_cast<std::size_t>(texture_index)];
     const int source = tex.source;
+    if (source < 0 && tex.extensions.count("KHR_texture_basisu") != 0)
+      fail(place, fmt::format("texture {} has only a KHR_texture_basisu (KTX2) source, which "
+                              "OpenImageIO cannot decode here; give it a PNG or JPEG `source` "
+                              "as a fallback",
+                              texture_index));
     if (source < 0 || static_cast<std::size_t>(source) >= model.images.size())
       fail(place, fmt::format("texture {} has no valid image source ({})", texture_index, source));
     if (texcoord < 0 || texcoord > 1)
@@ -276,6 +281,7 @@ struct Importer {
       throw InputError(fmt::format("{}: material {} samples {}, which the primitive does not have",
                                    place, prim.material, uv_name));
     }
+    if (int a = attribute("TANGENT"); a >= 0) mesh.tangents = accessors.vec4s(a);
     if (prim.indices >= 0) {
       mesh.indices = accessors.indices(prim.indices);
     } else {

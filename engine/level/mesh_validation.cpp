@@ -28,12 +28,22 @@ void finalize_mesh(Mesh& mesh, const std::string& where, LoadDiagnostics& diagno
     throw InputError(fmt::format("{}: {} normals for {} positions", where, mesh.normals.size(), n));
   if (!mesh.uvs.empty() && mesh.uvs.size() != n)
     throw InputError(fmt::format("{}: {} uvs for {} positions", where, mesh.uvs.size(), n));
+  if (!mesh.tangents.empty() && mesh.tangents.size() != n)
+    throw InputError(
+        fmt::format("{}: {} tangents for {} positions", where, mesh.tangents.size(), n));
   if (mesh.indices.size() % 3 != 0)
     throw InputError(fmt::format("{}: {} indices is not a whole number of triangles", where,
                                  mesh.indices.size()));
   require_finite(mesh.positions, where, "position");
   require_finite(mesh.normals, where, "normal");
   require_finite(mesh.uvs, where, "uv");
+  require_finite(mesh.tangents, where, "tangent");
+  // Tangents: unit xyz and w = +-1 (glTF); a zero tangent is "no vertex frame" (w = 0), which
+  // the shader answers with its triangle's frame.
+  for (glm::vec4& t : mesh.tangents) {
+    const float len = glm::length(glm::vec3(t));
+    t = len > 0.0f ? glm::vec4(glm::vec3(t) / len, t.w < 0.0f ? -1.0f : 1.0f) : glm::vec4(0.0f);
+  }
 
   // Drop zero-area triangles (in place), counting them.
   std::size_t kept = 0;

@@ -1,5 +1,6 @@
 // Final checks on a mesh built by a loader: finite vertex data, indices in range, degenerate
-// (zero-area) triangles dropped and counted, missing normals computed, bounds filled.
+// (zero-area) triangles dropped and counted, missing normals computed, given tangents normalised
+// (w to +-1), bounds filled.
 #pragma once
 
 #include <cstdint>

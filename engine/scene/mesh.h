@@ -15,6 +15,10 @@ struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;      // same count as positions
   std::vector<glm::vec2> uvs;          // same count as positions, or empty
+  // Vertex tangents (glTF TANGENT): xyz the unit object-space direction of increasing u, w = +1
+  // or -1 with the normal map's +Y ("up", decreasing v) = w * cross(normal, xyz). Same count as
+  // positions, or empty (the lighting module then generates them: engine/scene/mesh_tangents.h).
+  std::vector<glm::vec4> tangents;
   std::vector<std::uint32_t> indices;  // triangle list
   Aabb bounds;                         // object space
 

@@ -69,6 +69,8 @@ constexpr std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers = {{
      [](const Sources& s) { return bytes_of(s.data->textures.texels()); }, kBuffer},
     {gpu::kSceneTexturedEmitters, "scene.textured_emitters", "scene_textured_emitters", nullptr,
      true, [](const Sources& s) { return bytes_of(s.data->textured_emitters); }, kBuffer},
+    {gpu::kSceneVertexTangents, "scene.vertex_tangents", "scene_vertex_tangents", nullptr, true,
+     [](const Sources& s) { return bytes_of(s.data->vertex_tangents); }, kBuffer},
     {gpu::kSceneTlas, "scene.tlas", "scene_tlas", nullptr, false, nullptr,
      SceneResourceKind::AccelerationStructure},
 }};

@@ -13,6 +13,7 @@
 #include <limits>
 
 #include "engine/core/error.h"
+#include "engine/scene/mesh_tangents.h"
 #include "shared/color.h"
 #include "shared/common_math.h"
 #include "shared/sampling.h"
@@ -70,6 +71,36 @@ void build_textured_emitters(const Level& level, SceneData& scene) {
       scene.textured_emitter_means.push_back(mean_of(texture, uv));
     }
   }
+}
+
+// SceneData::vertex_tangents: for each mesh some instance draws with a normal-mapped material,
+// its own tangents or generated ones (engine/scene/mesh_tangents.h); zero (w = 0, the shader's
+// triangle-frame fallback) for every other vertex. Empty without normal textures.
+std::vector<gpu::vec4> vertex_tangents(const Level& level, std::size_t vertex_count) {
+  std::vector<bool> normal_mapped(level.meshes.size(), false);
+  bool any = false;
+  for (const Instance& inst : level.instances) {
+    if (inst.material < level.materials.size() && inst.mesh < level.meshes.size() &&
+        level.materials[inst.material].normal_texture.present()) {
+      normal_mapped[inst.mesh] = true;
+      any = true;
+    }
+  }
+  if (!any) return {};
+  std::vector<gpu::vec4> out;
+  out.reserve(vertex_count);
+  for (std::size_t m = 0; m < level.meshes.size(); ++m) {
+    const Mesh& mesh = level.meshes[m];
+    if (!normal_mapped[m]) {
+      out.insert(out.end(), mesh.positions.size(), gpu::vec4(0.0f));
+    } else if (mesh.tangents.size() == mesh.positions.size()) {
+      out.insert(out.end(), mesh.tangents.begin(), mesh.tangents.end());
+    } else {
+      const std::vector<glm::vec4> generated = generate_tangents(mesh);
+      out.insert(out.end(), generated.begin(), generated.end());
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -212,6 +243,7 @@ SceneData build_scene_data(const Level& level) {
     scene.indices.insert(scene.indices.end(), mesh.indices.begin(), mesh.indices.end());
     scene.bvh.add_mesh(MeshBvh(mesh.positions, mesh.indices));
   }
+  scene.vertex_tangents = vertex_tangents(level, scene.vertices.size());
 
   // Instances: GpuInstance records, BVH instances and the world box.
   glm::vec3 lo(std::numeric_limits<float>::max());

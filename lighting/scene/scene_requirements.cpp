@@ -131,7 +131,8 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
     for (const Material& m : level.materials) alpha_tested += m.alpha_tested() ? 1 : 0;
     const std::uint64_t bytes = textures.texel_bytes() +
                                 array_bytes<gpu::GpuTexture>(textures.records().size()) +
-                                array_bytes<gpu::GpuTexturedEmitter>(scene.textured_emitters.size());
+                                array_bytes<gpu::GpuTexturedEmitter>(scene.textured_emitters.size()) +
+                                array_bytes<gpu::vec4>(scene.vertex_tangents.size());
     summary.enabled["textures"] = {
         {"structure", "software-sampled texel array (bilinear, trilinear mips) + records"},
         {"why", fmt::format("{} material texture slots over {} decoded images",
@@ -139,6 +140,7 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
         {"images", list},
         {"textured_lights", scene.textured_emitters.size()},
         {"alpha_tested", alpha_tested},
+        {"vertex_tangents", scene.vertex_tangents.size()},
         {"load_ms", std::round(textures.build_ms() * 10.0) / 10.0},
         {"integrate_ms", std::round(scene.textured_emitter_ms * 10.0) / 10.0},
         {"bytes", bytes},

@@ -18,13 +18,34 @@
 namespace lantern::runtime {
 namespace {
 
+bool is_ktx2(std::span<const std::uint8_t> b) {
+  static constexpr std::uint8_t kSignature[12] = {0xab, 'K', 'T',  'X',  ' ',  '2',
+                                                 '0',  0xbb, '\r', '\n', 0x1a, '\n'};
+  return b.size() >= sizeof(kSignature) && std::memcmp(b.data(), kSignature, sizeof(kSignature)) == 0;
+}
+
+// KTX2 (glTF's image/ktx2, KHR_texture_basisu) decodes only where OpenImageIO has a reader for
+// it; OpenImageIO 2.4 (Debian 12) has none, so such an image is one clear error up front rather
+// than "no reader" from the depths of OpenImageIO.
+void require_ktx2_reader(const std::string& where) {
+  static const bool readable = OIIO::ImageInput::create("probe.ktx2", /*do_open=*/false) != nullptr;
+  if (!readable)
+    throw InputError(fmt::format(
+        "{}: KTX2 image (image/ktx2, KHR_texture_basisu): this OpenImageIO ({}) has no KTX2 "
+        "reader; convert the image to PNG, JPEG or EXR",
+        where, OIIO_VERSION_STRING));
+}
+
 // The reader's file extension for encoded bytes: from the MIME type, else the signature.
 std::string extension_for(std::span<const std::uint8_t> b, const std::string& mime,
                           const std::string& where) {
   if (mime == "image/png") return ".png";
   if (mime == "image/jpeg") return ".jpg";
   if (mime == "image/x-exr" || mime == "image/exr") return ".exr";
-  if (mime == "image/ktx2") return ".ktx2";
+  if (mime == "image/ktx2" || is_ktx2(b)) {
+    require_ktx2_reader(where);
+    return ".ktx2";
+  }
   auto starts = [&](std::initializer_list<std::uint8_t> sig) {
     return b.size() >= sig.size() && std::equal(sig.begin(), sig.end(), b.begin());
   };
@@ -141,6 +162,12 @@ DecodedImage decode_image_file(const std::filesystem::path& path, std::uint32_t 
                                             std::istreambuf_iterator<char>()};
       check_exr_header(bytes, fmt::format("{} ({})", where, path.string()));
     }
+    std::uint8_t head[12] = {};
+    file.clear();
+    file.seekg(0);
+    file.read(reinterpret_cast<char*>(head), sizeof(head));
+    if (is_ktx2(head) || path.extension() == ".ktx2")
+      require_ktx2_reader(fmt::format("{} ({})", where, path.string()));
   }
   const OIIO::ImageSpec config = straight_alpha();
   auto in = OIIO::ImageInput::open(path.string(), &config);

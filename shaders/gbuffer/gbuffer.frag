@@ -65,7 +65,24 @@ void main() {
     vec3 p_dy = dFdy(in_world);
     vec4 duv = vec4(uv_dx, uv_dy);
     if (gbuffer_alpha_cut(material, in_uv, duv)) discard;
-    GBufferMaterial g = gbuffer_material(material, in_uv, duv, ns, p_dx, p_dy, uv_dx, uv_dy);
+    vec3 t = vec3(0.0), up = vec3(0.0);
+    if (material.textures.w != kNoTexture) {
+      // The triangle's vertices and the fragment's barycentrics, for its vertex tangents.
+      uvec4 geometry = scene_instances.i[in_ids.x].geometry;
+      uint base = geometry.y + 3u * in_ids.z;
+      uint i0 = geometry.w + scene_indices.i[base];
+      uint i1 = geometry.w + scene_indices.i[base + 1u];
+      uint i2 = geometry.w + scene_indices.i[base + 2u];
+      mat4 object_to_world = scene_instances.i[in_ids.x].object_to_world;
+      mat3 linear = mat3(object_to_world);
+      vec3 p0 = scene_vertices.v[i0].position_u.xyz;
+      vec3 w0 = (object_to_world * vec4(p0, 1.0)).xyz;
+      vec3 e1 = linear * (scene_vertices.v[i1].position_u.xyz - p0);
+      vec3 e2 = linear * (scene_vertices.v[i2].position_u.xyz - p0);
+      vec2 b = gbuffer_point_barycentrics(in_world, w0, e1, e2);
+      gbuffer_tangent_frame(i0, i1, i2, b.x, b.y, linear, p_dx, p_dy, uv_dx, uv_dy, t, up);
+    }
+    GBufferMaterial g = gbuffer_material(material, in_uv, duv, ns, t, up);
     base_color = g.base_color;
     params = vec2(g.roughness, g.metallic);
     material_emission = g.emission;

@@ -1,11 +1,11 @@
 // The material at a G-buffer surface point, textures applied (both G-buffer methods call it):
 // base colour x baseColorTexture (sRGB-decoded; alpha for the cutout), roughness x G and metallic
 // x B of metallicRoughnessTexture, emission x emissiveTexture, and the shading normal perturbed
-// by normalTexture in the triangle's tangent frame. The tangent frame is the triangle's own
-// (dp/du, dp/dv from its corners' positions and texcoords), Gram-Schmidt orthogonalised against
-// the interpolated normal, bitangent = sign x cross(n, t) -- MikkTSpace's construction for a
-// triangle whose neighbours share its uv mapping (flat and planar-mapped meshes; MikkTSpace also
-// averages tangents across smooth vertices, which this does not). The texture level of detail
+// by normalTexture in the tangent frame of gbuffer_tangent_frame: the mesh's vertex tangents
+// (the asset's TANGENT, or generated MikkTSpace-style at load: engine/scene/mesh_tangents.h)
+// interpolated, else the triangle's own uv frame (dp/du, dp/dv); either is Gram-Schmidt
+// orthogonalised against the shading normal, with the normal map's +Y = sign x cross(n, t) and
+// the sign from the frame's "up" direction (glTF: decreasing v). The texture level of detail
 // comes from the pixel's texcoord footprint `duv` (du/dx, dv/dx, du/dy, dv/dy): raster
 // derivatives in the forward pass, ray differentials in the visibility resolve.
 // Needs lib/scene_buffers.glsl (scene_materials, the texture blocks).
@@ -42,10 +42,41 @@ bool gbuffer_alpha_cut(GpuMaterial m, vec2 uv, vec4 duv) {
   return alpha < cutoff;
 }
 
-// `ns`: interpolated shading normal (unit, on the viewer's side); dp1, dp2: world edges p1 - p0,
-// p2 - p0 of the triangle and duv1, duv2 their texcoord differences.
-GBufferMaterial gbuffer_material(GpuMaterial m, vec2 uv, vec4 duv, vec3 ns, vec3 dp1, vec3 dp2,
-                                 vec2 duv1, vec2 duv2) {
+// Barycentrics (b1, b2) of point p in the plane of the triangle w0 + (0, e1, e2).
+vec2 gbuffer_point_barycentrics(vec3 p, vec3 w0, vec3 e1, vec3 e2) {
+  vec3 d = p - w0;
+  float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
+  float d20 = dot(d, e1), d21 = dot(d, e2);
+  float denom = d00 * d11 - d01 * d01;
+  vec2 b = vec2(d11 * d20 - d01 * d21, d00 * d21 - d01 * d20) / denom;
+  return (is_finite(b.x) && is_finite(b.y)) ? b : vec2(1.0 / 3.0);
+}
+
+// The normal map's frame inputs at barycentrics (b1, b2) of the triangle with vertices i0, i1,
+// i2 (scene_vertices indices) placed by `linear`: world-space tangent t (+u) and "up" (the
+// normal map's +Y, decreasing v), neither orthogonalised. From the vertex tangents when the mesh
+// has them (w != 0), else from the triangle's uv frame: dp1, dp2 are position differences
+// (world edges, or screen derivatives) and duv1, duv2 the matching texcoord differences.
+void gbuffer_tangent_frame(uint i0, uint i1, uint i2, float b1, float b2, mat3 linear, vec3 dp1,
+                           vec3 dp2, vec2 duv1, vec2 duv2, out vec3 t, out vec3 up) {
+  vec4 t0 = scene_vertex_tangents.t[i0];
+  if (t0.w != 0.0) {
+    float b0 = 1.0 - b1 - b2;
+    vec3 t_object = b0 * t0.xyz + b1 * scene_vertex_tangents.t[i1].xyz +
+                    b2 * scene_vertex_tangents.t[i2].xyz;
+    vec3 n_object = b0 * scene_vertices.v[i0].normal_v.xyz +
+                    b1 * scene_vertices.v[i1].normal_v.xyz + b2 * scene_vertices.v[i2].normal_v.xyz;
+    t = linear * t_object;
+    up = linear * (t0.w * cross(n_object, t_object));
+    return;
+  }
+  float r = duv1.x * duv2.y - duv1.y * duv2.x;
+  t = (dp1 * duv2.y - dp2 * duv1.y) * r;
+  up = (dp1 * duv2.x - dp2 * duv1.x) * r;  // -dp/dv (glTF's v runs down the image)
+}
+
+// `ns`: interpolated shading normal (unit, on the viewer's side); t, up: gbuffer_tangent_frame's.
+GBufferMaterial gbuffer_material(GpuMaterial m, vec2 uv, vec4 duv, vec3 ns, vec3 t, vec3 up) {
   GBufferMaterial g;
   g.base_color = m.base_color.rgb;
   g.alpha = m.base_color.a;
@@ -65,15 +96,11 @@ GBufferMaterial gbuffer_material(GpuMaterial m, vec2 uv, vec4 duv, vec3 ns, vec3
   }
   if (m.textures.z != kNoTexture) g.emission *= gbuffer_texture(m.textures.z, uv, duv).rgb;
   if (m.textures.w != kNoTexture) {
-    float r = duv1.x * duv2.y - duv1.y * duv2.x;
-    vec3 t = (dp1 * duv2.y - dp2 * duv1.y) * r;
-    vec3 b_uv = (dp2 * duv1.x - dp1 * duv2.x) * r;
     t -= ns * dot(ns, t);
     float t_len2 = dot(t, t);
-    if (r != 0.0 && t_len2 > 0.0 && is_finite(t_len2)) {
+    if (t_len2 > 0.0 && is_finite(t_len2)) {
       t *= inversesqrt(t_len2);
-      // glTF tangent space: +Y is "up" in the image, i.e. towards -v (glTF's v runs down).
-      float sign = dot(cross(ns, t), b_uv) < 0.0 ? 1.0 : -1.0;
+      float sign = dot(cross(ns, t), up) > 0.0 ? 1.0 : -1.0;
       vec3 b = sign * cross(ns, t);
       vec3 n_tex = gbuffer_texture(m.textures.w, uv, duv).xyz * 2.0 - 1.0;
       n_tex.xy *= m.emission.w;  // normalTexture.scale

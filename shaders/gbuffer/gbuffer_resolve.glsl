@@ -175,7 +175,10 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
     vec2 duv2 = gbuffer_vertex_uv(i2) - uv0;
     vec2 uv = uv0 + b1 * duv1 + b2 * duv2;
     vec4 duv = gbuffer_uv_footprint(sample_position, uv, w0, e1, e2, uv0, duv1, duv2);
-    GBufferMaterial g = gbuffer_material(material, uv, duv, ns, e1, e2, duv1, duv2);
+    vec3 t = vec3(0.0), up = vec3(0.0);
+    if (material.textures.w != kNoTexture)
+      gbuffer_tangent_frame(i0, i1, i2, b1, b2, linear, e1, e2, duv1, duv2, t, up);
+    GBufferMaterial g = gbuffer_material(material, uv, duv, ns, t, up);
     base_color = g.base_color;
     material_emission = g.emission;
     params = vec2(g.roughness, g.metallic);

@@ -8,7 +8,7 @@
 //   variant instead the TLAS scene_tlas at kSceneTlas) and the
 //   environment (lib/environment.glsl: env_header, env_texels, env_marginal, env_conditional),
 //   the material textures scene_textures.t[], scene_texels.w[], scene_textured_emitters.e[]
-//   (lib/textures.glsl's texture_sample).
+//   (lib/textures.glsl's texture_sample) and scene_vertex_tangents.t[].
 // Then lib/visibility.glsl's vis_trace_closest / vis_visible and frame_rng are available. A pass
 // declares its own resources from kPassBindingBase on: layout(binding = PASS_BINDING(0)).
 #ifndef LANTERN_LIB_SCENE_BUFFERS_GLSL
@@ -61,6 +61,12 @@ layout(std430, binding = kSceneTexels) restrict readonly buffer TexelBuffer {
 layout(std430, binding = kSceneTexturedEmitters) restrict readonly buffer TexturedEmitterBuffer {
   GpuTexturedEmitter e[];
 } scene_textured_emitters;
+// Vertex tangents parallel to scene_vertices (Mesh::tangents: xyz object-space +u direction, w
+// the handedness, 0 = none): filled only when a material has a normal texture, else one zeroed
+// stand-in element (and no material samples a normal texture).
+layout(std430, binding = kSceneVertexTangents) restrict readonly buffer VertexTangentBuffer {
+  vec4 t[];
+} scene_vertex_tangents;
 #include "lib/textures.glsl"
 
 // Radiance factor of a textured triangle light (GpuLight.radiance.w names its record) at

@@ -32,8 +32,9 @@ LANTERN_CONST uint kSceneEnvConditional = 15u;         // AliasEntry[] per row o
 LANTERN_CONST uint kSceneTextures = 16u;             // GpuTexture[] (shared/textures.h)
 LANTERN_CONST uint kSceneTexels = 17u;               // uint[] every texture's mip chain
 LANTERN_CONST uint kSceneTexturedEmitters = 18u;     // GpuTexturedEmitter[]
-LANTERN_CONST uint kSceneTlas = 19u;  // accelerationStructureEXT (ray-query visibility only)
-LANTERN_CONST uint kSceneBufferCount = 20u;
+LANTERN_CONST uint kSceneVertexTangents = 19u;       // vec4[] per GpuVertex (normal-mapped levels)
+LANTERN_CONST uint kSceneTlas = 20u;  // accelerationStructureEXT (ray-query visibility only)
+LANTERN_CONST uint kSceneBufferCount = 21u;
 
 // First binding of a pass's own resources (set 0).
 LANTERN_CONST uint kPassBindingBase = kSceneBufferCount;

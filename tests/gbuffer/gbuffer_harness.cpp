@@ -54,6 +54,8 @@ GBufferHarness::GBufferHarness(runtime::Device& device, runtime::ShaderLibrary& 
       instances_(make_storage(device, std::span(scene.instances), "test.instances")),
       textures_(make_storage(device, std::span(scene.textures.records()), "test.textures")),
       texels_(make_storage(device, std::span(scene.textures.texels()), "test.texels")),
+      vertex_tangents_(
+          make_storage(device, std::span(scene.vertex_tangents), "test.vertex_tangents")),
       executor_(device),
       timer_(device, 16) {}
 
@@ -95,6 +97,7 @@ std::optional<GBufferImages> GBufferHarness::render(const gpu::FrameConstants& c
   scene[gpu::kSceneInstances] = import(instances_);
   scene[gpu::kSceneTextures] = import(textures_);
   scene[gpu::kSceneTexels] = import(texels_);
+  scene[gpu::kSceneVertexTangents] = import(vertex_tangents_);
   const lighting::GBufferHandles g = pass_.add_pass(
       graph_, scene, width, height, std::span<const gpu::GpuInstance>(instances_host_));
   const std::array<ImageHandle, 6> images = {g.position,          g.normal, g.albedo_roughness,

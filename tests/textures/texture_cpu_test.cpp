@@ -2,7 +2,8 @@
 // input (missing, truncated, undecodable, beyond the size cap), the glTF import of texture
 // references (sampler, KHR_texture_transform, TEXCOORD_0/1, alpha modes; a texcoord set the
 // primitive lacks), the texture set (sRGB -> linear by use, mip chains in linear light, wrap
-// modes and the transform), the emission integral over a triangle and the light power it gives.
+// modes and the transform), the emission integral over a triangle and the light power it gives,
+// vertex tangents (the asset's TANGENT, generated ones, and which vertices the scene uploads).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -14,6 +15,7 @@
 #include "engine/core/error.h"
 #include "engine/level/level_loader.h"
 #include "engine/level/primitives.h"
+#include "engine/scene/mesh_tangents.h"
 #include "lighting/scene/scene_data.h"
 #include "lighting/textures/texture_set.h"
 #include "runtime/image/image_decode.h"
@@ -129,6 +131,38 @@ TEST(ImageDecode, BadInputIsOneErrorNamingTheImage) {
               runtime::decode_image_file(scratch("none.png"), 64, "m");
             }).find("not found"),
             std::string::npos);
+}
+
+// KTX2 (image/ktx2, KHR_texture_basisu): OpenImageIO 2.4 has no reader, so a KTX2 image, by
+// MIME type, signature or file name, is one error that says so and names the image, and a glTF
+// texture whose only source is KHR_texture_basisu is refused at import.
+TEST(ImageDecode, Ktx2IsRefusedWithTheReason) {
+  std::vector<std::uint8_t> ktx2 = {0xab, 'K', 'T', 'X', ' ', '2', '0', 0xbb, '\r', '\n', 0x1a, '\n'};
+  ktx2.resize(256, 0);
+  for (const char* mime : {"image/ktx2", ""}) {
+    const std::string e =
+        input_error_of([&] { runtime::decode_image_bytes(ktx2, mime, 64, "signs.ktx2"); });
+    EXPECT_NE(e.find("KTX2"), std::string::npos) << e;
+    EXPECT_NE(e.find("signs.ktx2"), std::string::npos) << e;
+  }
+  const fs::path file = scratch("panel.ktx2");
+  std::ofstream(file, std::ios::binary)
+      .write(reinterpret_cast<const char*>(ktx2.data()), static_cast<std::streamsize>(ktx2.size()));
+  const std::string e = input_error_of([&] { runtime::decode_image_file(file, 64, "panel"); });
+  EXPECT_NE(e.find("KTX2"), std::string::npos) << e;
+  EXPECT_NE(e.find("panel.ktx2"), std::string::npos) << e;
+
+  TexturedQuadOptions o;
+  o.image_bytes = test::png_of(4, 4, gradient_rgba8(4, 4));
+  nlohmann::json doc = test::textured_quad_gltf(o);
+  doc["textures"][0].erase("source");
+  doc["textures"][0]["extensions"] = {{"KHR_texture_basisu", {{"source", 0}}}};
+  doc["extensionsUsed"] = {"KHR_texture_basisu"};
+  const fs::path gltf = scratch("basisu.gltf");
+  std::ofstream(gltf) << doc.dump();
+  const std::string g = input_error_of([&] { load_level(gltf); });
+  EXPECT_NE(g.find("KHR_texture_basisu"), std::string::npos) << g;
+  EXPECT_NE(g.find("basisu.gltf"), std::string::npos) << g;
 }
 
 TEST(GltfTextures, ImagesFromDataUriBufferViewAndFileDecodeAlike) {
@@ -364,6 +398,100 @@ TEST(TextureSet, UntexturedLevelBuildsNothing) {
   EXPECT_EQ(scene.materials[0].textures, glm::uvec4(gpu::kNoTexture));
   EXPECT_EQ(scene.materials[0].params.w, 0.0f);
   EXPECT_EQ(scene.materials[0].emission.w, 0.0f);
+}
+
+// Generated tangents follow +u in the normal's plane, with glTF's handedness (up = w x
+// cross(n, t) points towards decreasing v), on a plane and on a smooth sphere.
+TEST(VertexTangents, GeneratedFramesFollowTheUvMapping) {
+  const Mesh plane = make_plane(glm::vec2(2.0f, 2.0f));
+  ASSERT_EQ(plane.uvs.size(), plane.positions.size());
+  const std::vector<glm::vec4> pt = generate_tangents(plane);
+  ASSERT_EQ(pt.size(), plane.positions.size());
+  for (std::size_t v = 0; v < pt.size(); ++v) {
+    const glm::vec3 t(pt[v]);
+    EXPECT_NEAR(glm::length(t), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(t, plane.normals[v]), 0.0f, 1e-5f);
+    ASSERT_NE(pt[v].w, 0.0f);
+  }
+  // Finite differences of the mapping on triangle 0: du along t, and "up" against dv.
+  const std::uint32_t a = plane.indices[0], b = plane.indices[1], c = plane.indices[2];
+  const glm::vec3 e1 = plane.positions[b] - plane.positions[a];
+  const glm::vec3 e2 = plane.positions[c] - plane.positions[a];
+  const glm::vec2 d1 = plane.uvs[b] - plane.uvs[a], d2 = plane.uvs[c] - plane.uvs[a];
+  const float det = d1.x * d2.y - d1.y * d2.x;
+  const glm::vec3 dp_du = glm::normalize((e1 * d2.y - e2 * d1.y) / det);
+  const glm::vec3 dp_dv = glm::normalize((e2 * d1.x - e1 * d2.x) / det);
+  EXPECT_NEAR(glm::dot(glm::vec3(pt[a]), dp_du), 1.0f, 1e-5f);
+  const glm::vec3 up = pt[a].w * glm::cross(plane.normals[a], glm::vec3(pt[a]));
+  EXPECT_NEAR(glm::dot(up, dp_dv), -1.0f, 1e-5f);
+
+  // A sphere: unit, orthogonal to the smooth normals, and smooth (neighbours within a few
+  // degrees) away from the poles, where the uv mapping degenerates.
+  const Mesh sphere = make_uv_sphere(1.0f, 48, 24);
+  const std::vector<glm::vec4> st = generate_tangents(sphere);
+  std::size_t checked = 0;
+  for (std::size_t t = 0; t < sphere.indices.size(); t += 3) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = sphere.indices[t + static_cast<std::size_t>(k)];
+      const std::uint32_t w = sphere.indices[t + static_cast<std::size_t>((k + 1) % 3)];
+      if (std::abs(sphere.normals[v].y) > 0.9f || std::abs(sphere.normals[w].y) > 0.9f) continue;
+      ASSERT_NE(st[v].w, 0.0f);
+      EXPECT_NEAR(glm::length(glm::vec3(st[v])), 1.0f, 1e-4f);
+      EXPECT_NEAR(glm::dot(glm::vec3(st[v]), sphere.normals[v]), 0.0f, 1e-4f);
+      EXPECT_EQ(st[v].w, st[w].w);
+      EXPECT_GT(glm::dot(glm::vec3(st[v]), glm::vec3(st[w])), std::cos(0.2f));
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000u);
+}
+
+// The asset's TANGENT is read (normalised, w to +-1); NaN is one error naming the file.
+TEST(VertexTangents, GltfTangentAttributeIsReadAndChecked) {
+  TexturedQuadOptions o;
+  o.image_bytes = test::png_of(4, 4, gradient_rgba8(4, 4));
+  o.tangent = glm::vec4(0.0f, 2.0f, 0.0f, -0.5f);
+  const Level level = load_quad(o, "tangent");
+  const Mesh& mesh = level.meshes[level.instances[0].mesh];
+  ASSERT_EQ(mesh.tangents.size(), 4u);
+  for (const glm::vec4& t : mesh.tangents) EXPECT_EQ(t, glm::vec4(0.0f, 1.0f, 0.0f, -1.0f));
+  o.tangent = glm::vec4(std::nanf(""), 0.0f, 0.0f, 1.0f);
+  const std::string e = input_error_of([&] { load_quad(o, "nan_tangent"); });
+  EXPECT_NE(e.find("nan_tangent.gltf"), std::string::npos) << e;
+  EXPECT_NE(e.find("tangent"), std::string::npos) << e;
+}
+
+// The scene uploads tangents only when a material has a normal texture, and then for the meshes
+// it maps: the asset's own where given, generated otherwise, zero (no frame) for the rest.
+TEST(VertexTangents, SceneUploadsTangentsOnlyForNormalMappedMeshes) {
+  Level level;
+  level.meshes.push_back(make_plane(glm::vec2(2.0f, 2.0f)));
+  level.meshes.push_back(make_plane(glm::vec2(1.0f, 1.0f)));
+  level.materials.push_back(make_lambert(0.5f));
+  level.instances.push_back(Instance{});
+  EXPECT_TRUE(lighting::build_scene_data(level).vertex_tangents.empty());
+
+  Material mapped = make_lambert(0.5f);
+  mapped.normal_texture.image = test::add_png(
+      level, 2, 2, test::make_rgba8(2, 2, [](auto, auto) { return glm::vec4(0.5f, 0.5f, 1, 1); }));
+  level.materials.push_back(mapped);
+  Instance second;
+  second.mesh = 1;
+  second.material = 1;
+  level.instances.push_back(second);
+  level.meshes[1].tangents.assign(level.meshes[1].positions.size(), glm::vec4(0, 0, 1, -1));
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  const std::size_t n0 = level.meshes[0].positions.size();
+  ASSERT_EQ(scene.vertex_tangents.size(), scene.vertices.size());
+  for (std::size_t v = 0; v < scene.vertex_tangents.size(); ++v)
+    EXPECT_EQ(scene.vertex_tangents[v],
+              v < n0 ? gpu::vec4(0.0f) : gpu::vec4(0.0f, 0.0f, 1.0f, -1.0f));
+  // Without the asset's tangents the mapped mesh gets generated ones.
+  level.meshes[1].tangents.clear();
+  const std::vector<glm::vec4> generated = generate_tangents(level.meshes[1]);
+  const lighting::SceneData regenerated = lighting::build_scene_data(level);
+  for (std::size_t v = 0; v < generated.size(); ++v)
+    EXPECT_EQ(regenerated.vertex_tangents[n0 + v], generated[v]);
 }
 
 }  // namespace

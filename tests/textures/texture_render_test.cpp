@@ -26,6 +26,7 @@
 #include "runtime/gpu/shader_library.h"
 #include "runtime/image/image_encode.h"
 #include "runtime/image/image_io.h"
+#include "shared/gbuffer.h"
 #include "tests/gbuffer/gbuffer_harness.h"
 #include "tests/runtime/gpu_test_support.h"
 #include "tests/textures/textured_assets.h"
@@ -472,6 +473,63 @@ TEST_F(TextureRenderTest, FlatNormalMapIsNeutralTiltedMatchesClosedForm) {
     total += plain.pixels[i];
   }
   EXPECT_GT(change, 0.1 * total);
+}
+
+// The asset's vertex tangents orient the normal map: tangent +x world with w = -1 makes the
+// map's +Y ("up" = w cross(n, t)) world +z, so a map tilted 30 degrees towards +Y gives the
+// closed form with n' = (0, cos, sin); the triangle's own frame (up = -x) would tilt towards -x,
+// and ignoring w towards -z.
+TEST_F(TextureRenderTest, AssetTangentsOrientTheNormalMap) {
+  const double a = 30.0 * kPi / 180.0;
+  std::vector<float> texels;
+  for (int i = 0; i < 16; ++i)
+    texels.insert(texels.end(), {0.5f, 0.5f * static_cast<float>(std::sin(a)) + 0.5f,
+                                 0.5f * static_cast<float>(std::cos(a)) + 0.5f, 1.0f});
+  Level level = base_level("asset_tangents");
+  ImageRef ref;
+  ref.name = "normal";
+  ref.mime_type = "image/x-exr";
+  ref.embedded = runtime::encode_exr(4, 4, texels);
+  level.images.push_back(ref);
+  Material m = make_lambert(0.5f);
+  m.normal_texture.image = 0;
+  level.materials.push_back(m);
+  level.instances.push_back(Instance{});
+  level.lights.push_back(point_light());
+  Mesh& plane = level.meshes[0];
+  plane.tangents.assign(plane.positions.size(), glm::vec4(1.0f, 0.0f, 0.0f, -1.0f));
+  const glm::dvec3 n(0.0, std::cos(a), std::sin(a));
+  auto expected = [&](std::uint32_t x, std::uint32_t y) -> std::optional<glm::dvec3> {
+    const Ray r = camera_ray(level, x + 0.5, y + 0.5);
+    const glm::dvec3 p = at_height(r, 0.0);
+    const glm::dvec3 to = glm::dvec3(kLightPosition) - p;
+    const double d2 = glm::dot(to, to);
+    const double cos_n = glm::dot(n, to / std::sqrt(d2));
+    if (cos_n < 0.05 || glm::dot(n, -r.dir) < 0.05) return std::nullopt;  // near the terminator
+    return 0.5 / kPi * glm::dvec3(kLightColor) * cos_n / d2;
+  };
+  compare_blocks(render(level, "baseline", 1), expected, 0.01, 0.01, "asset tangents");
+
+  // Both G-buffer methods write that shading normal (the forward pass finds the fragment's
+  // barycentrics for the vertex tangents itself).
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  const gpu::FrameConstants fc =
+      lighting::make_frame_constants(level.camera, kWidth, kHeight, 0, 1, {});
+  for (const lighting::GBufferMethod method :
+       {lighting::GBufferMethod::Forward, lighting::GBufferMethod::Visibility}) {
+    test::GBufferHarness harness(device, shaders, scene, {.method = method});
+    const test::GBufferImages g = *harness.render(fc, true);
+    double worst = 0.0;
+    std::size_t seen = 0;
+    for (std::size_t i = 0; i < g.normal.size(); ++i) {
+      if (g.ids[i].x != 0u) continue;  // not the plane
+      const glm::vec3 shading = gpu::oct_decode(glm::vec2(g.normal[i].x, g.normal[i].y));
+      worst = std::max(worst, glm::length(glm::dvec3(shading) - n));
+      ++seen;
+    }
+    EXPECT_GT(seen, g.normal.size() / 2);
+    EXPECT_LE(worst, 1e-3) << "method " << static_cast<int>(method);
+  }
 }
 
 // Both G-buffer methods on textured, alpha-masked content: the albedo is the sRGB-decoded texture

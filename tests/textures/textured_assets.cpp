@@ -68,6 +68,14 @@ nlohmann::json textured_quad_gltf(const TexturedQuadOptions& o) {
     std::memcpy(bin.data() + at, data, size);
     at += size;
   }
+  const std::size_t tangent_offset = bin.size();
+  if (o.tangent) {
+    for (int v = 0; v < 4; ++v) {
+      const std::size_t end = bin.size();
+      bin.resize(end + sizeof(glm::vec4));
+      std::memcpy(bin.data() + end, &*o.tangent, sizeof(glm::vec4));
+    }
+  }
   const std::size_t image_offset = bin.size();
   if (o.storage == ImageStorage::BufferView) {
     bin.insert(bin.end(), o.image_bytes.begin(), o.image_bytes.end());
@@ -76,11 +84,13 @@ nlohmann::json textured_quad_gltf(const TexturedQuadOptions& o) {
                           {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
                           {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 32}},
                           {{"buffer", 0}, {"byteOffset", 112}, {"byteLength", 24}}};
+  if (o.tangent)
+    views.push_back({{"buffer", 0}, {"byteOffset", tangent_offset}, {"byteLength", 64}});
   nlohmann::json image = {{"name", "quad_image"}};
   if (o.storage == ImageStorage::BufferView) {
+    image["bufferView"] = views.size();
     views.push_back(
         {{"buffer", 0}, {"byteOffset", image_offset}, {"byteLength", o.image_bytes.size()}});
-    image["bufferView"] = 4;
     image["mimeType"] = o.mime_type;
   } else if (o.storage == ImageStorage::DataUri) {
     image["uri"] = "data:" + o.mime_type + ";base64," + base64(o.image_bytes);
@@ -93,6 +103,7 @@ nlohmann::json textured_quad_gltf(const TexturedQuadOptions& o) {
   nlohmann::json attributes = {{"POSITION", 0}};
   if (!o.omit_texcoords) attributes["TEXCOORD_0"] = 1;
   if (o.with_texcoord1) attributes["TEXCOORD_1"] = 2;
+  if (o.tangent) attributes["TANGENT"] = 4;
   nlohmann::json base_texture = {{"index", 0}, {"texCoord", o.texcoord}};
   if (!o.texture_transform.is_null())
     base_texture["extensions"] = {{"KHR_texture_transform", o.texture_transform}};
@@ -125,6 +136,9 @@ nlohmann::json textured_quad_gltf(const TexturedQuadOptions& o) {
       {"scenes", {{{"nodes", {0}}}}},
       {"scene", 0},
   };
+  if (o.tangent)
+    doc["accessors"].push_back(
+        {{"bufferView", 4}, {"componentType", 5126}, {"count", 4}, {"type", "VEC4"}});
   if (!o.sampler.is_null()) {
     doc["samplers"] = {o.sampler};
     texture["sampler"] = 0;

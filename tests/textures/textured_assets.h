@@ -1,6 +1,6 @@
 // Textured test content built in memory: 8-bit images encoded as PNG (runtime/image/
 // image_encode.h), a textured quad as a glTF document (TEXCOORD_0/1, image by data URI or buffer
-// view, sampler, KHR_texture_transform) and Level helpers that attach an embedded image to a
+// view, sampler, KHR_texture_transform, TANGENT) and Level helpers that attach an embedded image to a
 // material slot.
 #pragma once
 
@@ -9,6 +9,7 @@
 #include <functional>
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,7 @@ struct TexturedQuadOptions {
   nlohmann::json sampler;            // glTF sampler object (null: none)
   nlohmann::json texture_transform;  // KHR_texture_transform (null: none)
   std::string alpha_mode;            // "" = default
+  std::optional<glm::vec4> tangent;  // a TANGENT attribute, this value at every vertex
 };
 
 // One quad (two triangles, unit square in z = 0, facing +Z) with a baseColorTexture.
