@@ -227,27 +227,14 @@ struct Importer {
     if (index < 0 || static_cast<std::size_t>(index) >= model.materials.size()) return nullptr;
     return &level.materials[material_base + static_cast<std::size_t>(index)];
   }
-  bool material_textured(int index) const {
+  // Whether a texture of glTF material `index` samples texcoord set `set`.
+  bool samples_set(int index, std::uint32_t set) const {
     const Material* m = gltf_material(index);
-    return m != nullptr && m->textured();
-  }
-  // The texcoord set every texture of glTF material `index` uses (0 without textures).
-  int texcoord_set(int index, const std::string& place) const {
-    const Material* m = gltf_material(index);
-    if (m == nullptr) return 0;
-    int set = -1;
+    if (m == nullptr) return false;
     for (const TextureRef* t : {&m->base_color_texture, &m->metallic_roughness_texture,
-                                &m->normal_texture, &m->emissive_texture}) {
-      if (!t->present()) continue;
-      const int s = static_cast<int>(t->texcoord);
-      if (set >= 0 && s != set)
-        throw InputError(fmt::format(
-            "{}: material {} '{}' mixes TEXCOORD_{} and TEXCOORD_{} (one set per material is "
-            "supported)",
-            place, index, m->name, set, s));
-      set = s;
-    }
-    return std::max(set, 0);
+                                &m->normal_texture, &m->emissive_texture})
+      if (t->present() && t->texcoord == set) return true;
+    return false;
   }
 
   std::uint32_t level_mesh(int mesh_index, int primitive_index) {
@@ -271,15 +258,19 @@ struct Importer {
     mesh.name = src.name;
     mesh.positions = accessors.vec3s(pos);
     if (int a = attribute("NORMAL"); a >= 0) mesh.normals = accessors.vec3s(a);
-    // One texcoord set per vertex: the one the primitive's material samples (TEXCOORD_0 when it
-    // samples none).
-    const int set = texcoord_set(prim.material, place);
-    const std::string uv_name = fmt::format("TEXCOORD_{}", set);
-    if (int a = attribute(uv_name.c_str()); a >= 0) {
-      mesh.uvs = accessors.vec2s(a, true);
-    } else if (set > 0 || material_textured(prim.material)) {
-      throw InputError(fmt::format("{}: material {} samples {}, which the primitive does not have",
-                                   place, prim.material, uv_name));
+    // TEXCOORD_0 whenever the primitive has it; TEXCOORD_1 when a texture samples it. A set a
+    // texture samples must exist.
+    for (std::uint32_t set : {0u, 1u}) {
+      const std::string uv_name = fmt::format("TEXCOORD_{}", set);
+      const int a = attribute(uv_name.c_str());
+      const bool sampled = samples_set(prim.material, set);
+      if (a >= 0 && (set == 0 || sampled)) {
+        (set == 0 ? mesh.uvs : mesh.uvs1) = accessors.vec2s(a, true);
+      } else if (a < 0 && sampled) {
+        throw InputError(fmt::format(
+            "{}: material {} samples {}, which the primitive does not have", place,
+            prim.material, uv_name));
+      }
     }
     if (int a = attribute("TANGENT"); a >= 0) mesh.tangents = accessors.vec4s(a);
     if (prim.indices >= 0) {

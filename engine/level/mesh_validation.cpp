@@ -28,6 +28,9 @@ void finalize_mesh(Mesh& mesh, const std::string& where, LoadDiagnostics& diagno
     throw InputError(fmt::format("{}: {} normals for {} positions", where, mesh.normals.size(), n));
   if (!mesh.uvs.empty() && mesh.uvs.size() != n)
     throw InputError(fmt::format("{}: {} uvs for {} positions", where, mesh.uvs.size(), n));
+  if (!mesh.uvs1.empty() && mesh.uvs1.size() != n)
+    throw InputError(
+        fmt::format("{}: {} TEXCOORD_1 uvs for {} positions", where, mesh.uvs1.size(), n));
   if (!mesh.tangents.empty() && mesh.tangents.size() != n)
     throw InputError(
         fmt::format("{}: {} tangents for {} positions", where, mesh.tangents.size(), n));
@@ -37,6 +40,7 @@ void finalize_mesh(Mesh& mesh, const std::string& where, LoadDiagnostics& diagno
   require_finite(mesh.positions, where, "position");
   require_finite(mesh.normals, where, "normal");
   require_finite(mesh.uvs, where, "uv");
+  require_finite(mesh.uvs1, where, "TEXCOORD_1 uv");
   require_finite(mesh.tangents, where, "tangent");
   // Tangents: unit xyz and w = +-1 (glTF); a zero tangent is "no vertex frame" (w = 0), which
   // the shader answers with its triangle's frame.

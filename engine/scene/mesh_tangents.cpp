@@ -24,10 +24,11 @@ float corner_angle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
 
 }  // namespace
 
-std::vector<glm::vec4> generate_tangents(const Mesh& mesh) {
+std::vector<glm::vec4> generate_tangents(const Mesh& mesh, std::uint32_t texcoord_set) {
   const std::size_t n = mesh.positions.size();
   std::vector<glm::vec4> out(n, glm::vec4(0.0f));
-  if (mesh.uvs.size() != n || mesh.normals.size() != n) return out;
+  const std::vector<glm::vec2>& uvs = mesh.texcoords(texcoord_set);
+  if (uvs.size() != n || mesh.normals.size() != n) return out;
   std::vector<glm::vec3> tangent_sum(n, glm::vec3(0.0f));
   std::vector<glm::vec3> bitangent_sum(n, glm::vec3(0.0f));
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
@@ -35,8 +36,8 @@ std::vector<glm::vec4> generate_tangents(const Mesh& mesh) {
     const glm::vec3& p0 = mesh.positions[corner[0]];
     const glm::vec3 e1 = mesh.positions[corner[1]] - p0;
     const glm::vec3 e2 = mesh.positions[corner[2]] - p0;
-    const glm::vec2 d1 = mesh.uvs[corner[1]] - mesh.uvs[corner[0]];
-    const glm::vec2 d2 = mesh.uvs[corner[2]] - mesh.uvs[corner[0]];
+    const glm::vec2 d1 = uvs[corner[1]] - uvs[corner[0]];
+    const glm::vec2 d2 = uvs[corner[2]] - uvs[corner[0]];
     const float det = d1.x * d2.y - d1.y * d2.x;
     if (!(std::abs(det) > 0.0f) || !std::isfinite(det)) continue;  // no uv mapping here
     // dp/du and dp/dv of the triangle (the sign of det carries its uv orientation).

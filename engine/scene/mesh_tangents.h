@@ -8,6 +8,7 @@
 // one frame per vertex: the majority's handedness.
 #pragma once
 
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -15,9 +16,10 @@
 
 namespace lantern {
 
-// One tangent per vertex of `mesh` (same count as positions). Needs normals and uvs; a vertex
+// One tangent per vertex of `mesh` (same count as positions), for the uv mapping of texcoord
+// set `texcoord_set` (the normal texture's). Needs normals and those uvs; a vertex
 // that no triangle with a usable uv mapping touches (or whose tangents cancel) gets w = 0:
 // "no vertex frame", and the shader falls back to its triangle's frame there.
-std::vector<glm::vec4> generate_tangents(const Mesh& mesh);
+std::vector<glm::vec4> generate_tangents(const Mesh& mesh, std::uint32_t texcoord_set = 0);
 
 }  // namespace lantern

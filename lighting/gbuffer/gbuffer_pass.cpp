@@ -442,6 +442,7 @@ void GBufferPass::warm_up() {
   const gpu::GpuTexture texture_stand_in{};
   const std::array<std::uint32_t, 4> texel_stand_in{};
   const gpu::vec4 tangent_stand_in{0.0f};
+  const glm::vec2 texcoord1_stand_in{0.0f};
   gpu::GpuInstance instance{};
   instance.object_to_world = glm::mat4(1.0f);
   instance.prev_object_to_world = glm::mat4(1.0f);
@@ -466,6 +467,8 @@ void GBufferPass::warm_up() {
       make(std::span<const gpu::GpuTexture>(&texture_stand_in, 1), "warm_up.textures"));
   buffers.push_back(make(std::span<const std::uint32_t>(texel_stand_in), "warm_up.texels"));
   buffers.push_back(make(std::span<const gpu::vec4>(&tangent_stand_in, 1), "warm_up.tangents"));
+  buffers.push_back(
+      make(std::span<const glm::vec2>(&texcoord1_stand_in, 1), "warm_up.texcoords1"));
 
   RenderGraph graph;
   runtime::graph::GraphExecutor executor(device_);
@@ -487,6 +490,7 @@ void GBufferPass::warm_up() {
     scene[gpu::kSceneTextures] = import(5);
     scene[gpu::kSceneTexels] = import(6);
     scene[gpu::kSceneVertexTangents] = import(7);
+    scene[gpu::kSceneVertexTexcoords1] = import(8);
     const GBufferHandles out = add_method(graph, scene, 1, 1, 1, 1, method);
     // Keep the passes alive: a consumer of one of their images.
     struct Keep {};

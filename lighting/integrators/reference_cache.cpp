@@ -75,6 +75,7 @@ void hash_level(Fnv1a& h, const Level& level) {
     h.array(m.positions);
     h.array(m.normals);
     h.array(m.uvs);
+    h.array(m.uvs1);
     h.array(m.tangents);
     h.array(m.indices);
   }

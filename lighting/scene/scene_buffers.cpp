@@ -71,6 +71,8 @@ constexpr std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers = {{
      true, [](const Sources& s) { return bytes_of(s.data->textured_emitters); }, kBuffer},
     {gpu::kSceneVertexTangents, "scene.vertex_tangents", "scene_vertex_tangents", nullptr, true,
      [](const Sources& s) { return bytes_of(s.data->vertex_tangents); }, kBuffer},
+    {gpu::kSceneVertexTexcoords1, "scene.vertex_texcoords1", "scene_vertex_texcoords1", nullptr,
+     true, [](const Sources& s) { return bytes_of(s.data->vertex_texcoords1); }, kBuffer},
     {gpu::kSceneTlas, "scene.tlas", "scene_tlas", nullptr, false, nullptr,
      SceneResourceKind::AccelerationStructure},
 }};

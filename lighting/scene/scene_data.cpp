@@ -55,13 +55,14 @@ void build_textured_emitters(const Level& level, SceneData& scene) {
     if (!material.emissive() || !material.emissive_texture.present()) continue;
     const std::uint32_t texture = scene.textures.material_textures(inst.material).z;
     const Mesh& mesh = level.meshes.at(inst.mesh);
+    const std::vector<glm::vec2>& uvs = mesh.texcoords(material.emissive_texture.texcoord);
     const bool mirrored = glm::determinant(glm::mat3(inst.world)) < 0.0f;
     scene.instance_emitter_record[i] = static_cast<std::uint32_t>(scene.textured_emitters.size());
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
       glm::vec2 uv[3];
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t v = mesh.indices[3 * t + static_cast<std::size_t>(k)];
-        uv[k] = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0.0f);
+        uv[k] = v < uvs.size() ? uvs[v] : glm::vec2(0.0f);
       }
       if (mirrored) std::swap(uv[1], uv[2]);
       gpu::GpuTexturedEmitter e{};
@@ -77,12 +78,16 @@ void build_textured_emitters(const Level& level, SceneData& scene) {
 // its own tangents or generated ones (engine/scene/mesh_tangents.h); zero (w = 0, the shader's
 // triangle-frame fallback) for every other vertex. Empty without normal textures.
 std::vector<gpu::vec4> vertex_tangents(const Level& level, std::size_t vertex_count) {
-  std::vector<bool> normal_mapped(level.meshes.size(), false);
+  // Per mesh: the texcoord set of the normal texture it is drawn with (the first such instance's),
+  // or none.
+  constexpr std::uint32_t kNotMapped = ~0u;
+  std::vector<std::uint32_t> normal_set(level.meshes.size(), kNotMapped);
   bool any = false;
   for (const Instance& inst : level.instances) {
     if (inst.material < level.materials.size() && inst.mesh < level.meshes.size() &&
-        level.materials[inst.material].normal_texture.present()) {
-      normal_mapped[inst.mesh] = true;
+        level.materials[inst.material].normal_texture.present() &&
+        normal_set[inst.mesh] == kNotMapped) {
+      normal_set[inst.mesh] = level.materials[inst.material].normal_texture.texcoord;
       any = true;
     }
   }
@@ -91,14 +96,34 @@ std::vector<gpu::vec4> vertex_tangents(const Level& level, std::size_t vertex_co
   out.reserve(vertex_count);
   for (std::size_t m = 0; m < level.meshes.size(); ++m) {
     const Mesh& mesh = level.meshes[m];
-    if (!normal_mapped[m]) {
+    if (normal_set[m] == kNotMapped) {
       out.insert(out.end(), mesh.positions.size(), gpu::vec4(0.0f));
     } else if (mesh.tangents.size() == mesh.positions.size()) {
       out.insert(out.end(), mesh.tangents.begin(), mesh.tangents.end());
     } else {
-      const std::vector<glm::vec4> generated = generate_tangents(mesh);
+      const std::vector<glm::vec4> generated = generate_tangents(mesh, normal_set[m]);
       out.insert(out.end(), generated.begin(), generated.end());
     }
+  }
+  return out;
+}
+
+// SceneData::vertex_texcoords1: every mesh's TEXCOORD_1 (zero where a mesh has none), when some
+// material texture samples set 1; empty otherwise.
+std::vector<glm::vec2> vertex_texcoords1(const Level& level, std::size_t vertex_count) {
+  bool any = false;
+  for (const Material& m : level.materials)
+    for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture,
+                                &m.normal_texture, &m.emissive_texture})
+      any = any || (t->present() && t->texcoord == 1);
+  if (!any) return {};
+  std::vector<glm::vec2> out;
+  out.reserve(vertex_count);
+  for (const Mesh& mesh : level.meshes) {
+    if (mesh.uvs1.size() == mesh.positions.size())
+      out.insert(out.end(), mesh.uvs1.begin(), mesh.uvs1.end());
+    else
+      out.insert(out.end(), mesh.positions.size(), glm::vec2(0.0f));
   }
   return out;
 }
@@ -244,6 +269,7 @@ SceneData build_scene_data(const Level& level) {
     scene.bvh.add_mesh(MeshBvh(mesh.positions, mesh.indices));
   }
   scene.vertex_tangents = vertex_tangents(level, scene.vertices.size());
+  scene.vertex_texcoords1 = vertex_texcoords1(level, scene.vertices.size());
 
   // Instances: GpuInstance records, BVH instances and the world box.
   glm::vec3 lo(std::numeric_limits<float>::max());

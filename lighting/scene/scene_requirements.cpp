@@ -132,7 +132,8 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
     const std::uint64_t bytes = textures.texel_bytes() +
                                 array_bytes<gpu::GpuTexture>(textures.records().size()) +
                                 array_bytes<gpu::GpuTexturedEmitter>(scene.textured_emitters.size()) +
-                                array_bytes<gpu::vec4>(scene.vertex_tangents.size());
+                                array_bytes<gpu::vec4>(scene.vertex_tangents.size()) +
+                                array_bytes<glm::vec2>(scene.vertex_texcoords1.size());
     summary.enabled["textures"] = {
         {"structure", "software-sampled texel array (bilinear, trilinear mips) + records"},
         {"why", fmt::format("{} material texture slots over {} decoded images",
@@ -141,6 +142,7 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
         {"textured_lights", scene.textured_emitters.size()},
         {"alpha_tested", alpha_tested},
         {"vertex_tangents", scene.vertex_tangents.size()},
+        {"vertex_texcoords1", scene.vertex_texcoords1.size()},
         {"load_ms", std::round(textures.build_ms() * 10.0) / 10.0},
         {"integrate_ms", std::round(scene.textured_emitter_ms * 10.0) / 10.0},
         {"bytes", bytes},

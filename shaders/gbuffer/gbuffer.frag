@@ -25,6 +25,7 @@ layout(location = 2) in vec4 in_prev_clip;
 layout(location = 3) flat in vec3 in_geometric_normal;
 layout(location = 4) flat in uvec3 in_ids;
 layout(location = 5) in vec2 in_uv;
+layout(location = 6) in vec2 in_uv1;
 
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_normal;
@@ -59,12 +60,14 @@ void main() {
   vec3 material_emission = material.emission.rgb;
   if (kTextured) {
     // Derivatives first: none after the discard.
-    vec2 uv_dx = dFdx(in_uv);
-    vec2 uv_dy = dFdy(in_uv);
+    GBufferTexcoords tc;
+    tc.uv[0] = in_uv;
+    tc.uv[1] = in_uv1;
+    tc.duv[0] = vec4(dFdx(in_uv), dFdy(in_uv));
+    tc.duv[1] = vec4(dFdx(in_uv1), dFdy(in_uv1));
     vec3 p_dx = dFdx(in_world);
     vec3 p_dy = dFdy(in_world);
-    vec4 duv = vec4(uv_dx, uv_dy);
-    if (gbuffer_alpha_cut(material, in_uv, duv)) discard;
+    if (gbuffer_alpha_cut(material, tc)) discard;
     vec3 t = vec3(0.0), up = vec3(0.0);
     if (material.textures.w != kNoTexture) {
       // The triangle's vertices and the fragment's barycentrics, for its vertex tangents.
@@ -80,9 +83,11 @@ void main() {
       vec3 e1 = linear * (scene_vertices.v[i1].position_u.xyz - p0);
       vec3 e2 = linear * (scene_vertices.v[i2].position_u.xyz - p0);
       vec2 b = gbuffer_point_barycentrics(in_world, w0, e1, e2);
-      gbuffer_tangent_frame(i0, i1, i2, b.x, b.y, linear, p_dx, p_dy, uv_dx, uv_dy, t, up);
+      uint set = scene_texture_set(material.textures.w);
+      gbuffer_tangent_frame(i0, i1, i2, b.x, b.y, linear, p_dx, p_dy, tc.duv[set].xy,
+                            tc.duv[set].zw, t, up);
     }
-    GBufferMaterial g = gbuffer_material(material, in_uv, duv, ns, t, up);
+    GBufferMaterial g = gbuffer_material(material, tc, ns, t, up);
     base_color = g.base_color;
     params = vec2(g.roughness, g.metallic);
     material_emission = g.emission;

@@ -5,7 +5,7 @@
 // here from its three world-space corners (winding e1 x e2, mirrored by a negative determinant)
 // and passed flat, with the instance, material and primitive ids. The previous clip position
 // (prev_object_to_world, prev_view_proj) is interpolated for the motion vector, and the
-// texcoord for the material's textures.
+// texcoords (both sets) for the material's textures.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -21,7 +21,8 @@ layout(location = 1) out vec3 out_shading_normal;  // world space, not normalise
 layout(location = 2) out vec4 out_prev_clip;
 layout(location = 3) flat out vec3 out_geometric_normal;  // front face, unit (or zero)
 layout(location = 4) flat out uvec3 out_ids;              // instance, material, primitive
-layout(location = 5) out vec2 out_uv;                     // texcoord (the material's set)
+layout(location = 5) out vec2 out_uv;                     // TEXCOORD_0
+layout(location = 6) out vec2 out_uv1;                    // TEXCOORD_1 (zero without one)
 
 void main() {
   uint instance = push.instance;
@@ -35,9 +36,11 @@ void main() {
   vec3 p1 = scene_vertices.v[first_vertex + scene_indices.i[base + 1u]].position_u.xyz;
   vec3 p2 = scene_vertices.v[first_vertex + scene_indices.i[base + 2u]].position_u.xyz;
   vec3 p = corner == 0u ? p0 : (corner == 1u ? p1 : p2);
-  GpuVertex vertex = scene_vertices.v[first_vertex + scene_indices.i[base + corner]];
+  uint vertex_index = first_vertex + scene_indices.i[base + corner];
+  GpuVertex vertex = scene_vertices.v[vertex_index];
   vec3 n_object = vertex.normal_v.xyz;
   out_uv = vec2(vertex.position_u.w, vertex.normal_v.w);
+  out_uv1 = scene_vertex_texcoord(vertex_index, 1u);
 
   mat3 linear = mat3(object_to_world);
   vec3 ng = cross(linear * (p1 - p0), linear * (p2 - p0));

@@ -5,9 +5,9 @@
 // (the asset's TANGENT, or generated MikkTSpace-style at load: engine/scene/mesh_tangents.h)
 // interpolated, else the triangle's own uv frame (dp/du, dp/dv); either is Gram-Schmidt
 // orthogonalised against the shading normal, with the normal map's +Y = sign x cross(n, t) and
-// the sign from the frame's "up" direction (glTF: decreasing v). The texture level of detail
-// comes from the pixel's texcoord footprint `duv` (du/dx, dv/dx, du/dy, dv/dy): raster
-// derivatives in the forward pass, ray differentials in the visibility resolve.
+// the sign from the frame's "up" direction (glTF: decreasing v). Each texture samples its
+// record's texcoord set (TEXCOORD_0 or _1) with the level of detail from that set's pixel
+// footprint: raster derivatives in the forward pass, ray differentials in the visibility resolve.
 // Needs lib/scene_buffers.glsl (scene_materials, the texture blocks).
 #ifndef LANTERN_GBUFFER_MATERIAL_GLSL
 #define LANTERN_GBUFFER_MATERIAL_GLSL
@@ -23,22 +23,31 @@ struct GBufferMaterial {
   vec3 shading_normal;
 };
 
-// Texture record `texture` at uv, level of detail from the pixel footprint `duv` (through the
-// texture transform's linear part). The record is loaded once (every storage-buffer load is a
-// per-lane gather on lavapipe).
-vec4 gbuffer_texture(uint texture, vec2 uv, vec4 duv) {
+// A surface point's texcoords in both sets (TEXCOORD_0, TEXCOORD_1; set 1 is zero in levels
+// without it) and each set's pixel footprint (du/dx, dv/dx, du/dy, dv/dy).
+struct GBufferTexcoords {
+  vec2 uv[2];
+  vec4 duv[2];
+};
+
+// Texture record `texture` at its texcoord set's uv, level of detail from that set's footprint
+// (through the texture transform's linear part). The record is loaded once (every storage-buffer
+// load is a per-lane gather on lavapipe).
+vec4 gbuffer_texture(uint texture, GBufferTexcoords tc) {
   GpuTexture t = scene_textures.t[texture];
+  uint set = t.transform_u.w == 1.0 ? 1u : 0u;
+  vec4 duv = tc.duv[set];
   vec2 ax = vec2(dot(t.transform_u.xy, duv.xy), dot(t.transform_v.xy, duv.xy));
   vec2 ay = vec2(dot(t.transform_u.xy, duv.zw), dot(t.transform_v.xy, duv.zw));
-  return texture_sample_record(t, uv, texture_lod(t, vec4(ax, ay)));
+  return texture_sample_record(t, tc.uv[set], texture_lod(t, vec4(ax, ay)));
 }
 
 // True when the material is alpha-tested (MASK) and the point is cut out.
-bool gbuffer_alpha_cut(GpuMaterial m, vec2 uv, vec4 duv) {
+bool gbuffer_alpha_cut(GpuMaterial m, GBufferTexcoords tc) {
   float cutoff = m.params.w;
   if (!(cutoff > 0.0)) return false;
   float alpha = m.base_color.a;
-  if (m.textures.x != kNoTexture) alpha *= gbuffer_texture(m.textures.x, uv, duv).a;
+  if (m.textures.x != kNoTexture) alpha *= gbuffer_texture(m.textures.x, tc).a;
   return alpha < cutoff;
 }
 
@@ -56,7 +65,8 @@ vec2 gbuffer_point_barycentrics(vec3 p, vec3 w0, vec3 e1, vec3 e2) {
 // i2 (scene_vertices indices) placed by `linear`: world-space tangent t (+u) and "up" (the
 // normal map's +Y, decreasing v), neither orthogonalised. From the vertex tangents when the mesh
 // has them (w != 0), else from the triangle's uv frame: dp1, dp2 are position differences
-// (world edges, or screen derivatives) and duv1, duv2 the matching texcoord differences.
+// (world edges, or screen derivatives) and duv1, duv2 the matching texcoord differences in the
+// normal texture's set.
 void gbuffer_tangent_frame(uint i0, uint i1, uint i2, float b1, float b2, mat3 linear, vec3 dp1,
                            vec3 dp2, vec2 duv1, vec2 duv2, out vec3 t, out vec3 up) {
   vec4 t0 = scene_vertex_tangents.t[i0];
@@ -76,7 +86,7 @@ void gbuffer_tangent_frame(uint i0, uint i1, uint i2, float b1, float b2, mat3 l
 }
 
 // `ns`: interpolated shading normal (unit, on the viewer's side); t, up: gbuffer_tangent_frame's.
-GBufferMaterial gbuffer_material(GpuMaterial m, vec2 uv, vec4 duv, vec3 ns, vec3 t, vec3 up) {
+GBufferMaterial gbuffer_material(GpuMaterial m, GBufferTexcoords tc, vec3 ns, vec3 t, vec3 up) {
   GBufferMaterial g;
   g.base_color = m.base_color.rgb;
   g.alpha = m.base_color.a;
@@ -85,16 +95,16 @@ GBufferMaterial gbuffer_material(GpuMaterial m, vec2 uv, vec4 duv, vec3 ns, vec3
   g.emission = m.emission.rgb;
   g.shading_normal = ns;
   if (m.textures.x != kNoTexture) {
-    vec4 c = gbuffer_texture(m.textures.x, uv, duv);
+    vec4 c = gbuffer_texture(m.textures.x, tc);
     g.base_color *= c.rgb;
     g.alpha *= c.a;
   }
   if (m.textures.y != kNoTexture) {
-    vec4 c = gbuffer_texture(m.textures.y, uv, duv);
+    vec4 c = gbuffer_texture(m.textures.y, tc);
     g.roughness *= c.g;
     g.metallic *= c.b;
   }
-  if (m.textures.z != kNoTexture) g.emission *= gbuffer_texture(m.textures.z, uv, duv).rgb;
+  if (m.textures.z != kNoTexture) g.emission *= gbuffer_texture(m.textures.z, tc).rgb;
   if (m.textures.w != kNoTexture) {
     t -= ns * dot(ns, t);
     float t_len2 = dot(t, t);
@@ -102,7 +112,7 @@ GBufferMaterial gbuffer_material(GpuMaterial m, vec2 uv, vec4 duv, vec3 ns, vec3
       t *= inversesqrt(t_len2);
       float sign = dot(cross(ns, t), up) > 0.0 ? 1.0 : -1.0;
       vec3 b = sign * cross(ns, t);
-      vec3 n_tex = gbuffer_texture(m.textures.w, uv, duv).xyz * 2.0 - 1.0;
+      vec3 n_tex = gbuffer_texture(m.textures.w, tc).xyz * 2.0 - 1.0;
       n_tex.xy *= m.emission.w;  // normalTexture.scale
       vec3 n = t * n_tex.x + b * n_tex.y + ns * n_tex.z;
       float n_len2 = dot(n, n);

@@ -67,22 +67,27 @@ vec2 gbuffer_ray_barycentrics(vec2 point, vec3 w0, vec3 e1, vec3 e2) {
   return vec2(b1, b2);
 }
 
-// The texcoords of a triangle's corners (GpuVertex position_u.w, normal_v.w).
-vec2 gbuffer_vertex_uv(uint vertex) {
-  return vec2(scene_vertices.v[vertex].position_u.w, scene_vertices.v[vertex].normal_v.w);
-}
-
 #ifdef LANTERN_GBUFFER_MATERIAL_GLSL
-// Texcoord footprint of pixel `pixel` on a triangle with corner uvs uv0 + (0, duv1, duv2): the
-// uv at the pixel centre (xy) and at the centres one pixel right and one down (ray
-// differentials against the triangle's plane), as (du/dx, dv/dx, du/dy, dv/dy).
-vec4 gbuffer_uv_footprint(vec2 centre, vec2 uv_centre, vec3 w0, vec3 e1, vec3 e2, vec2 uv0,
-                          vec2 duv1, vec2 duv2) {
-  vec2 bx = gbuffer_ray_barycentrics(centre + vec2(1.0, 0.0), w0, e1, e2);
-  vec2 by = gbuffer_ray_barycentrics(centre + vec2(0.0, 1.0), w0, e1, e2);
-  vec2 uv_x = uv0 + bx.x * duv1 + bx.y * duv2;
-  vec2 uv_y = uv0 + by.x * duv1 + by.y * duv2;
-  return vec4(uv_x - uv_centre, uv_y - uv_centre);
+// Both texcoord sets and their pixel footprints at barycentrics b of the triangle with corner
+// vertices i0, i1, i2 (world corner w0, edges e1, e2) seen at sample position `centre`: the
+// footprint from the rays through the positions one pixel right and one down (ray differentials
+// against the triangle's plane). Set 1 only where the level has TEXCOORD_1 (else zero).
+GBufferTexcoords gbuffer_resolve_texcoords(vec2 centre, vec2 b, uint i0, uint i1, uint i2, vec3 w0,
+                                           vec3 e1, vec3 e2) {
+  vec2 bx = gbuffer_ray_barycentrics(centre + vec2(1.0, 0.0), w0, e1, e2) - b;
+  vec2 by = gbuffer_ray_barycentrics(centre + vec2(0.0, 1.0), w0, e1, e2) - b;
+  GBufferTexcoords tc;
+  tc.uv[1] = vec2(0.0);
+  tc.duv[1] = vec4(0.0);
+  uint sets = scene_vertex_texcoords1.uv.length() > 1 ? 2u : 1u;
+  for (uint set = 0u; set < sets; ++set) {
+    vec2 uv0 = scene_vertex_texcoord(i0, set);
+    vec2 d1 = scene_vertex_texcoord(i1, set) - uv0;
+    vec2 d2 = scene_vertex_texcoord(i2, set) - uv0;
+    tc.uv[set] = uv0 + b.x * d1 + b.y * d2;
+    tc.duv[set] = vec4(bx.x * d1 + bx.y * d2, by.x * d1 + by.y * d2);
+  }
+  return tc;
 }
 
 // Whether the alpha-tested material of `hit` cuts the surface out at `pixel` (gbuffer.visibility
@@ -103,12 +108,7 @@ bool gbuffer_resolve_alpha_cut(uvec2 pixel, uvec2 hit) {
   // The raster's (jittered) sample position of the pixel.
   vec2 centre = vec2(pixel) + 0.5 + frame_constants.frame.jitter.xy;
   vec2 b = gbuffer_ray_barycentrics(centre, w0, e1, e2);
-  vec2 uv0 = gbuffer_vertex_uv(i0);
-  vec2 duv1 = gbuffer_vertex_uv(i1) - uv0;
-  vec2 duv2 = gbuffer_vertex_uv(i2) - uv0;
-  vec2 uv = uv0 + b.x * duv1 + b.y * duv2;
-  return gbuffer_alpha_cut(material, uv, gbuffer_uv_footprint(centre, uv, w0, e1, e2, uv0, duv1,
-                                                               duv2));
+  return gbuffer_alpha_cut(material, gbuffer_resolve_texcoords(centre, b, i0, i1, i2, w0, e1, e2));
 }
 #endif
 
@@ -170,15 +170,17 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
 #ifdef LANTERN_GBUFFER_MATERIAL_GLSL
   if (kTextured) {
     GpuMaterial material = scene_materials.m[material_index];
-    vec2 uv0 = gbuffer_vertex_uv(i0);
-    vec2 duv1 = gbuffer_vertex_uv(i1) - uv0;
-    vec2 duv2 = gbuffer_vertex_uv(i2) - uv0;
-    vec2 uv = uv0 + b1 * duv1 + b2 * duv2;
-    vec4 duv = gbuffer_uv_footprint(sample_position, uv, w0, e1, e2, uv0, duv1, duv2);
+    GBufferTexcoords tc =
+        gbuffer_resolve_texcoords(sample_position, vec2(b1, b2), i0, i1, i2, w0, e1, e2);
     vec3 t = vec3(0.0), up = vec3(0.0);
-    if (material.textures.w != kNoTexture)
-      gbuffer_tangent_frame(i0, i1, i2, b1, b2, linear, e1, e2, duv1, duv2, t, up);
-    GBufferMaterial g = gbuffer_material(material, uv, duv, ns, t, up);
+    if (material.textures.w != kNoTexture) {
+      uint set = scene_texture_set(material.textures.w);
+      vec2 uv0 = scene_vertex_texcoord(i0, set);
+      gbuffer_tangent_frame(i0, i1, i2, b1, b2, linear, e1, e2,
+                            scene_vertex_texcoord(i1, set) - uv0,
+                            scene_vertex_texcoord(i2, set) - uv0, t, up);
+    }
+    GBufferMaterial g = gbuffer_material(material, tc, ns, t, up);
     base_color = g.base_color;
     material_emission = g.emission;
     params = vec2(g.roughness, g.metallic);

@@ -8,7 +8,8 @@
 //   variant instead the TLAS scene_tlas at kSceneTlas) and the
 //   environment (lib/environment.glsl: env_header, env_texels, env_marginal, env_conditional),
 //   the material textures scene_textures.t[], scene_texels.w[], scene_textured_emitters.e[]
-//   (lib/textures.glsl's texture_sample) and scene_vertex_tangents.t[].
+//   (lib/textures.glsl's texture_sample), scene_vertex_tangents.t[] and
+//   scene_vertex_texcoords1.uv[] (scene_vertex_texcoord picks a vertex's set).
 // Then lib/visibility.glsl's vis_trace_closest / vis_visible and frame_rng are available. A pass
 // declares its own resources from kPassBindingBase on: layout(binding = PASS_BINDING(0)).
 #ifndef LANTERN_LIB_SCENE_BUFFERS_GLSL
@@ -67,7 +68,24 @@ layout(std430, binding = kSceneTexturedEmitters) restrict readonly buffer Textur
 layout(std430, binding = kSceneVertexTangents) restrict readonly buffer VertexTangentBuffer {
   vec4 t[];
 } scene_vertex_tangents;
+// TEXCOORD_1 parallel to scene_vertices (zero for meshes without one): filled only when a
+// texture samples set 1, else one zeroed stand-in element.
+layout(std430, binding = kSceneVertexTexcoords1) restrict readonly buffer VertexTexcoord1Buffer {
+  vec2 uv[];
+} scene_vertex_texcoords1;
 #include "lib/textures.glsl"
+
+// Texcoord set `set` (0 or 1) of scene vertex `vertex`: GpuVertex's TEXCOORD_0, or TEXCOORD_1.
+vec2 scene_vertex_texcoord(uint vertex, uint set) {
+  if (set == 0u)
+    return vec2(scene_vertices.v[vertex].position_u.w, scene_vertices.v[vertex].normal_v.w);
+  return vertex < uint(scene_vertex_texcoords1.uv.length()) ? scene_vertex_texcoords1.uv[vertex]
+                                                             : vec2(0.0);
+}
+// The texcoord set texture record `texture` samples (GpuTexture.transform_u.w).
+uint scene_texture_set(uint texture) {
+  return scene_textures.t[texture].transform_u.w == 1.0 ? 1u : 0u;
+}
 
 // Radiance factor of a textured triangle light (GpuLight.radiance.w names its record) at
 // barycentrics (b1, b2): the emissive texture at the interpolated uv, at the record's level of
@@ -90,11 +108,10 @@ bool scene_alpha_accept(uint instance, uint primitive, float u, float v) {
   float alpha = m.base_color.a;
   if (m.textures.x != kNoTexture) {
     uint base = geometry.y + 3u * primitive;
-    GpuVertex v0 = scene_vertices.v[geometry.w + scene_indices.i[base]];
-    GpuVertex v1 = scene_vertices.v[geometry.w + scene_indices.i[base + 1u]];
-    GpuVertex v2 = scene_vertices.v[geometry.w + scene_indices.i[base + 2u]];
-    vec2 uv = (1.0 - u - v) * vec2(v0.position_u.w, v0.normal_v.w) +
-              u * vec2(v1.position_u.w, v1.normal_v.w) + v * vec2(v2.position_u.w, v2.normal_v.w);
+    uint set = scene_texture_set(m.textures.x);
+    vec2 uv = (1.0 - u - v) * scene_vertex_texcoord(geometry.w + scene_indices.i[base], set) +
+              u * scene_vertex_texcoord(geometry.w + scene_indices.i[base + 1u], set) +
+              v * scene_vertex_texcoord(geometry.w + scene_indices.i[base + 2u], set);
     alpha *= texture_sample(m.textures.x, uv, 0.0).a;
   }
   return alpha >= cutoff;

@@ -33,8 +33,9 @@ LANTERN_CONST uint kSceneTextures = 16u;             // GpuTexture[] (shared/tex
 LANTERN_CONST uint kSceneTexels = 17u;               // uint[] every texture's mip chain
 LANTERN_CONST uint kSceneTexturedEmitters = 18u;     // GpuTexturedEmitter[]
 LANTERN_CONST uint kSceneVertexTangents = 19u;       // vec4[] per GpuVertex (normal-mapped levels)
-LANTERN_CONST uint kSceneTlas = 20u;  // accelerationStructureEXT (ray-query visibility only)
-LANTERN_CONST uint kSceneBufferCount = 21u;
+LANTERN_CONST uint kSceneVertexTexcoords1 = 20u;     // vec2[] per GpuVertex (TEXCOORD_1 levels)
+LANTERN_CONST uint kSceneTlas = 21u;  // accelerationStructureEXT (ray-query visibility only)
+LANTERN_CONST uint kSceneBufferCount = 22u;
 
 // First binding of a pass's own resources (set 0).
 LANTERN_CONST uint kPassBindingBase = kSceneBufferCount;

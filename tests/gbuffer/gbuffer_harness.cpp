@@ -56,6 +56,8 @@ GBufferHarness::GBufferHarness(runtime::Device& device, runtime::ShaderLibrary& 
       texels_(make_storage(device, std::span(scene.textures.texels()), "test.texels")),
       vertex_tangents_(
           make_storage(device, std::span(scene.vertex_tangents), "test.vertex_tangents")),
+      vertex_texcoords1_(
+          make_storage(device, std::span(scene.vertex_texcoords1), "test.vertex_texcoords1")),
       executor_(device),
       timer_(device, 16) {}
 
@@ -98,6 +100,7 @@ std::optional<GBufferImages> GBufferHarness::render(const gpu::FrameConstants& c
   scene[gpu::kSceneTextures] = import(textures_);
   scene[gpu::kSceneTexels] = import(texels_);
   scene[gpu::kSceneVertexTangents] = import(vertex_tangents_);
+  scene[gpu::kSceneVertexTexcoords1] = import(vertex_texcoords1_);
   const lighting::GBufferHandles g = pass_.add_pass(
       graph_, scene, width, height, std::span<const gpu::GpuInstance>(instances_host_));
   const std::array<ImageHandle, 6> images = {g.position,          g.normal, g.albedo_roughness,

@@ -54,7 +54,7 @@ class GBufferHarness {
   lighting::GBufferPass pass_;
   std::vector<gpu::GpuInstance> instances_host_;
   runtime::Buffer frame_constants_, vertices_, indices_, materials_, instances_, textures_, texels_,
-      vertex_tangents_;
+      vertex_tangents_, vertex_texcoords1_;
   std::vector<runtime::Buffer> readback_;
   std::uint32_t readback_width_ = 0, readback_height_ = 0;
   runtime::graph::RenderGraph graph_;

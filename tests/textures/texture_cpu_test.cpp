@@ -210,10 +210,13 @@ TEST(GltfTextures, SamplerTransformTexcoordSetsAndAlphaModes) {
   EXPECT_EQ(t.texcoord, 1u);  // the transform's texCoord overrides
   EXPECT_EQ(m.alpha_mode, AlphaMode::Blend);
   EXPECT_FLOAT_EQ(m.alpha_cutoff, 0.5f);
-  // The mesh carries the set the material samples: TEXCOORD_1 = 2 x TEXCOORD_0 here.
+  // The mesh carries TEXCOORD_0 and, since a texture samples it, TEXCOORD_1 (2 x set 0 here).
   const Mesh& mesh = level.meshes[level.instances[0].mesh];
   ASSERT_EQ(mesh.uvs.size(), 4u);
-  EXPECT_EQ(mesh.uvs[2], glm::vec2(2.0f, 2.0f));
+  ASSERT_EQ(mesh.uvs1.size(), 4u);
+  EXPECT_EQ(mesh.uvs[2], glm::vec2(1.0f, 0.0f));
+  EXPECT_EQ(mesh.uvs1[2], glm::vec2(2.0f, 2.0f));
+  EXPECT_EQ(&mesh.texcoords(1), &mesh.uvs1);
 
   // The transform, as the GPU and CPU samplers apply it: T(offset) R(rotation) S(scale).
   const lighting::TextureSet set = lighting::TextureSet::build(level);
@@ -228,6 +231,41 @@ TEST(GltfTextures, SamplerTransformTexcoordSetsAndAlphaModes) {
   EXPECT_NEAR(got.y, expected.y, 1e-5f);
   EXPECT_EQ(g.format.y, gpu::kWrapClamp);
   EXPECT_EQ(g.format.z, gpu::kWrapMirror);
+}
+
+// A material whose textures mix sets: base colour on TEXCOORD_0, emission on TEXCOORD_1. Both
+// sets load, the scene uploads set 1 for every vertex, and the textured light's uvs are set 1's.
+TEST(GltfTextures, MaterialMayMixTexcoordSets) {
+  TexturedQuadOptions o;
+  o.image_bytes = test::png_of(4, 4, gradient_rgba8(4, 4));
+  o.with_texcoord1 = true;
+  nlohmann::json doc = test::textured_quad_gltf(o);
+  doc["materials"][0]["emissiveTexture"] = {{"index", 0}, {"texCoord", 1}};
+  doc["materials"][0]["emissiveFactor"] = {1.0, 1.0, 1.0};
+  const fs::path file = scratch("mixed_sets.gltf");
+  std::ofstream(file) << doc.dump();
+  const Level level = load_level(file);
+  const Material& m = level.materials[level.instances[0].material];
+  EXPECT_EQ(m.base_color_texture.texcoord, 0u);
+  EXPECT_EQ(m.emissive_texture.texcoord, 1u);
+  const Mesh& mesh = level.meshes[level.instances[0].mesh];
+  ASSERT_EQ(mesh.uvs.size(), 4u);
+  ASSERT_EQ(mesh.uvs1.size(), 4u);
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  ASSERT_EQ(scene.vertex_texcoords1.size(), scene.vertices.size());
+  for (std::size_t v = 0; v < mesh.uvs1.size(); ++v) EXPECT_EQ(scene.vertex_texcoords1[v], mesh.uvs1[v]);
+  ASSERT_EQ(scene.textured_emitters.size(), 2u);
+  const std::uint32_t v0 = mesh.indices[0];
+  EXPECT_EQ(glm::vec2(scene.textured_emitters[0].uv01), mesh.uvs1[v0]);
+  const std::vector<gpu::GpuTexture>& records = scene.textures.records();
+  const glm::uvec4 slots = scene.textures.material_textures(level.instances[0].material);
+  EXPECT_EQ(records[slots.x].transform_u.w, 0.0f);
+  EXPECT_EQ(records[slots.z].transform_u.w, 1.0f);
+  // Without set 1 in any texture, nothing is uploaded for it.
+  TexturedQuadOptions plain;
+  plain.image_bytes = o.image_bytes;
+  plain.with_texcoord1 = true;
+  EXPECT_TRUE(lighting::build_scene_data(load_quad(plain, "set0_only")).vertex_texcoords1.empty());
 }
 
 TEST(GltfTextures, MissingTexcoordSetIsAnError) {

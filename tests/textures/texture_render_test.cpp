@@ -532,6 +532,61 @@ TEST_F(TextureRenderTest, AssetTangentsOrientTheNormalMap) {
   }
 }
 
+// A material mixing texcoord sets: base colour on TEXCOORD_1 (the floor's uvs swapped), emission
+// on TEXCOORD_0. Both G-buffer methods sample each texture at its own set's uv (closed form,
+// half precision).
+TEST_F(TextureRenderTest, TexturesSampleTheirOwnTexcoordSet) {
+  constexpr std::uint32_t kTex = 32;
+  Level level = base_level("texcoord_sets");
+  Mesh& floor_mesh = level.meshes[0];
+  for (const glm::vec2& uv : floor_mesh.uvs) floor_mesh.uvs1.emplace_back(uv.y, uv.x);
+  const std::vector<std::uint8_t> albedo_texels = smooth_rgba8(kTex, kTex);
+  const std::vector<std::uint8_t> emission_texels =
+      test::make_rgba8(kTex, kTex, [&](std::uint32_t x, std::uint32_t y) {
+        const float u = (x + 0.5f) / kTex, v = (y + 0.5f) / kTex;
+        return glm::vec4(0.2f + 0.7f * v, 0.3f + 0.2f * u, 0.9f - 0.5f * u, 1.0f);
+      });
+  Material m = make_lambert(1.0f);
+  m.base_color_texture.image = test::add_png(level, kTex, kTex, albedo_texels);
+  m.base_color_texture.texcoord = 1;
+  m.emissive_factor = glm::vec3(1.0f);
+  m.emissive_texture.image = test::add_png(level, kTex, kTex, emission_texels);
+  level.materials.push_back(m);
+  level.instances.push_back(Instance{});
+  const TestTexture albedo = decode(kTex, kTex, albedo_texels, true);
+  const TestTexture emission = decode(kTex, kTex, emission_texels, true);
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  ASSERT_EQ(scene.vertex_texcoords1.size(), scene.vertices.size());
+  const gpu::FrameConstants fc =
+      lighting::make_frame_constants(level.camera, kWidth, kHeight, 0, 1, {});
+  for (const lighting::GBufferMethod method :
+       {lighting::GBufferMethod::Forward, lighting::GBufferMethod::Visibility}) {
+    test::GBufferHarness harness(device, shaders, scene, {.method = method});
+    const test::GBufferImages g = *harness.render(fc, true);
+    std::size_t checked = 0;
+    double worst_albedo = 0.0, worst_emission = 0.0;
+    for (std::uint32_t y = 0; y < kHeight; ++y)
+      for (std::uint32_t x = 0; x < kWidth; ++x) {
+        const std::size_t i = g.index(x, y);
+        if (g.ids[i].x != 0u) continue;
+        const glm::dvec2 uv0 = floor_uv(at_height(camera_ray(level, x + 0.5, y + 0.5), 0.0));
+        const glm::dvec3 rho(albedo.bilinear(uv0.y, uv0.x));
+        const glm::dvec3 le(emission.bilinear(uv0.x, uv0.y));
+        for (int k = 0; k < 3; ++k) {
+          worst_albedo = std::max(worst_albedo, std::abs(g.albedo_roughness[i][k] - rho[k]) / rho[k]);
+          worst_emission =
+              std::max(worst_emission, std::abs(g.emission_metallic[i][k] - le[k]) / le[k]);
+        }
+        ++checked;
+      }
+    std::printf("[textures] texcoord sets (method %d): %zu pixels, worst albedo %.2e, emission %.2e\n",
+                static_cast<int>(method), checked, worst_albedo, worst_emission);
+    EXPECT_GT(checked, std::size_t{kWidth} * kHeight / 2);
+    EXPECT_LE(worst_albedo, 3e-3);
+    EXPECT_LE(worst_emission, 3e-3);
+  }
+}
+
 // Both G-buffer methods on textured, alpha-masked content: the albedo is the sRGB-decoded texture
 // at the pixel's texcoord (closed form, half precision), and the camera sees the floor through
 // the cut-out half of a masked quad (ids) and the quad's opaque half elsewhere.
