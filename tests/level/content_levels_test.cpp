@@ -1,10 +1,12 @@
 // Every level shipped under content/levels/ loads cleanly, has a flythrough path the camera
-// follows or can follow, and contains what its README line promises.
+// follows or can follow, names a frame-time budget written for it, and contains what its README
+// line promises.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "engine/level/level_loader.h"
+#include "engine/perf/budget.h"
 #include "engine/scene/level_summary.h"
 
 namespace lantern {
@@ -19,6 +21,12 @@ TEST(ContentLevels, EveryLevelLoadsWithAPath) {
     const Level level = load_level(entry.path());
     EXPECT_FALSE(level.paths.empty());
     EXPECT_GT(summarize(level).triangles, 0u);
+    // Its budget exists, parses, and was written for this level.
+    ASSERT_FALSE(level.budgets.empty());
+    const perf::Budget budget = perf::load_budget(level.budgets);
+    ASSERT_TRUE(budget.level.has_value());
+    EXPECT_EQ(*budget.level, entry.path().stem().string());
+    EXPECT_TRUE(budget.relative.has_value());
     ++count;
   }
   EXPECT_GE(count, 4);  // cornell_lights, night_market, million_lights, sunset_street
