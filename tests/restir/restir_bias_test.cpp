@@ -193,7 +193,11 @@ class RestirBiasTest : public runtime::test::GpuTest {
     return sum;
   }
 
-  void study(const char* scene, std::shared_ptr<const Level> level) {
+  // With `jitter`, the G-buffer samples every frame at its sub-pixel Halton offset (as while
+  // upscaling) for the reference and ReSTIR alike: both average the same 8 sample positions (32
+  // reference frames, 8-frame runs), so their expectations are equal, and ReSTIR's temporal reuse
+  // must stay unbiased with motion vectors that carry the jitter. Only the balance mode runs then.
+  void study(const char* scene, std::shared_ptr<const Level> level, bool jitter = false) {
     const StudyParams p = study_params();
     const FrameSnapshot first = test::first_snapshot(level, p.width, p.height);
     const std::size_t pixels = std::size_t{p.width} * p.height;
@@ -214,6 +218,7 @@ class RestirBiasTest : public runtime::test::GpuTest {
                       lighting::make_integrator(device, shaders,
                                                 {.name = "reference", .spp = p.ref_spp}),
                       p.width, p.height, 7);
+      if (jitter) h.renderer().set_jitter(lighting::FrameRenderer::Jitter::On);
       FrameSnapshot s = first;
       for (std::uint32_t f = 0; f < p.ref_frames; ++f) {
         ref_images.push_back(h.render(s, f == 0 ? &gbuffer : nullptr));
@@ -224,7 +229,23 @@ class RestirBiasTest : public runtime::test::GpuTest {
     for (const ImageRGBA32F& img : ref_images) acc.add(img);
     const ImageRGBA32F reference = acc.mean();
     std::vector<std::uint8_t> mask(pixels, 0);
-    std::size_t emitters = 0, sky = 0, dark = 0;
+    std::size_t emitters = 0, sky = 0, dark = 0, edges = 0;
+    // With jitter, a pixel counts only when its 3x3 neighbourhood is one non-emitting surface:
+    // the sub-pixel offsets then never move an emitter or the sky into it, so a frame's lit sum
+    // varies by noise, not by which surface the phase lands on.
+    auto interior = [&](std::size_t i) {
+      const auto x = static_cast<std::int64_t>(i % p.width), y = static_cast<std::int64_t>(i / p.width);
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+          const std::int64_t qx = x + dx, qy = y + dy;
+          if (qx < 0 || qy < 0 || qx >= p.width || qy >= p.height) return false;
+          const std::size_t q = static_cast<std::size_t>(qy) * p.width + static_cast<std::size_t>(qx);
+          const glm::vec4 eq = gbuffer.emission[q];
+          if (gbuffer.ids[q].x != gbuffer.ids[i].x || eq.x != 0.0f || eq.y != 0.0f || eq.z != 0.0f)
+            return false;
+        }
+      return true;
+    };
     for (std::size_t i = 0; i < pixels; ++i) {
       const glm::vec4 e = gbuffer.emission[i];
       const double r = double(reference.pixels[4 * i]) + reference.pixels[4 * i + 1] +
@@ -235,6 +256,8 @@ class RestirBiasTest : public runtime::test::GpuTest {
         ++emitters;
       } else if (!(r > 0.0)) {
         ++dark;
+      } else if (jitter && !interior(i)) {
+        ++edges;
       } else {
         mask[i] = 1;
       }
@@ -252,8 +275,9 @@ class RestirBiasTest : public runtime::test::GpuTest {
     const double ref_se =
         std::sqrt(std::max(ref2 / p.ref_frames - ref * ref, 0.0) / (p.ref_frames - 1.0)) / ref;
     std::printf("[restir bias] %s %ux%u: %zu lit non-emitter pixels (%zu emitter, %zu sky, %zu "
-                "unlit left out); reference %u x %u spp, relative standard error %.4f%% (%.1f s)\n",
-                scene, p.width, p.height, lit, emitters, sky, dark, p.ref_frames, p.ref_spp,
+                "unlit, %zu edge left out); reference %u x %u spp, relative standard error %.4f%% "
+                "(%.1f s)\n",
+                scene, p.width, p.height, lit, emitters, sky, dark, edges, p.ref_frames, p.ref_spp,
                 100.0 * ref_se, seconds());
 
     // One renderer per seed; in it, per mode, `chains` runs, each started by a camera cut (no
@@ -262,12 +286,15 @@ class RestirBiasTest : public runtime::test::GpuTest {
     // independent batch. The modes share the renderer (the mode is a push constant).
     std::vector<const Mode*> modes;
     for (const Mode& mode : kModes)
-      if (mode_selected(mode)) modes.push_back(&mode);
+      if (mode_selected(mode) && (!jitter || std::getenv("LANTERN_BIAS_MODES") != nullptr ||
+                                  std::string(mode.name) == "balance"))
+        modes.push_back(&mode);
     std::vector<std::vector<double>> errors(modes.size());
     const bool trace = std::getenv("LANTERN_BIAS_TRACE") != nullptr;
     for (std::uint32_t seed = 0; seed < p.seeds; ++seed) {
       RenderHarness h(device, shaders, level, test::make_restir(device, shaders, {}), p.width,
                       p.height, 1000u + seed);
+      if (jitter) h.renderer().set_jitter(lighting::FrameRenderer::Jitter::On);
       const std::vector<std::pair<std::string, std::string>> balanced =
           h.integrator().describe_settings();
       for (std::uint32_t chain = 0; chain < p.chains; ++chain) {
@@ -323,6 +350,13 @@ class RestirBiasTest : public runtime::test::GpuTest {
 
 TEST_F(RestirBiasTest, CornellLightsLitSurfaces) {
   study("cornell_lights", std::make_shared<const Level>(load_level_argument("cornell_lights")));
+}
+
+TEST_F(RestirBiasTest, CornellLightsLitSurfacesWithJitter) {
+  ASSERT_EQ(study_params().frames % 8, 0u) << "runs must cover the 8 jitter phases";
+  ASSERT_EQ(study_params().ref_frames % 8, 0u);
+  study("cornell_lights+jitter",
+        std::make_shared<const Level>(load_level_argument("cornell_lights")), true);
 }
 
 TEST_F(RestirBiasTest, OccludedRoomLitSurfaces) {
