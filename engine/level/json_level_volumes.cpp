@@ -40,7 +40,7 @@ VolumeGenerator read_volume_generator(JsonObject& g) {
     g.fail("size", "each extent must be in (0, 10000] metres");
   if (!(out.voxel_size >= 1e-4f && out.voxel_size <= 100.0f))
     g.fail("voxel_size", "must be in [0.0001, 100] metres");
-  const glm::dvec3 counts = glm::ceil(glm::dvec3(out.size) / double(out.voxel_size));
+  const glm::dvec3 counts(out.voxel_counts());
   const double voxels = counts.x * counts.y * counts.z;
   if (voxels > double(kMaxGeneratedVolumeVoxels))
     g.fail("voxel_size",

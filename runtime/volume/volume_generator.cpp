@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -162,8 +163,10 @@ void write_generated_volume(const VolumeGenerator& g, const std::filesystem::pat
 
   std::error_code ec;
   std::filesystem::create_directories(file.parent_path(), ec);
+  static std::atomic<std::uint32_t> writes{0};  // distinct temporary names across threads too
   const std::filesystem::path temp =
-      file.parent_path() / fmt::format(".{}.{}.tmp", file.filename().string(), ::getpid());
+      file.parent_path() /
+      fmt::format(".{}.{}.{}.tmp", file.filename().string(), ::getpid(), writes++);
   try {
     openvdb::io::File out(temp.string());
     out.write({grid});

@@ -129,4 +129,16 @@ VolumeGrid VolumeGridBuilder::finish(VolumeGrid grid) {
   return grid;
 }
 
+std::uint32_t pack_volume_grid(const VolumeGrid& grid, std::vector<gpu::GpuVolumeCell>& cells,
+                               std::vector<float>& values) {
+  const auto first_cell = static_cast<std::uint32_t>(cells.size());
+  const auto first_brick = static_cast<std::uint32_t>(values.size() / gpu::kVolumeBrickVoxels);
+  for (gpu::GpuVolumeCell c : grid.cells) {
+    if (c.brick != gpu::kVolumeEmptyBrick) c.brick += first_brick;
+    cells.push_back(c);
+  }
+  values.insert(values.end(), grid.values.begin(), grid.values.end());
+  return first_cell;
+}
+
 }  // namespace lantern::runtime

@@ -35,7 +35,7 @@ struct VolumeGrid {
   float max_value = 0.0f;           // over active voxels (>= 0)
   glm::ivec3 cell_origin{0};
   glm::uvec3 cell_counts{0};
-  std::vector<gpu::GpuVolumeCell> cells;  // brick indices local to `values`
+  std::vector<gpu::GpuVolumeCell> cells;  // brick indices into this grid's `values`
   std::vector<float> values;              // bricks * kVolumeBrickVoxels
 
   bool empty() const { return active_voxels == 0; }
@@ -75,6 +75,12 @@ class VolumeGridBuilder {
   std::vector<gpu::GpuVolumeCell> cells_;
   std::vector<float> values_;
 };
+
+// Appends the grid's cells and brick values to arrays several volumes share (the GPU's cell and
+// value buffers), rebasing its brick indices to the values already there; returns the grid's
+// first cell (GpuVolume.cells.w, volume_record's first_cell).
+std::uint32_t pack_volume_grid(const VolumeGrid& grid, std::vector<gpu::GpuVolumeCell>& cells,
+                               std::vector<float>& values);
 
 // Cells a grid with active box [lo, hi] needs (its support in 8^3 cells); for the voxel cap.
 std::uint64_t volume_cells_for(glm::ivec3 lo, glm::ivec3 hi);

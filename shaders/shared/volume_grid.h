@@ -3,8 +3,8 @@
 // index space that every volume pass uses. Memory is reached through two fetch functions: GLSL
 // defines them before including this file; the C++ ones (below) read a VolumeGridView.
 //   GpuVolumeCell volume_fetch_cell(uint i);  float volume_fetch_value(uint i)
-// Cell indices are absolute (GpuVolume.cells.w + local); brick values are in the volume's own
-// value range (the caller's fetch adds the volume's first value when several share a buffer).
+// Cell and brick indices are absolute: several volumes share one cell and one value array
+// (GpuVolume.cells.w is a volume's first cell; runtime::pack_volume_grid rebases the bricks).
 #ifndef LANTERN_SHARED_VOLUME_GRID_H
 #define LANTERN_SHARED_VOLUME_GRID_H
 
