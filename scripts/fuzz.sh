@@ -41,6 +41,10 @@ for t in "${targets[@]}"; do
   jobs=()
   [ -n "${LANTERN_FUZZ_JOBS:-}" ] && jobs=(-fork="$LANTERN_FUZZ_JOBS" -ignore_crashes=0)
   # OpenVDB's smallest float grid file is ~10 KB (the 32^3 node's masks): longer inputs for vdb.
+  # vdb is not in CI's list (scripts/test.sh): OpenVDB 10 trusts the lengths a file states
+  # (MetaMap::readMeta allocates a string of any stated length: an out-of-memory in ~10 inputs).
+  # The normal build turns those into bad_alloc -> InputError; a header validator in front of
+  # OpenVDB would be needed to fuzz past them.
   max_len=8192
   [ "$t" = vdb ] && max_len=32768
   log=$build/fuzz_$t.log

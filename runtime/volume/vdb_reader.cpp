@@ -8,6 +8,8 @@
 #include <cmath>
 #include <fstream>
 #include <mutex>
+#include <streambuf>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "engine/scene/finite.h"
@@ -41,6 +43,59 @@ glm::mat4 to_glm(const openvdb::math::Mat4d& m) {
     for (int r = 0; r < 4; ++r) out[c][r] = static_cast<float>(m(c, r));
   return out;
 }
+
+// A file's bytes followed by zeros without end. OpenVDB reads the voxels through this: past the
+// end of a truncated file it reads zeros instead of failing (a failed std::istream leaves the
+// variables it reads unset, and OpenVDB 10 then allocates garbage sizes from them), and
+// past_end() tells the reader that the data ran out.
+class ZeroExtendedBuffer : public std::streambuf {
+ public:
+  explicit ZeroExtendedBuffer(std::vector<char> bytes)
+      : bytes_(std::move(bytes)), zeros_(4096, '\0') {
+    show(0);
+  }
+  bool past_end() const { return past_end_; }
+
+ protected:
+  int_type underflow() override {
+    const std::uint64_t at = position();
+    if (at >= bytes_.size()) past_end_ = true;
+    show(at);
+    return traits_type::to_int_type(*gptr());
+  }
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
+    const std::int64_t from = dir == std::ios_base::beg   ? 0
+                              : dir == std::ios_base::end ? std::int64_t(bytes_.size())
+                                                          : std::int64_t(position());
+    if (from + off < 0) return pos_type(off_type(-1));
+    show(std::uint64_t(from + off));
+    return pos_type(off_type(from + off));
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode mode) override {
+    return seekoff(off_type(pos), std::ios_base::beg, mode);
+  }
+
+ private:
+  std::uint64_t position() const { return base_ + std::uint64_t(gptr() - eback()); }
+  // Makes the get area start at `at`: the rest of the file, or a window of zeros beyond it.
+  void show(std::uint64_t at) {
+    if (at < bytes_.size()) {
+      base_ = 0;
+      setg(bytes_.data(), bytes_.data() + at, bytes_.data() + bytes_.size());
+    } else {
+      base_ = at;
+      setg(zeros_.data(), zeros_.data(), zeros_.data() + zeros_.size());
+    }
+  }
+
+  std::vector<char> bytes_;
+  std::vector<char> zeros_;
+  std::uint64_t base_ = 0;
+  bool past_end_ = false;
+};
+
+// Larger files are refused before they are read into memory (the caps allow ~128 MiB of values).
+constexpr std::uintmax_t kMaxVdbFileBytes = std::uintmax_t{1} << 30;
 
 class Reader {
  public:
@@ -79,13 +134,21 @@ class Reader {
     openvdb::FloatGrid::Ptr grid;
     try {
       check_metadata();
-      // The voxels through io::Stream: unlike io::File, whose reads past the end of a truncated
-      // file go unnoticed, a stream shows them in its state.
+      // The voxels through io::Stream over the zero-extended bytes: unlike io::File, whose reads
+      // past the end of a truncated file go unnoticed, the buffer tells (see ZeroExtendedBuffer).
+      const std::uintmax_t size = std::filesystem::file_size(file_);
+      if (size > kMaxVdbFileBytes)
+        fail(fmt::format("the file has {} bytes, more than the limit of {}", size,
+                         kMaxVdbFileBytes));
+      std::vector<char> bytes(size);
       std::ifstream in(file_, std::ios::binary);
-      if (!in) fail("cannot open the volume file");
-      openvdb::io::Stream stream(in, /*delayLoad=*/false);
+      if (!in.read(bytes.data(), std::streamsize(size))) fail("cannot read the volume file");
+      ZeroExtendedBuffer buffer(std::move(bytes));
+      std::istream zero_extended(&buffer);
+      openvdb::io::Stream stream(zero_extended, /*delayLoad=*/false);
       const openvdb::GridPtrVecPtr grids = stream.getGrids();
-      if (in.fail()) fail("the OpenVDB file is truncated (its data ends before the grids do)");
+      if (buffer.past_end() || zero_extended.fail())
+        fail("the OpenVDB file is truncated (its data ends before the grids do)");
       for (const openvdb::GridBase::Ptr& g : grids ? *grids : openvdb::GridPtrVec{})
         if (g && g->getName() == grid_name_) grid = openvdb::gridPtrCast<openvdb::FloatGrid>(g);
     } catch (const InputError&) {
