@@ -18,7 +18,7 @@ namespace lantern::runtime {
 namespace {
 
 // Bump when any density function changes: cached files of the old version are then not reused.
-constexpr std::uint32_t kGeneratorVersion = 1;
+constexpr std::uint32_t kGeneratorVersion = 2;
 
 std::uint64_t mix64(std::uint64_t z) {  // SplitMix64's finaliser: a good 64-bit hash
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -88,7 +88,7 @@ float density(const VolumeGenerator& g, glm::vec3 p) {
       const float phase = lattice(0, 0, 0, g.seed) * 6.2831853f;
       const glm::vec2 centre = 0.18f * glm::vec2(s.x, s.z) * h *
                                glm::vec2(std::sin(3.0f * h + phase), std::cos(2.3f * h + phase));
-      const float radius = (0.08f + 0.32f * h) * 0.5f * std::min(s.x, s.z);
+      const float radius = (0.12f + 0.5f * h) * 0.5f * std::min(s.x, s.z);
       const float r = glm::length(glm::vec2(p.x, p.z) - centre) / radius;
       const float noise =
           fbm(p / (0.2f * std::min(s.x, s.z)) + glm::vec3(0.0f, -2.0f * h, 0.0f), g.seed);

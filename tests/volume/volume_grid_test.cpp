@@ -233,15 +233,17 @@ TEST_F(VolumeGridTest, GridTransmittanceOverTheMajorantCellsMatchesQuadrature) {
   const Ray rays[] = {{{-2.0f, 0.5f, -0.3f}, {2.0f, 1.2f, 0.4f}},
                       {{0.1f, 4.0f, 0.05f}, {-0.05f, -0.5f, 0.0f}},
                       {{1.5f, 0.2f, 1.5f}, {-1.5f, 2.5f, -1.2f}}};
-  gpu::uint rng = gpu::rng_init(glm::uvec2(25u), 0u, 203u, 0u);
+  // 5 standard errors: 18 correlated checks (3 rays x 3 channels x 2 estimators), one seed per ray.
+  gpu::uint seed = 203u;
   for (const Ray& r : rays) {
+    gpu::uint rng = gpu::rng_init(glm::uvec2(25u), 0u, seed++, 0u);
     const glm::vec3 dw = glm::normalize(r.to - r.from);
     const float length = glm::length(r.to - r.from);
     const glm::vec3 o = glm::vec3(m.volume.world_to_index * glm::vec4(r.from, 1.0f));
     const glm::vec3 d = glm::vec3(m.volume.world_to_index * glm::vec4(dw, 0.0f));
     const glm::dvec3 expected = quadrature_transmittance(m, o, d, 0.0f, length);
     test::RunningStats ratio[3], residual[3];
-    for (int i = 0; i < 20000; ++i) {
+    for (int i = 0; i < 40000; ++i) {
       const glm::vec3 a =
           gpu::volume_transmittance_ratio(m.grid, 0u, m.volume, o, d, 0.0f, length, 0.0f, rng);
       const glm::vec3 b =
@@ -257,8 +259,8 @@ TEST_F(VolumeGridTest, GridTransmittanceOverTheMajorantCellsMatchesQuadrature) {
           "+- %.5f\n",
           c, expected[c], ratio[c].mean(), ratio[c].standard_error(), residual[c].mean(),
           residual[c].standard_error());
-      EXPECT_NEAR(ratio[c].mean(), expected[c], 4.0 * ratio[c].standard_error() + 1e-4);
-      EXPECT_NEAR(residual[c].mean(), expected[c], 4.0 * residual[c].standard_error() + 1e-4);
+      EXPECT_NEAR(ratio[c].mean(), expected[c], 5.0 * ratio[c].standard_error() + 1e-4);
+      EXPECT_NEAR(residual[c].mean(), expected[c], 5.0 * residual[c].standard_error() + 1e-4);
     }
     EXPECT_LT(expected.x, 0.98) << "the ray should cross some smoke";
   }
