@@ -10,6 +10,7 @@
 #include "engine/scene/level_summary.h"
 #include "engine/world/components.h"
 #include "engine/world/instantiate.h"
+#include "engine/world/world.h"
 #include "lighting/scene/scene_requirements.h"
 #include "runtime/volume/volume_set.h"
 #include "tests/volume/vdb_fixtures.h"
@@ -102,6 +103,25 @@ TEST_F(VolumeLevel, VolumesBecomeEntitiesThatMove) {
       });
   EXPECT_EQ(volumes, 2u);
   EXPECT_EQ(moving, 1u);
+}
+
+// The Extract phase copies each volume's placement (and last frame's) into the snapshot: the
+// circling plume moves, the fog bank stays; a level without volumes has none.
+TEST_F(VolumeLevel, SnapshotsCarryVolumePlacements) {
+  World world(std::make_shared<const Level>(load_level_argument("smoke_yard")), {.threads = 2});
+  const FrameSnapshot first = world.step();
+  ASSERT_EQ(first.volumes.size(), 2u);
+  EXPECT_EQ(first.volumes[0].stable_id, 0u);
+  EXPECT_EQ(first.volumes[1].stable_id, 1u);
+  EXPECT_EQ(first.volumes[1].prev_object_to_world, first.volumes[1].object_to_world);
+  const FrameSnapshot second = world.step();
+  EXPECT_EQ(second.volumes[0].object_to_world, first.volumes[0].object_to_world);  // fog: still
+  EXPECT_NE(second.volumes[1].object_to_world, first.volumes[1].object_to_world);  // plume moves
+  EXPECT_EQ(second.volumes[1].prev_object_to_world, first.volumes[1].object_to_world);
+  EXPECT_EQ(frozen(second).volumes[1].prev_object_to_world, second.volumes[1].object_to_world);
+
+  World plain(std::make_shared<const Level>(load_level_argument("cornell_lights")), {});
+  EXPECT_TRUE(plain.step().volumes.empty());
 }
 
 }  // namespace
