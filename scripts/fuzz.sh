@@ -6,7 +6,7 @@
 # the target and leaves the input in build-fuzz/artifacts/<target>/: fix the loader, copy the input
 # to tests/fuzz/regressions/<target>/ (fuzz_replay_test replays it in every build).
 #
-# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=60] [targets...]   (targets: level_json gltf image)
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=60] [targets...]   (targets: level_json gltf image vdb)
 #   LANTERN_FUZZ_RUNS=N   stop each target after N executions instead of after SECONDS.
 #   LANTERN_FUZZ_JOBS=N   parallel fuzzing processes per target (default 1).
 set -euo pipefail
@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(level_json gltf image)
+[ ${#targets[@]} -eq 0 ] && targets=(level_json gltf image vdb)
 build=${LANTERN_FUZZ_BUILD:-build-fuzz}
 cc=$(command -v clang-14 || command -v clang)
 cxx=$(command -v clang++-14 || command -v clang++)
@@ -40,10 +40,17 @@ for t in "${targets[@]}"; do
   [ -n "${LANTERN_FUZZ_RUNS:-}" ] && limit=(-runs="$LANTERN_FUZZ_RUNS")
   jobs=()
   [ -n "${LANTERN_FUZZ_JOBS:-}" ] && jobs=(-fork="$LANTERN_FUZZ_JOBS" -ignore_crashes=0)
+  # OpenVDB's smallest float grid file is ~10 KB (the 32^3 node's masks): longer inputs for vdb.
+  # vdb is not in CI's list (scripts/test.sh): OpenVDB 10 trusts the lengths a file states
+  # (MetaMap::readMeta allocates a string of any stated length: an out-of-memory in ~10 inputs).
+  # The normal build turns those into bad_alloc -> InputError; a header validator in front of
+  # OpenVDB would be needed to fuzz past them.
+  max_len=8192
+  [ "$t" = vdb ] && max_len=32768
   log=$build/fuzz_$t.log
   echo "fuzz.sh: $t (${limit[*]}) -> $log"
   if ! "$build/bin/fuzz_$t" "$corpus" "tests/fuzz/corpus/$t" "${limit[@]}" "${jobs[@]}" \
-      -timeout=10 -malloc_limit_mb=1024 -rss_limit_mb=2048 -max_len=8192 \
+      -timeout=10 -malloc_limit_mb=1024 -rss_limit_mb=2048 -max_len="$max_len" \
       -dict=tests/fuzz/$t.dict -artifact_prefix="$artifacts/" -print_final_stats=1 >"$log" 2>&1; then
     status=1
     echo "fuzz.sh: $t FAILED: see $log and $artifacts/"

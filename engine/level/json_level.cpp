@@ -62,6 +62,14 @@ void JsonLevelReader::read(const nlohmann::json& document) {
     }
   }
   if (root.has("generators")) read_generators(root.raw("generators"), root.pointer("generators"));
+  if (root.has("volumes")) {
+    const std::string ptr = root.pointer("volumes");
+    const nlohmann::json& list = expect_array(root.raw("volumes"), ptr, file_);
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      JsonObject v(list[i], fmt::format("{}/{}", ptr, i), file_);
+      read_volume(v);
+    }
+  }
   if (root.has("environment")) {
     JsonObject env = root.object("environment");
     read_environment(env);
@@ -200,6 +208,7 @@ void JsonLevelReader::check_follow_paths() {
   for (const Instance& inst : level().instances)
     check(inst.behaviour, fmt::format("instance '{}'", inst.name));
   for (const Light& l : level().lights) check(l.behaviour, fmt::format("light '{}'", l.name));
+  for (const Volume& v : level().volumes) check(v.behaviour, fmt::format("volume '{}'", v.name));
 }
 
 }  // namespace lantern

@@ -27,6 +27,7 @@ class JsonLevelReader {
   void read_primitive(JsonObject& object);
   void read_light(JsonObject& object);
   void read_paths(JsonObject& section);
+  void read_volume(JsonObject& object);  // json_level_volumes.cpp
 
   // Shared pieces.
   Transform read_transform(JsonObject& object);

@@ -17,6 +17,7 @@
 #include "engine/scene/material.h"
 #include "engine/scene/mesh.h"
 #include "engine/scene/transform.h"
+#include "engine/scene/volume.h"
 
 namespace lantern {
 
@@ -44,6 +45,7 @@ struct Level {
   std::vector<ImageRef> images;
   std::vector<Instance> instances;
   std::vector<Light> lights;
+  std::vector<Volume> volumes;  // participating media; empty: no volume work at all
   Camera camera;
   bool has_camera = false;  // false: the loader framed the scene with a default camera
   std::vector<CameraPath> paths;

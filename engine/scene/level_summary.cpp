@@ -23,7 +23,10 @@ LevelSummary summarize(const Level& level) {
     if (l.type == LightType::Directional) ++s.directional_lights;
     if (l.behaviour) ++s.behaviours;
   }
-  s.entities = s.instances + level.lights.size() + 1;
+  s.volumes = level.volumes.size();
+  for (const Volume& v : level.volumes)
+    if (v.behaviour) ++s.behaviours;
+  s.entities = s.instances + level.lights.size() + level.volumes.size() + 1;
   s.environment_map = level.environment.has_value();
   s.camera_path = level.camera_path;
   for (const CameraPath& p : level.paths)

@@ -16,7 +16,7 @@ namespace lantern {
 struct LevelSummary {
   std::string name;
   std::string source;
-  std::uint64_t entities = 0;  // instances + lights + the camera
+  std::uint64_t entities = 0;  // instances + lights + volumes + the camera
   std::uint64_t instances = 0;
   std::uint64_t meshes = 0;
   std::uint64_t triangles = 0;  // over all instances
@@ -24,7 +24,7 @@ struct LevelSummary {
   std::uint64_t point_lights = 0;
   std::uint64_t spot_lights = 0;
   std::uint64_t directional_lights = 0;
-  std::uint64_t volumes = 0;  // none until volumes land
+  std::uint64_t volumes = 0;  // Level::volumes (grids, voxels, memory: enabled["volumes"])
   std::uint64_t behaviours = 0;
   bool environment_map = false;
   std::string camera_path;

@@ -18,9 +18,10 @@ namespace lantern {
 // The pose state is the scene's `Transform` (TRS), written by the behaviour systems.
 
 // Which array of the Level an entity came from; stable ids are unique per kind.
-enum class EntityKind : std::uint32_t { Instance = 0, Light = 1 };
+enum class EntityKind : std::uint32_t { Instance = 0, Light = 1, Volume = 2 };
 
-// The entity's id for the life of the world: its index in Level::instances or Level::lights.
+// The entity's id for the life of the world: its index in Level::instances, Level::lights or
+// Level::volumes.
 // Renderers key temporal data (previous↔current remaps, G-buffer ids) on it.
 struct StableId {
   EntityKind kind = EntityKind::Instance;
@@ -51,6 +52,13 @@ struct MaterialRef {
 // An analytic light; its type, colour, range and cones stay in Level::lights[index]. Position and
 // orientation are the entity's Transform (translation, rotation).
 struct LightComponent {
+  std::uint32_t index = 0;
+};
+
+// A participating medium; its grid, coefficients and phase function stay in
+// Level::volumes[index]. Its placement is the entity's Transform (WorldMatrix = the placement
+// matrix, applied after the grid's own index-to-world); it moves like an instance.
+struct VolumeComponent {
   std::uint32_t index = 0;
 };
 

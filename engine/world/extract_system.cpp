@@ -30,6 +30,7 @@ std::shared_ptr<FrameSnapshot> writable_snapshot(FrameSnapshotSlot& slot) {
     auto reused = std::const_pointer_cast<FrameSnapshot>(std::move(slot.latest));
     reused->instances.clear();
     reused->lights.clear();
+    reused->volumes.clear();
     return reused;
   }
   return std::make_shared<FrameSnapshot>();
@@ -40,7 +41,8 @@ std::shared_ptr<FrameSnapshot> writable_snapshot(FrameSnapshotSlot& slot) {
 void register_extract_system(Scheduler& scheduler) {
   scheduler.add("world.extract", Phase::Extract)
       .reads<StableId, WorldMatrix, PreviousTransform, MeshRef, MaterialRef, EmissionScale,
-             LightComponent, Transform, CameraHistory, LevelResource, WorldSettings>()
+             LightComponent, VolumeComponent, Transform, CameraHistory, LevelResource,
+             WorldSettings>()
       .writes<FrameSnapshotSlot, CameraCutRequest>()
       .run([](Registry& r, const FrameTime& time) {
         const WorldSettings& settings = r.ctx().get<WorldSettings>();
@@ -94,6 +96,21 @@ void register_extract_system(Scheduler& scheduler) {
             });
         std::sort(snap->lights.begin(), snap->lights.end(),
                   [](const SnapshotLight& a, const SnapshotLight& b) {
+                    return a.stable_id < b.stable_id;
+                  });
+
+        r.view<const StableId, const VolumeComponent, const WorldMatrix,
+               const PreviousTransform>()
+            .each([&](const StableId& id, const VolumeComponent&, const WorldMatrix& world,
+                      const PreviousTransform& prev) {
+              SnapshotVolume s;
+              s.object_to_world = world.object_to_world;
+              s.prev_object_to_world = prev.object_to_world;
+              s.stable_id = id.value;
+              snap->volumes.push_back(s);
+            });
+        std::sort(snap->volumes.begin(), snap->volumes.end(),
+                  [](const SnapshotVolume& a, const SnapshotVolume& b) {
                     return a.stable_id < b.stable_id;
                   });
 

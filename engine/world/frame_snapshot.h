@@ -7,7 +7,7 @@
 //   of the image, matching pixel (0,0) top-left), depth z/w in [0, 1] with 0 at the near plane and
 //   1 at the far plane (or at infinity when zfar is 0: an infinite far plane).
 // - Matrices are glm column-major, column vectors: clip = projection * view * world * p.
-// Instances and lights are sorted by stable id. Plain 4-byte fields only in the per-element
+// Instances, lights and volumes are sorted by stable id. Plain 4-byte fields only in the per-element
 // structs, so two snapshots can be compared with memcmp.
 #pragma once
 
@@ -58,6 +58,16 @@ struct SnapshotLight {
 };
 static_assert(sizeof(SnapshotLight) == 16 * 4);
 
+struct SnapshotVolume {
+  glm::mat4 object_to_world{1.0f};       // the placement; the grid's index-to-world comes first
+  glm::mat4 prev_object_to_world{1.0f};  // equals object_to_world on frame 0 and when static
+  std::uint32_t stable_id = 0;           // index in Level::volumes
+  std::uint32_t pad0 = 0;
+  std::uint32_t pad1 = 0;
+  std::uint32_t pad2 = 0;
+};
+static_assert(sizeof(SnapshotVolume) == 2 * 64 + 16);
+
 struct FrameSnapshot {
   std::uint64_t frame_index = 0;
   double time = 0.0;  // seconds since the start at the end of the frame: the time poses are for
@@ -70,7 +80,8 @@ struct FrameSnapshot {
   SnapshotCamera prev_camera;  // equals camera on frame 0
   std::vector<SnapshotInstance> instances;
   std::vector<SnapshotLight> lights;
-  std::shared_ptr<const Level> level;  // meshes, materials and light parameters the ids index
+  std::vector<SnapshotVolume> volumes;  // empty for a level without media
+  std::shared_ptr<const Level> level;   // meshes, materials, lights and volumes the ids index
 };
 
 // `s` held still: the same poses again, no motion since the previous frame, history kept (a static
@@ -80,6 +91,7 @@ inline FrameSnapshot frozen(const FrameSnapshot& s) {
   f.camera_cut = false;
   f.prev_camera = f.camera;
   for (SnapshotInstance& i : f.instances) i.prev_object_to_world = i.object_to_world;
+  for (SnapshotVolume& v : f.volumes) v.prev_object_to_world = v.object_to_world;
   return f;
 }
 

@@ -87,6 +87,23 @@ WorldEntities instantiate(Registry& registry, std::shared_ptr<const Level> level
   }
   out.lights = level.lights.size();
 
+  for (std::size_t i = 0; i < level.volumes.size(); ++i) {
+    const Volume& volume = level.volumes[i];
+    const Entity e = registry.create();
+    const auto id = static_cast<std::uint32_t>(i);
+    const glm::mat4 placement = volume.transform.matrix();
+    registry.emplace<StableId>(e, StableId{EntityKind::Volume, id});
+    registry.emplace<Transform>(e, volume.transform);
+    registry.emplace<WorldMatrix>(e, WorldMatrix{placement});
+    registry.emplace<PreviousTransform>(e, PreviousTransform{placement});
+    registry.emplace<VolumeComponent>(e, VolumeComponent{id});
+    if (volume.behaviour &&
+        add_behaviour(registry, e, level, *volume.behaviour, volume.transform,
+                      fmt::format("volume {} '{}'", i, volume.name)))
+      registry.emplace<DynamicTransform>(e);
+  }
+  out.volumes = level.volumes.size();
+
   out.camera = registry.create();
   registry.emplace<CameraComponent>(out.camera, CameraComponent{level.camera});
   registry.emplace<CameraHistory>(out.camera, CameraHistory{level.camera, level.camera});

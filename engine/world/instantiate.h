@@ -1,5 +1,5 @@
-// Turns a plain-data Level into ECS entities (components.h): one entity per instance, per light
-// and one for the camera, with their behaviours. The Level itself becomes the LevelResource.
+// Turns a plain-data Level into ECS entities (components.h): one entity per instance, per light,
+// per volume and one for the camera, with their behaviours. The Level itself becomes the LevelResource.
 #pragma once
 
 #include <memory>
@@ -13,6 +13,7 @@ struct WorldEntities {
   Entity camera;
   std::size_t instances = 0;
   std::size_t lights = 0;
+  std::size_t volumes = 0;
 };
 
 // Creates the entities and the LevelResource and ActiveCameraPath (the level's default path)

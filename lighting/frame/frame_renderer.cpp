@@ -15,6 +15,7 @@
 #include "runtime/core/device.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/shader_library.h"
+#include "runtime/volume/volume_set.h"
 
 namespace lantern::lighting {
 
@@ -60,6 +61,22 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
         fmt::format("frame renderer: render size {}x{} must be positive", width, height));
   }
   if (!integrator_) throw InputError("frame renderer: no integrator");
+  if (!level->volumes.empty()) {
+    // Volumes are loaded and checked (a bad .vdb is exit 2 here as in `lantern info`) but the
+    // lighting module does not render media yet: say so once, not silently.
+    const std::vector<runtime::VolumeGrid> grids = runtime::load_volume_grids(*level);
+    static bool warned = false;
+    if (!warned) {
+      warned = true;
+      log::warn("{}: {} volume(s) loaded and checked ({} voxels), but participating media are not "
+                "rendered yet: the image shows the level without them",
+                level->name, grids.size(), [&] {
+                  std::uint64_t n = 0;
+                  for (const runtime::VolumeGrid& g : grids) n += g.active_voxels;
+                  return n;
+                }());
+    }
+  }
   scene_ = std::make_unique<GpuScene>(device, std::move(level), integrator_->visibility());
   gbuffer_ = std::make_unique<GBufferPass>(
       device, shaders, GBufferPassOptions{.textured = !scene_->data().textures.empty()});

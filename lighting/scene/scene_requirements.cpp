@@ -7,6 +7,7 @@
 
 #include "lighting/lights/environment_map.h"
 #include "lighting/scene/scene_data.h"
+#include "lighting/scene/volume_requirements.h"
 #include "shared/alias_table.h"
 #include "shared/bvh.h"
 #include "shared/lights.h"
@@ -160,6 +161,8 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
                                   {"memory", mib(gbuffer + hdr)},
                                   {"note", "integrator buffers (ReSTIR reservoirs) come on top; "
                                            "`lantern bench --json` reports them"}};
+
+  describe_volumes(level, summary);
 
   nlohmann::json variants = nlohmann::json::array();
   variants.push_back(visibility.backend == VisibilityBackend::RayQuery

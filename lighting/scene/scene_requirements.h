@@ -14,9 +14,10 @@
 
 namespace lantern::lighting {
 
-// Adds the sections "light_sampling", "environment", "visibility", "geometry", "per_frame" and
-// "shader_variants" to summary.enabled; `visibility` is the backend chosen for the device (named
-// with its reason; ray query adds its BLAS/TLAS estimate). Throws InputError on bad level data.
+// Adds the sections "light_sampling", "environment", "visibility", "geometry", "textures",
+// "volumes" (volume_requirements.h), "per_frame" and "shader_variants" to summary.enabled;
+// `visibility` is the backend chosen for the device (named with its reason; ray query adds its
+// BLAS/TLAS estimate). Throws InputError on bad level data.
 void describe_requirements(const Level& level, std::uint32_t width, std::uint32_t height,
                            LevelSummary& summary, const VisibilityChoice& visibility = {});
 

@@ -24,6 +24,11 @@
 #include "shared/textures.h"
 #include "shared/tonemap.h"
 #include "shared/upscale.h"
+#include "shared/volume.h"
+
+GpuVolumeCell volume_fetch_cell(uint i);
+float volume_fetch_value(uint i);
+#include "shared/volume_grid.h"
 
 layout(local_size_x = 1) in;
 
@@ -51,6 +56,9 @@ layout(std430, binding = 19) buffer DenoisePushProbe { DenoisePush denoise_pushe
 layout(std430, binding = 20) buffer UpscalePushProbe { UpscalePush upscale_pushes[]; };
 layout(std430, binding = 21) buffer GpuTextureProbe { GpuTexture gpu_textures[]; };
 layout(std430, binding = 22) buffer GpuTexturedEmitterProbe { GpuTexturedEmitter gpu_textured_emitters[]; };
+layout(std430, binding = 23) buffer GpuVolumeProbe { GpuVolume gpu_volumes[]; };
+layout(std430, binding = 24) buffer GpuVolumeCellProbe { GpuVolumeCell gpu_volume_cells[]; };
+layout(std430, binding = 25) buffer VolumeDdaProbe { VolumeDda volume_ddas[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -77,4 +85,7 @@ void main() {
   presampled_lights[0] = presampled_lights[1];
   gpu_textures[0] = gpu_textures[1];
   gpu_textured_emitters[0] = gpu_textured_emitters[1];
+  gpu_volumes[0] = gpu_volumes[1];
+  gpu_volume_cells[0] = gpu_volume_cells[1];
+  volume_ddas[0] = volume_ddas[1];
 }

@@ -58,5 +58,8 @@ TEST_F(FuzzReplay, Gltf) {
 TEST_F(FuzzReplay, Image) {
   replay("image", lantern::fuzz::image);
 }
+TEST_F(FuzzReplay, Vdb) {
+  replay("vdb", lantern::fuzz::vdb);
+}
 
 }  // namespace

@@ -27,5 +27,10 @@ int gltf(const std::uint8_t* data, std::size_t size);
 // signature, OpenImageIO decode, size cap, sRGB decode, mip chain), then as a PNG, JPEG and EXR
 // by MIME type straight through runtime::decode_image_bytes. Returns 0.
 int image(const std::uint8_t* data, std::size_t size);
+// An OpenVDB file (issue 14): the bytes as a scratch .vdb through runtime::read_vdb_grid (open,
+// grid lookup, type and transform checks, voxel caps, value checks, bricks and majorant grid).
+// In fuzz_vdb_target.cpp: it needs only the runtime, so its libFuzzer build stays small (no
+// init() needed). Returns 0.
+int vdb(const std::uint8_t* data, std::size_t size);
 
 }  // namespace lantern::fuzz

@@ -24,6 +24,8 @@
 #include "shared/scene.h"
 #include "shared/upscale.h"
 #include "shared/textures.h"
+#include "shared/volume.h"
+#include "shared/volume_grid.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/gpu/spirv_reflect.h"
 
@@ -139,6 +141,20 @@ const std::vector<StructLayout>& cpp_layouts() {
       {"GpuTexturedEmitter",
        sizeof(gpu::GpuTexturedEmitter),
        {LANTERN_MEMBER(GpuTexturedEmitter, uv01), LANTERN_MEMBER(GpuTexturedEmitter, uv2_tex)}},
+      {"GpuVolume",
+       sizeof(gpu::GpuVolume),
+       {LANTERN_MEMBER(GpuVolume, world_to_index), LANTERN_MEMBER(GpuVolume, index_to_world),
+        LANTERN_MEMBER(GpuVolume, scattering), LANTERN_MEMBER(GpuVolume, absorption),
+        LANTERN_MEMBER(GpuVolume, support_min), LANTERN_MEMBER(GpuVolume, support_max),
+        LANTERN_MEMBER(GpuVolume, cell_origin), LANTERN_MEMBER(GpuVolume, cells)}},
+      {"GpuVolumeCell",
+       sizeof(gpu::GpuVolumeCell),
+       {LANTERN_MEMBER(GpuVolumeCell, brick), LANTERN_MEMBER(GpuVolumeCell, max_density),
+        LANTERN_MEMBER(GpuVolumeCell, min_density), LANTERN_MEMBER(GpuVolumeCell, pad0)}},
+      {"VolumeDda",
+       sizeof(gpu::VolumeDda),
+       {LANTERN_MEMBER(VolumeDda, t_next), LANTERN_MEMBER(VolumeDda, t_delta),
+        LANTERN_MEMBER(VolumeDda, cell), LANTERN_MEMBER(VolumeDda, step)}},
       {"BvhNode",
        sizeof(gpu::BvhNode),
        {LANTERN_MEMBER(BvhNode, bounds_min), LANTERN_MEMBER(BvhNode, bounds_max)}},
