@@ -14,7 +14,9 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(level_json gltf image vdb)
+# vdb is opt-in (named): OpenVDB 10 allocates whatever string length a file states, which
+# libFuzzer's memory limit reports within seconds (README "Volumes").
+[ ${#targets[@]} -eq 0 ] && targets=(level_json gltf image)
 build=${LANTERN_FUZZ_BUILD:-build-fuzz}
 cc=$(command -v clang-14 || command -v clang)
 cxx=$(command -v clang++-14 || command -v clang++)

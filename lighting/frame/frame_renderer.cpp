@@ -15,7 +15,7 @@
 #include "runtime/core/device.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/shader_library.h"
-#include "runtime/volume/volume_set.h"
+#include "lighting/volume/volume_camera_pass.h"
 
 namespace lantern::lighting {
 
@@ -61,27 +61,22 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
         fmt::format("frame renderer: render size {}x{} must be positive", width, height));
   }
   if (!integrator_) throw InputError("frame renderer: no integrator");
-  if (!level->volumes.empty()) {
-    // Volumes are loaded and checked (a bad .vdb is exit 2 here as in `lantern info`) but the
-    // lighting module does not render media yet: say so once, not silently.
-    const std::vector<runtime::VolumeGrid> grids = runtime::load_volume_grids(*level);
-    static bool warned = false;
-    if (!warned) {
-      warned = true;
-      log::warn("{}: {} volume(s) loaded and checked ({} voxels), but participating media are not "
-                "rendered yet: the image shows the level without them",
-                level->name, grids.size(), [&] {
-                  std::uint64_t n = 0;
-                  for (const runtime::VolumeGrid& g : grids) n += g.active_voxels;
-                  return n;
-                }());
-    }
-  }
   scene_ = std::make_unique<GpuScene>(device, std::move(level), integrator_->visibility());
   gbuffer_ = std::make_unique<GBufferPass>(
       device, shaders, GBufferPassOptions{.textured = !scene_->data().textures.empty()});
   denoiser_ = std::make_unique<Denoiser>(device, shaders);
   upscaler_ = std::make_unique<Upscaler>(device, shaders);
+  if (scene_->volume_count() > 0) {
+    volume_camera_ = std::make_unique<VolumeCameraPass>(device, shaders);
+    // Said once per process: what of the media is rendered this round.
+    static bool told = false;
+    if (!told) {
+      told = true;
+      log::warn("{}: {} volume(s): media absorb and out-scatter along camera and shadow rays; "
+                "in-scattered light is not rendered yet",
+                scene_->level().name, scene_->volume_count());
+    }
+  }
   output_ = std::make_unique<runtime::ComputePipeline>(
       device, shaders.load("frame/frame_output.comp"),
       runtime::ComputePipelineDesc{.name = "frame.output", .constants = {}});
@@ -100,6 +95,7 @@ void FrameRenderer::warm_up() {
   integrator_->warm_up();
   denoiser_->warm_up();
   upscaler_->warm_up();
+  if (volume_camera_) volume_camera_->warm_up();
   output_->warm_up();
 }
 
@@ -134,7 +130,7 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   scene_->update(snapshot);
   const FrameCounts counts{scene_->light_count(), scene_->instance_count(),
                            scene_->emissive_triangles(), scene_->previous_light_count(),
-                           scene_->scene_radius()};
+                           scene_->scene_radius(), scene_->volume_count()};
   const bool upscaling = width_ != output_width_ || height_ != output_height_;
   const bool jitter = jitter_mode_ == Jitter::On || (jitter_mode_ == Jitter::WhenUpscaling && upscaling);
   previous_jitter_ = history_valid ? jitter_ : glm::vec2(0.0f);
@@ -168,6 +164,7 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   inputs_.light_count = scene_->light_count();
   inputs_.previous_light_count = scene_->previous_light_count();
   hdr = integrator_->add_passes(graph, inputs_, hdr);
+  if (volume_camera_) hdr = volume_camera_->add_pass(graph, inputs_, hdr);
   raw_ = hdr;
   if (frame_output_ == FrameOutput::Denoised) hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr);
   if (width_ != output_width_ || height_ != output_height_) {

@@ -27,6 +27,7 @@ namespace lantern::lighting {
 class GBufferPass;
 class Denoiser;
 class Upscaler;
+class VolumeCameraPass;
 
 // Which image add_frame returns (what the output pass shows): the integrator's raw radiance
 // (unbiased: bias tests, trade's raw error, EXR by default) or the denoised one (what a player,
@@ -108,6 +109,7 @@ class FrameRenderer {
   std::unique_ptr<Integrator> integrator_;
   std::unique_ptr<Denoiser> denoiser_;
   std::unique_ptr<Upscaler> upscaler_;
+  std::unique_ptr<VolumeCameraPass> volume_camera_;  // only for levels with volumes
   DenoiseSettings denoise_;
   FrameOutput frame_output_ = FrameOutput::Raw;
   Jitter jitter_mode_ = Jitter::WhenUpscaling;

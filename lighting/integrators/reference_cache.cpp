@@ -19,7 +19,7 @@ namespace lantern::lighting {
 namespace {
 
 // Bump when the reference integrator's output changes for the same inputs (estimator, conventions).
-constexpr std::uint32_t kReferenceFormatVersion = 1;
+constexpr std::uint32_t kReferenceFormatVersion = 2;  // 2: media attenuate (issue 14)
 
 class Fnv1a {
  public:
@@ -131,6 +131,24 @@ void hash_level(Fnv1a& h, const Level& level) {
   for (const auto& [key, value] : level.settings) {
     h.text(key);
     h.text(value);
+  }
+  h.pod(level.volumes.size());
+  for (const Volume& v : level.volumes) {
+    if (!v.file.empty()) h.file(v.file);
+    h.pod(v.generator.has_value());
+    if (v.generator) {
+      h.pod(v.generator->type);
+      h.pod(v.generator->seed);
+      h.pod(v.generator->size);
+      h.pod(v.generator->voxel_size);
+    }
+    h.text(v.grid);
+    h.pod(v.transform.matrix());
+    h.pod(v.density_scale);
+    h.pod(v.scattering);
+    h.pod(v.absorption);
+    h.pod(v.anisotropy);
+    h.pod(v.behaviour.has_value());
   }
 }
 

@@ -17,6 +17,7 @@ struct FrameCounts {
   std::uint32_t emissive_triangles = 0;
   std::uint32_t previous_lights = 0;  // last frame's lights: entries of the prev -> cur remap
   float scene_radius = 1.0f;          // the world's bounding-sphere radius
+  std::uint32_t volumes = 0;          // participating media (scene_volumes records)
 };
 
 // World -> clip for `camera` rendering a width x height image (the image's aspect ratio wins

@@ -174,6 +174,7 @@ void GpuScene::update(const FrameSnapshot& snapshot) {
   const auto lights_start = Clock::now();
   update_lights(snapshot);
   stats_.light_ms = ms_since(lights_start);
+  update_volumes(snapshot);
   stats_.cpu_ms = ms_since(start);
 }
 
@@ -240,6 +241,26 @@ void GpuScene::update_instances(const FrameSnapshot& snapshot) {
     mark_all_dirty(gpu::kSceneBvhHeader);
     ensure_capacity(gpu::kSceneBvhInstances);
     mark_all_dirty(gpu::kSceneBvhInstances);
+  }
+}
+
+// A volume's record follows its placement this frame: the grid's own index-to-world, then the
+// snapshot's object_to_world (behaviours move volumes like instances).
+void GpuScene::update_volumes(const FrameSnapshot& snapshot) {
+  for (const SnapshotVolume& s : snapshot.volumes) {
+    if (s.stable_id >= data_.volumes.size()) {
+      throw InputError(fmt::format("frame {}: snapshot volume {} is not a volume of level '{}' ({} "
+                                   "volumes)",
+                                   snapshot.frame_index, s.stable_id, level_->name,
+                                   data_.volumes.size()));
+    }
+    gpu::GpuVolume& v = data_.volumes[s.stable_id];
+    const glm::mat4 index_to_world = s.object_to_world * data_.volume_grid_to_world[s.stable_id];
+    if (v.index_to_world == index_to_world) continue;
+    v.index_to_world = index_to_world;
+    v.world_to_index = glm::inverse(index_to_world);
+    mark_dirty(gpu::kSceneVolumes, std::uint64_t{s.stable_id} * sizeof(gpu::GpuVolume),
+               std::uint64_t{s.stable_id + 1} * sizeof(gpu::GpuVolume));
   }
 }
 

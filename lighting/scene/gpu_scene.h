@@ -102,6 +102,8 @@ class GpuScene {
   }
   std::uint32_t emissive_triangles() const { return data_.emissive_triangles; }
   float scene_radius() const { return scene_radius_; }
+  // Participating media (scene_volumes records); 0 without volumes.
+  std::uint32_t volume_count() const { return static_cast<std::uint32_t>(data_.volumes.size()); }
   // The environment header as uploaded by the next scene.upload (the stand-in's when the level
   // has no map); params.x is the environment's light-selection probability.
   const gpu::GpuEnvironment& environment() const { return env_header_; }
@@ -156,6 +158,7 @@ class GpuScene {
   void ensure_capacity(std::uint32_t slot);
   void update_instances(const FrameSnapshot& snapshot);
   void update_lights(const FrameSnapshot& snapshot);
+  void update_volumes(const FrameSnapshot& snapshot);
   // Recomputes the environment's selection probability against the alias table's power; marks
   // the header dirty when it changed.
   void update_environment_probability();

@@ -73,6 +73,13 @@ constexpr std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers = {{
      [](const Sources& s) { return bytes_of(s.data->vertex_tangents); }, kBuffer},
     {gpu::kSceneVertexTexcoords1, "scene.vertex_texcoords1", "scene_vertex_texcoords1", nullptr,
      true, [](const Sources& s) { return bytes_of(s.data->vertex_texcoords1); }, kBuffer},
+    // Rewritten when a volume moves (GpuScene::update_volumes).
+    {gpu::kSceneVolumes, "scene.volumes", "scene_volumes", nullptr, false,
+     [](const Sources& s) { return bytes_of(s.data->volumes); }, kBuffer},
+    {gpu::kSceneVolumeCells, "scene.volume_cells", "scene_volume_cells", nullptr, true,
+     [](const Sources& s) { return bytes_of(s.data->volume_cells); }, kBuffer},
+    {gpu::kSceneVolumeValues, "scene.volume_values", "scene_volume_values", nullptr, true,
+     [](const Sources& s) { return bytes_of(s.data->volume_values); }, kBuffer},
     {gpu::kSceneTlas, "scene.tlas", "scene_tlas", nullptr, false, nullptr,
      SceneResourceKind::AccelerationStructure},
 }};

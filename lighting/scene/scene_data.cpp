@@ -13,7 +13,9 @@
 #include <limits>
 
 #include "engine/core/error.h"
+#include "engine/core/log.h"
 #include "engine/scene/mesh_tangents.h"
+#include "runtime/volume/volume_set.h"
 #include "shared/color.h"
 #include "shared/common_math.h"
 #include "shared/sampling.h"
@@ -84,11 +86,19 @@ std::vector<gpu::vec4> vertex_tangents(const Level& level, std::size_t vertex_co
   std::vector<std::uint32_t> normal_set(level.meshes.size(), kNotMapped);
   bool any = false;
   for (const Instance& inst : level.instances) {
-    if (inst.material < level.materials.size() && inst.mesh < level.meshes.size() &&
-        level.materials[inst.material].normal_texture.present() &&
-        normal_set[inst.mesh] == kNotMapped) {
-      normal_set[inst.mesh] = level.materials[inst.material].normal_texture.texcoord;
+    if (inst.material >= level.materials.size() || inst.mesh >= level.meshes.size() ||
+        !level.materials[inst.material].normal_texture.present())
+      continue;
+    const std::uint32_t set = level.materials[inst.material].normal_texture.texcoord;
+    if (normal_set[inst.mesh] == kNotMapped) {
+      normal_set[inst.mesh] = set;
       any = true;
+    } else if (normal_set[inst.mesh] != set) {
+      // One tangent frame per vertex: the first set wins, and the level is told.
+      log::warn("{}: mesh '{}' is normal-mapped through TEXCOORD_{} and TEXCOORD_{}; its "
+                "generated tangents follow TEXCOORD_{}",
+                level.source.string(), level.meshes[inst.mesh].name, normal_set[inst.mesh], set,
+                normal_set[inst.mesh]);
     }
   }
   if (!any) return {};
@@ -270,6 +280,17 @@ SceneData build_scene_data(const Level& level) {
   }
   scene.vertex_tangents = vertex_tangents(level, scene.vertices.size());
   scene.vertex_texcoords1 = vertex_texcoords1(level, scene.vertices.size());
+
+  // Participating media: every grid packed into the shared cell and value arrays (none, and
+  // OpenVDB untouched, without volumes).
+  const std::vector<runtime::VolumeGrid> grids = runtime::load_volume_grids(level);
+  for (std::size_t v = 0; v < grids.size(); ++v) {
+    const std::uint32_t first_cell =
+        runtime::pack_volume_grid(grids[v], scene.volume_cells, scene.volume_values);
+    scene.volumes.push_back(runtime::volume_record(level.volumes[v], grids[v],
+                                                   level.volumes[v].transform.matrix(), first_cell));
+    scene.volume_grid_to_world.push_back(grids[v].index_to_world);
+  }
 
   // Instances: GpuInstance records, BVH instances and the world box.
   glm::vec3 lo(std::numeric_limits<float>::max());

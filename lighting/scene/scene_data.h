@@ -12,6 +12,7 @@
 #include "lighting/textures/texture_set.h"
 #include "shared/scene.h"
 #include "shared/textures.h"
+#include "shared/volume.h"
 
 namespace lantern::lighting {
 
@@ -42,6 +43,14 @@ struct SceneData {
   // Per vertex: the mesh's TEXCOORD_1 (zero where it has none) when a material texture samples
   // set 1 (GpuTexture.transform_u.w); empty otherwise. Set 0 lives in GpuVertex.
   std::vector<glm::vec2> vertex_texcoords1;
+  // Participating media (Level::volumes, loaded through runtime/volume): one GpuVolume per
+  // volume at its level placement (GpuScene moves them per frame), the shared majorant cells and
+  // brick values, and each grid's own index-to-world (the placement applies after it). All empty
+  // without volumes.
+  std::vector<gpu::GpuVolume> volumes;
+  std::vector<gpu::GpuVolumeCell> volume_cells;
+  std::vector<float> volume_values;
+  std::vector<glm::mat4> volume_grid_to_world;
   double textured_emitter_ms = 0.0;  // wall time of integrating the means at load
   glm::vec3 bounds_min{0.0f};  // world-space box of all instances
   glm::vec3 bounds_max{0.0f};

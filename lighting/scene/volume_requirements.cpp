@@ -50,8 +50,10 @@ void describe_volumes(const Level& level, LevelSummary& summary) {
       {"why", fmt::format("{} volume{} in the level", grids.size(), grids.size() == 1 ? "" : "s")},
       {"grids", list},
       {"passes",
-       "volume passes: none yet (volume rendering is not implemented; the grids are "
-       "loaded and checked)"},
+       "volume passes: volume.camera (transmittance along camera rays, after the integrator) + "
+       "transmittance "
+       "on every shadow ray (residual ratio tracking over the majorant cells); in-scattering: "
+       "not yet"},
       {"bytes", bytes},
       {"memory", mib(bytes)}};
 }

@@ -7,6 +7,8 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -28,7 +30,11 @@ bool is_ktx2(std::span<const std::uint8_t> b) {
 // it; OpenImageIO 2.4 (Debian 12) has none, so such an image is one clear error up front rather
 // than "no reader" from the depths of OpenImageIO.
 void require_ktx2_reader(const std::string& where) {
-  static const bool readable = OIIO::ImageInput::create("probe.ktx2", /*do_open=*/false) != nullptr;
+  static const bool readable = [] {
+    const bool found = OIIO::ImageInput::create("probe.ktx2", /*do_open=*/false) != nullptr;
+    (void)OIIO::geterror();  // the probe's "no reader" must not linger as a global error
+    return found;
+  }();
   if (!readable)
     throw InputError(fmt::format(
         "{}: KTX2 image (image/ktx2, KHR_texture_basisu): this OpenImageIO ({}) has no KTX2 "
@@ -166,7 +172,10 @@ DecodedImage decode_image_file(const std::filesystem::path& path, std::uint32_t 
     file.clear();
     file.seekg(0);
     file.read(reinterpret_cast<char*>(head), sizeof(head));
-    if (is_ktx2(head) || path.extension() == ".ktx2")
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (is_ktx2(head) || extension == ".ktx2")
       require_ktx2_reader(fmt::format("{} ({})", where, path.string()));
   }
   const OIIO::ImageSpec config = straight_alpha();

@@ -129,7 +129,10 @@ class Reader {
   }
 
   VolumeGrid read() {
-    if (!std::filesystem::is_regular_file(file_)) fail("volume file not found");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file_, ec)) {
+      fail(ec ? fmt::format("volume file cannot be read: {}", ec.message()) : "volume file not found");
+    }
     initialize_openvdb();
     openvdb::FloatGrid::Ptr grid;
     try {

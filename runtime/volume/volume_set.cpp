@@ -32,7 +32,17 @@ VolumeGrid load_volume_grid(const Volume& volume) {
   const std::filesystem::path file =
       volume.generator ? generated_volume_file(*volume.generator) : volume.file;
   ++grids_read();
-  VolumeGrid grid = read_vdb_grid(file, volume.grid, volume.where);
+  VolumeGrid grid;
+  try {
+    grid = read_vdb_grid(file, volume.grid, volume.where);
+  } catch (const InputError&) {
+    if (!volume.generator) throw;
+    // A generated file in the cache that does not read (a write cut short by a full disk or a
+    // killed process): ours to replace, so it is written again once, not blamed on the level.
+    std::error_code ec;
+    std::filesystem::remove(file, ec);
+    grid = read_vdb_grid(generated_volume_file(*volume.generator), volume.grid, volume.where);
+  }
   const float peak = grid.max_value * max_component(volume.extinction_per_density());
   if (!std::isfinite(peak) || peak > kMaxVolumeExtinction)
     throw InputError(fmt::format(

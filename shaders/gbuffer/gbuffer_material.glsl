@@ -69,7 +69,10 @@ vec2 gbuffer_point_barycentrics(vec3 p, vec3 w0, vec3 e1, vec3 e2) {
 // normal texture's set.
 void gbuffer_tangent_frame(uint i0, uint i1, uint i2, float b1, float b2, mat3 linear, vec3 dp1,
                            vec3 dp2, vec2 duv1, vec2 duv2, out vec3 t, out vec3 up) {
-  vec4 t0 = scene_vertex_tangents.t[i0];
+  // Bounds: the tangent array is the vertices' length whenever a normal texture exists, which
+  // is when this runs; the check keeps a stand-in from ever being read past its end.
+  uint tangents = uint(scene_vertex_tangents.t.length());
+  vec4 t0 = max(max(i0, i1), i2) < tangents ? scene_vertex_tangents.t[i0] : vec4(0.0);
   if (t0.w != 0.0) {
     float b0 = 1.0 - b1 - b2;
     vec3 t_object = b0 * t0.xyz + b1 * scene_vertex_tangents.t[i1].xyz +

@@ -79,7 +79,7 @@ GBufferTexcoords gbuffer_resolve_texcoords(vec2 centre, vec2 b, uint i0, uint i1
   GBufferTexcoords tc;
   tc.uv[1] = vec2(0.0);
   tc.duv[1] = vec4(0.0);
-  uint sets = scene_vertex_texcoords1.uv.length() > 1 ? 2u : 1u;
+  uint sets = scene_has_texcoords1() ? 2u : 1u;
   for (uint set = 0u; set < sets; ++set) {
     vec2 uv0 = scene_vertex_texcoord(i0, set);
     vec2 d1 = scene_vertex_texcoord(i1, set) - uv0;

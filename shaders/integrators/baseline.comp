@@ -42,10 +42,11 @@ layout(binding = PASS_BINDING(5), rgba16f) uniform readonly image2D gbuffer_albe
 
 layout(push_constant) uniform Push { BaselinePush push; };
 
-// One light sample: returns the estimate c V / p towards light `index`, drawn with probability
-// select_pdf (c, p: shared/light_eval.h, the same evaluation as ReSTIR and the reference).
+// One light sample: returns the estimate c V T / p towards light `index`, drawn with probability
+// select_pdf (c, p: shared/light_eval.h, the same evaluation as ReSTIR and the reference; T the
+// media's transmittance along the shadow ray, lib/volumes.glsl).
 vec3 sample_light(uint index, float select_pdf, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMaterial mat,
-                  vec2 u) {
+                  vec2 u, inout uint rng) {
   GpuLight light = scene_lights.l[index];
   float pdf = select_pdf * light_eval_point_pdf(light);
   if (!(pdf > 0.0)) return vec3(0.0);
@@ -54,11 +55,12 @@ vec3 sample_light(uint index, float select_pdf, vec3 x, vec3 n, vec3 ng, vec3 v,
                                       mat.params.y, mat.params.z);
   if (c == vec3(0.0)) return vec3(0.0);
   if (!vis_visible(x, y)) return vec3(0.0);
-  return c / pdf;
+  return c * scene_transmittance_between(x, y, rng) / pdf;
 }
 
 // One environment sample (drawn with probability p_env): f * L * cos / pdf, visibility included.
-vec3 sample_environment(float p_env, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMaterial mat, vec4 u) {
+vec3 sample_environment(float p_env, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMaterial mat, vec4 u,
+                        inout uint rng) {
   vec3 l;
   vec3 le;
   float pdf = p_env * env_sample(env_header.env, u, l, le);
@@ -66,9 +68,9 @@ vec3 sample_environment(float p_env, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMateria
   vec3 c = light_eval_incident(l, le, 1.0, n, ng, v, mat.base_color.rgb, mat.params.x,
                                mat.params.y, mat.params.z);
   if (c == vec3(0.0)) return vec3(0.0);
-  vec3 far = x + l * (kDirectionalShadowRadii * frame_constants.frame.scene.x);
-  if (!vis_visible(x, far)) return vec3(0.0);
-  return c / pdf;
+  float far_t = kDirectionalShadowRadii * frame_constants.frame.scene.x;
+  if (!vis_visible(x, x + l * far_t)) return vec3(0.0);
+  return c * scene_transmittance(x, l, far_t, rng) / pdf;
 }
 
 vec3 shade_pixel(uvec2 pixel) {
@@ -95,14 +97,15 @@ vec3 shade_pixel(uvec2 pixel) {
     float u1 = rng_next_float(rng);
     vec2 u_light = rng_next_vec2(rng);
     if (u_select < p_env) {
-      result += sample_environment(p_env, x, n, ng, v, mat, vec4(u_light, u1, rng_next_float(rng)));
+      result +=
+          sample_environment(p_env, x, n, ng, v, mat, vec4(u_light, u1, rng_next_float(rng)), rng);
     } else if (frame_constants.frame.counts.x > 0u) {
       // Reuse u_select, rescaled to [0,1), for the alias slot.
       float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
       uint slot = alias_slot(frame_constants.frame.counts.x, u0);
       uint index = alias_select(u1, light_alias.e[slot], slot);
       float select_pdf = (1.0 - p_env) * light_alias.e[index].pdf;
-      result += sample_light(index, select_pdf, x, n, ng, v, mat, u_light);
+      result += sample_light(index, select_pdf, x, n, ng, v, mat, u_light, rng);
     }
   }
   return result;

@@ -139,10 +139,10 @@ vec3 sample_light(Shading sh, inout uint rng) {
     vec3 c = light_eval_incident(l, le, 1.0, sh.n, sh.ng, sh.v, sh.albedo, sh.roughness,
                                  sh.metallic, sh.specular);
     if (c == vec3(0.0)) return vec3(0.0);
-    if (!vis_visible(sh.x, sh.x + l * (kDirectionalShadowRadii * frame_constants.frame.scene.x))) {
-      return vec3(0.0);
-    }
-    return c * (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
+    float far_t = kDirectionalShadowRadii * frame_constants.frame.scene.x;
+    if (!vis_visible(sh.x, sh.x + l * far_t)) return vec3(0.0);
+    return c * scene_transmittance(sh.x, l, far_t, rng) *
+           (power_heuristic(pdf, bsdf_pdf(sh, l)) / pdf);
   }
   if (frame_constants.frame.counts.x == 0u) return vec3(0.0);
   // Reuse u_select, rescaled to [0,1), for the alias slot.
@@ -160,6 +160,7 @@ vec3 sample_light(Shading sh, inout uint rng) {
                                       sh.roughness, sh.metallic, sh.specular);
   if (c == vec3(0.0)) return vec3(0.0);
   if (!vis_visible(sh.x, target)) return vec3(0.0);
+  c *= scene_transmittance_between(sh.x, target, rng);  // the media along the shadow ray
   // Punctual and directional lights are deltas no BSDF sample can hit (MIS weight 1); a triangle
   // point is weighted against BSDF sampling of the same direction (solid-angle densities).
   float weight = 1.0;
@@ -191,11 +192,13 @@ vec3 sample_bsdf(Shading sh, inout uint rng) {
     vec3 to_hit = s.position - sh.x;
     float light_pdf =
         s.light != kInvalidLight ? triangle_light_pdf(s.light, dot(to_hit, to_hit), l) : 0.0;
-    return f * le * (power_heuristic(pdf, light_pdf) / pdf);
+    return f * le * scene_transmittance_between(sh.x, s.position, rng) *
+           (power_heuristic(pdf, light_pdf) / pdf);
   }
   if (env_header.env.size.z == 0u) return vec3(0.0);
   vec3 le = env_radiance(env_header.env, l);
   float light_pdf = env_header.env.params.x * env_pdf(env_header.env, l);
+  le *= scene_transmittance(sh.x, l, kDirectionalShadowRadii * frame_constants.frame.scene.x, rng);
   return f * le * (power_heuristic(pdf, light_pdf) / pdf);
 }
 

@@ -9,7 +9,9 @@
 //   environment (lib/environment.glsl: env_header, env_texels, env_marginal, env_conditional),
 //   the material textures scene_textures.t[], scene_texels.w[], scene_textured_emitters.e[]
 //   (lib/textures.glsl's texture_sample), scene_vertex_tangents.t[] and
-//   scene_vertex_texcoords1.uv[] (scene_vertex_texcoord picks a vertex's set).
+//   scene_vertex_texcoords1.uv[] (scene_vertex_texcoord picks a vertex's set), and the media
+//   (lib/volumes.glsl: scene_volumes, scene_volume_cells, scene_volume_values;
+//   scene_transmittance).
 // Then lib/visibility.glsl's vis_trace_closest / vis_visible and frame_rng are available. A pass
 // declares its own resources from kPassBindingBase on: layout(binding = PASS_BINDING(0)).
 #ifndef LANTERN_LIB_SCENE_BUFFERS_GLSL
@@ -75,6 +77,10 @@ layout(std430, binding = kSceneVertexTexcoords1) restrict readonly buffer Vertex
 } scene_vertex_texcoords1;
 #include "lib/textures.glsl"
 
+// Whether the level has TEXCOORD_1 at all: a real array holds at least one mesh (>= 3 vertices,
+// 24 bytes), the stand-in of a level without it is GpuScene's 16-byte minimum (2 entries).
+bool scene_has_texcoords1() { return scene_vertex_texcoords1.uv.length() > 2; }
+
 // Texcoord set `set` (0 or 1) of scene vertex `vertex`: GpuVertex's TEXCOORD_0, or TEXCOORD_1.
 vec2 scene_vertex_texcoord(uint vertex, uint set) {
   if (set == 0u)
@@ -123,6 +129,7 @@ bool scene_alpha_accept(uint instance, uint primitive, float u, float v) {
 #include "lib/visibility.glsl"
 #define ENV_BINDING_BASE kSceneEnvHeader
 #include "lib/environment.glsl"
+#include "lib/volumes.glsl"
 
 // The random stream of `pixel` in pass `pass` this frame (the frame's index and seed are the
 // frame constants').

@@ -86,10 +86,10 @@ void main() {
       vec3 c = restir_contribution(p, r.selected.light_index, uv);
       if (c != vec3(0.0)) {
         bool visible;
+        vec3 y = restir_light_position(p, r.selected.light_index, uv);
         if (reuse_visibility(r)) {
           visible = reservoir_known_visible(r);
         } else {
-          vec3 y = restir_light_position(p, r.selected.light_index, uv);
           visible = vis_visible(p.x, y);
           if (push.visibility_reuse > 0u) {
             // The verdict travels with the sample into the next frame's history.
@@ -97,7 +97,12 @@ void main() {
             reservoirs_in.r[index] = reservoir_pack(r);
           }
         }
-        if (visible) value += c * r.W;
+        if (visible) {
+          // The media's transmittance along the shadow ray, unbiased and independent of the
+          // resampling (its own random stream): the target ignored it, the shading does not.
+          uint rng = frame_rng(pixel, kRestirRngShadeMedia);
+          value += c * r.W * scene_transmittance_between(p.x, y, rng);
+        }
       }
     }
   }

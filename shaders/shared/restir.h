@@ -47,6 +47,7 @@ LANTERN_CONST uint kRestirRngTemporal = 0x52491u;
 LANTERN_CONST uint kRestirRngSpatial = 0x52492u;  // + pass index
 LANTERN_CONST uint kRestirRngPresample = 0x524a0u;
 LANTERN_CONST uint kRestirRngPresampleTile = 0x524a1u;
+LANTERN_CONST uint kRestirRngShadeMedia = 0x524b0u;  // restir.shade's transmittance estimate
 
 // Light presampling (RIS tiles, Wyman and Panteleev, HPG 2021): restir.presample draws
 // kRestirPresampleTileSize lights per tile from the power alias table into push.presample_tiles

@@ -30,8 +30,10 @@ struct FrameConstants {
   vec4 jitter;             // xy: this frame's G-buffer sample offset from the pixel centres, in
                            // pixels (+x right, +y down; 0 unless upscaling); zw: last frame's
                            // (gbuffer.h: gbuffer_jitter_clip, and the motion convention)
+  uvec4 media;             // x: volumes in scene_volumes (0: no medium, every transmittance is 1
+                           // without a loop); yzw: 0
 };
-LANTERN_STATIC_SIZE(FrameConstants, 3 * 64 + 8 * 16);
+LANTERN_STATIC_SIZE(FrameConstants, 3 * 64 + 9 * 16);
 
 struct GpuVertex {
   vec4 position_u;  // xyz object-space position; w: texture u

@@ -34,8 +34,11 @@ LANTERN_CONST uint kSceneTexels = 17u;               // uint[] every texture's m
 LANTERN_CONST uint kSceneTexturedEmitters = 18u;     // GpuTexturedEmitter[]
 LANTERN_CONST uint kSceneVertexTangents = 19u;       // vec4[] per GpuVertex (normal-mapped levels)
 LANTERN_CONST uint kSceneVertexTexcoords1 = 20u;     // vec2[] per GpuVertex (TEXCOORD_1 levels)
-LANTERN_CONST uint kSceneTlas = 21u;  // accelerationStructureEXT (ray-query visibility only)
-LANTERN_CONST uint kSceneBufferCount = 22u;
+LANTERN_CONST uint kSceneVolumes = 21u;              // GpuVolume[] (shared/volume.h), this frame
+LANTERN_CONST uint kSceneVolumeCells = 22u;          // GpuVolumeCell[] (majorant cells, bricks)
+LANTERN_CONST uint kSceneVolumeValues = 23u;         // float[] brick voxels
+LANTERN_CONST uint kSceneTlas = 24u;  // accelerationStructureEXT (ray-query visibility only)
+LANTERN_CONST uint kSceneBufferCount = 25u;
 
 // First binding of a pass's own resources (set 0).
 LANTERN_CONST uint kPassBindingBase = kSceneBufferCount;

@@ -45,9 +45,10 @@ LANTERN_CONST uint kVolumeBrickVoxels = 512u;
 LANTERN_CONST uint kVolumeEmptyBrick = 0xFFFFFFFFu;
 // "No collision": what exponential_sample returns in a medium with zero extinction.
 LANTERN_CONST float kVolumeNoCollision = 3.0e38f;
-// Tentative collisions one tracking call takes at most. A segment whose majorant optical depth
-// is far beyond this is opaque for any practical purpose; the estimate is then cut short there
-// (a bias of at most the transmittance left, which is ~0 by then).
+// Tentative collisions one tracking call takes at most. A segment that needs more has a majorant
+// optical depth beyond ~4096; the estimate then returns 0 (opaque) rather than the product so
+// far, which would skip the rest of the segment and could leak light through a dense voxel the
+// walk never reached (a dark bias only where the majorant alone is that deep).
 LANTERN_CONST uint kVolumeMaxTrackingSteps = 4096u;
 
 // One volume of the scene (std430). Index space is the grid's: voxel centres at integer
@@ -76,6 +77,18 @@ struct GpuVolumeCell {
   uint pad0;
 };
 LANTERN_STATIC_SIZE(GpuVolumeCell, 16);
+
+// Push constants of the volume.* passes (lighting/volume/): the image they run over.
+struct VolumePush {
+  uint width;
+  uint height;
+  uint pad0;
+  uint pad1;
+};
+LANTERN_STATIC_SIZE(VolumePush, 16);
+LANTERN_CONST uint kVolumeGroupSize = 8u;
+// The random stream of volume.camera's transmittance estimates (frame_rng's pass).
+LANTERN_CONST uint kVolumeRngCamera = 0x564f4cu;
 
 // sigma_t (1/m per channel) of volume v where the grid's value is `density`.
 LANTERN_FUNC vec3 volume_extinction(GpuVolume v, float density) {
@@ -223,9 +236,11 @@ LANTERN_FUNC vec3 ratio_tracking(LANTERN_MEDIUM_PARAM uint medium, vec3 origin, 
     return transmittance;
   }
   float t = t0;
+  bool reached_end = false;
   for (uint step = 0u; step < kVolumeMaxTrackingSteps; ++step) {
     t += exponential_sample(majorant, rng_next_float(rng));
     if (t >= t1) {
+      reached_end = true;
       break;
     }
     vec3 sigma_t = medium_extinction(LANTERN_MEDIUM medium, origin + t * dir);
@@ -239,7 +254,7 @@ LANTERN_FUNC vec3 ratio_tracking(LANTERN_MEDIUM_PARAM uint medium, vec3 origin, 
       transmittance /= survive;
     }
   }
-  return transmittance;
+  return reached_end ? transmittance : vec3(0.0f);
 }
 
 // Residual ratio tracking (Novak et al. 2014): the control extinction `control` (per channel,
@@ -259,9 +274,11 @@ LANTERN_FUNC vec3 residual_ratio_tracking(LANTERN_MEDIUM_PARAM uint medium, vec3
     return transmittance;
   }
   float t = t0;
+  bool reached_end = false;
   for (uint step = 0u; step < kVolumeMaxTrackingSteps; ++step) {
     t += exponential_sample(residual_majorant, rng_next_float(rng));
     if (t >= t1) {
+      reached_end = true;
       break;
     }
     vec3 residual = medium_extinction(LANTERN_MEDIUM medium, origin + t * dir) - control;
@@ -275,7 +292,7 @@ LANTERN_FUNC vec3 residual_ratio_tracking(LANTERN_MEDIUM_PARAM uint medium, vec3
       transmittance /= survive;
     }
   }
-  return transmittance;
+  return reached_end ? transmittance : vec3(0.0f);
 }
 
 LANTERN_END_SHARED

@@ -59,6 +59,7 @@ layout(std430, binding = 22) buffer GpuTexturedEmitterProbe { GpuTexturedEmitter
 layout(std430, binding = 23) buffer GpuVolumeProbe { GpuVolume gpu_volumes[]; };
 layout(std430, binding = 24) buffer GpuVolumeCellProbe { GpuVolumeCell gpu_volume_cells[]; };
 layout(std430, binding = 25) buffer VolumeDdaProbe { VolumeDda volume_ddas[]; };
+layout(std430, binding = 26) buffer VolumePushProbe { VolumePush volume_pushes[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -88,4 +89,5 @@ void main() {
   gpu_volumes[0] = gpu_volumes[1];
   gpu_volume_cells[0] = gpu_volume_cells[1];
   volume_ddas[0] = volume_ddas[1];
+  volume_pushes[0] = volume_pushes[1];
 }

@@ -289,6 +289,7 @@ class RestirBiasTest : public runtime::test::GpuTest {
       if (mode_selected(mode) && (!jitter || std::getenv("LANTERN_BIAS_MODES") != nullptr ||
                                   std::string(mode.name) == "balance"))
         modes.push_back(&mode);
+    ASSERT_FALSE(modes.empty()) << "LANTERN_BIAS_MODES names no mode this test runs";
     std::vector<std::vector<double>> errors(modes.size());
     const bool trace = std::getenv("LANTERN_BIAS_TRACE") != nullptr;
     for (std::uint32_t seed = 0; seed < p.seeds; ++seed) {
