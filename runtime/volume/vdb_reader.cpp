@@ -131,7 +131,10 @@ class Reader {
   VolumeGrid read() {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file_, ec)) {
-      fail(ec ? fmt::format("volume file cannot be read: {}", ec.message()) : "volume file not found");
+      const bool missing = !ec || ec == std::errc::no_such_file_or_directory ||
+                           ec == std::errc::not_a_directory;
+      fail(missing ? "volume file not found"
+                   : fmt::format("volume file cannot be read: {}", ec.message()));
     }
     initialize_openvdb();
     openvdb::FloatGrid::Ptr grid;
