@@ -15,12 +15,13 @@
 #include "engine/scene/finite.h"
 
 namespace lantern::runtime {
-namespace {
 
 void initialize_openvdb() {
   static std::once_flag once;
   std::call_once(once, [] { openvdb::initialize(); });
 }
+
+namespace {
 
 std::string names_of(const openvdb::io::File& file) {
   std::string out;

@@ -13,6 +13,9 @@
 
 namespace lantern::runtime {
 
+// Registers OpenVDB's grid types, once per process (the reader and the generator both need it).
+void initialize_openvdb();
+
 // Caps that keep one grid within a device storage binding (lavapipe: 128 MiB per binding, see
 // PLATFORM.md): active voxels (tiles counted by the voxels they cover), and cells of the
 // active box (16 bytes each, empty or not).

@@ -10,9 +10,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <mutex>
 
 #include "engine/core/error.h"
+#include "runtime/volume/vdb_reader.h"
 
 namespace lantern::runtime {
 namespace {
@@ -97,11 +97,6 @@ float density(const VolumeGenerator& g, glm::vec3 p) {
     }
   }
   return 0.0f;
-}
-
-void initialize_openvdb() {
-  static std::once_flag once;
-  std::call_once(once, [] { openvdb::initialize(); });
 }
 
 std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t size) {
