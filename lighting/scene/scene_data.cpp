@@ -256,6 +256,10 @@ std::vector<BvhInstanceDesc> bvh_instance_descs(const Level& level) {
 }
 
 SceneData build_scene_data(const Level& level) {
+  return build_scene_data(level, runtime::load_volume_grids(level));
+}
+
+SceneData build_scene_data(const Level& level, const std::vector<runtime::VolumeGrid>& grids) {
   SceneData scene;
   scene.textures = TextureSet::build(level);
   for (std::size_t m = 0; m < level.materials.size(); ++m)
@@ -283,7 +287,9 @@ SceneData build_scene_data(const Level& level) {
 
   // Participating media: every grid packed into the shared cell and value arrays (none, and
   // OpenVDB untouched, without volumes).
-  const std::vector<runtime::VolumeGrid> grids = runtime::load_volume_grids(level);
+  if (grids.size() != level.volumes.size())
+    throw InputError(fmt::format("{}: {} volume grids for {} volumes", level.source.string(),
+                                 grids.size(), level.volumes.size()));
   for (std::size_t v = 0; v < grids.size(); ++v) {
     const std::uint32_t first_cell =
         runtime::pack_volume_grid(grids[v], scene.volume_cells, scene.volume_values);

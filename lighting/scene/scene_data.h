@@ -10,6 +10,7 @@
 #include "lighting/bvh/scene_bvh.h"
 #include "lighting/lights/light_table.h"
 #include "lighting/textures/texture_set.h"
+#include "runtime/volume/volume_grid.h"
 #include "shared/scene.h"
 #include "shared/textures.h"
 #include "shared/volume.h"
@@ -101,5 +102,8 @@ std::vector<BvhInstanceDesc> bvh_instance_descs(const Level& level);
 // Builds everything; throws lantern::InputError on bad level data (bad indices, singular
 // transforms, out-of-range material or mesh references).
 SceneData build_scene_data(const Level& level);
+// The same from the level's grids already loaded (runtime::load_volume_grids(level)), for a
+// caller that also reads them (`lantern info`): the .vdb files are read once.
+SceneData build_scene_data(const Level& level, const std::vector<runtime::VolumeGrid>& grids);
 
 }  // namespace lantern::lighting

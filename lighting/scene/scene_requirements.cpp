@@ -8,6 +8,7 @@
 #include "lighting/lights/environment_map.h"
 #include "lighting/scene/scene_data.h"
 #include "lighting/scene/volume_requirements.h"
+#include "runtime/volume/volume_set.h"
 #include "shared/alias_table.h"
 #include "shared/bvh.h"
 #include "shared/lights.h"
@@ -31,7 +32,9 @@ std::string mib(std::uint64_t bytes) {
 
 void describe_requirements(const Level& level, std::uint32_t width, std::uint32_t height,
                            LevelSummary& summary, const VisibilityChoice& visibility) {
-  const SceneData scene = build_scene_data(level);
+  // The volumes' grids are read once, for the scene and for the "volumes" section.
+  const std::vector<runtime::VolumeGrid> grids = runtime::load_volume_grids(level);
+  const SceneData scene = build_scene_data(level, grids);
   const std::size_t lights = scene.lights.lights().size();
   const std::size_t analytic = lights - scene.emissive_triangles;
 
@@ -162,7 +165,7 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
                                   {"note", "integrator buffers (ReSTIR reservoirs) come on top; "
                                            "`lantern bench --json` reports them"}};
 
-  describe_volumes(level, summary);
+  describe_volumes(level, grids, summary);
 
   nlohmann::json variants = nlohmann::json::array();
   variants.push_back(visibility.backend == VisibilityBackend::RayQuery

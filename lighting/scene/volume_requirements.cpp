@@ -3,7 +3,6 @@
 
 #include <fmt/format.h>
 
-#include "runtime/volume/volume_set.h"
 
 namespace lantern::lighting {
 namespace {
@@ -14,7 +13,8 @@ std::string mib(std::uint64_t bytes) {
 
 }  // namespace
 
-void describe_volumes(const Level& level, LevelSummary& summary) {
+void describe_volumes(const Level& level, const std::vector<runtime::VolumeGrid>& grids,
+                      LevelSummary& summary) {
   if (level.volumes.empty()) {
     summary.enabled["volumes"] = {{"structure", "none"},
                                   {"why", "the level has no volumes"},
@@ -22,7 +22,6 @@ void describe_volumes(const Level& level, LevelSummary& summary) {
                                   {"bytes", 0}};
     return;
   }
-  const std::vector<runtime::VolumeGrid> grids = runtime::load_volume_grids(level);
   nlohmann::json list = nlohmann::json::array();
   std::uint64_t bytes = 0;
   for (std::size_t i = 0; i < grids.size(); ++i) {

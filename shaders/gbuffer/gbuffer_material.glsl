@@ -35,7 +35,7 @@ struct GBufferTexcoords {
 // load is a per-lane gather on lavapipe).
 vec4 gbuffer_texture(uint texture, GBufferTexcoords tc) {
   GpuTexture t = scene_textures.t[texture];
-  uint set = t.transform_u.w == 1.0 ? 1u : 0u;
+  uint set = texture_texcoord_set(t);
   vec4 duv = tc.duv[set];
   vec2 ax = vec2(dot(t.transform_u.xy, duv.xy), dot(t.transform_v.xy, duv.xy));
   vec2 ay = vec2(dot(t.transform_u.xy, duv.zw), dot(t.transform_v.xy, duv.zw));

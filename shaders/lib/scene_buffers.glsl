@@ -90,7 +90,7 @@ vec2 scene_vertex_texcoord(uint vertex, uint set) {
 }
 // The texcoord set texture record `texture` samples (GpuTexture.transform_u.w).
 uint scene_texture_set(uint texture) {
-  return scene_textures.t[texture].transform_u.w == 1.0 ? 1u : 0u;
+  return texture_texcoord_set(scene_textures.t[texture]);
 }
 
 // Radiance factor of a textured triangle light (GpuLight.radiance.w names its record) at
@@ -114,11 +114,12 @@ bool scene_alpha_accept(uint instance, uint primitive, float u, float v) {
   float alpha = m.base_color.a;
   if (m.textures.x != kNoTexture) {
     uint base = geometry.y + 3u * primitive;
-    uint set = scene_texture_set(m.textures.x);
+    GpuTexture t = scene_textures.t[m.textures.x];  // loaded once: its set, then its texels
+    uint set = texture_texcoord_set(t);
     vec2 uv = (1.0 - u - v) * scene_vertex_texcoord(geometry.w + scene_indices.i[base], set) +
               u * scene_vertex_texcoord(geometry.w + scene_indices.i[base + 1u], set) +
               v * scene_vertex_texcoord(geometry.w + scene_indices.i[base + 2u], set);
-    alpha *= texture_sample(m.textures.x, uv, 0.0).a;
+    alpha *= texture_sample_record(t, uv, 0.0).a;
   }
   return alpha >= cutoff;
 }

@@ -44,6 +44,11 @@ struct GpuTexture {
 };
 LANTERN_STATIC_SIZE(GpuTexture, 64);
 
+// The texcoord set (0: TEXCOORD_0, 1: TEXCOORD_1) a texture record samples.
+LANTERN_FUNC uint texture_texcoord_set(GpuTexture t) {
+  return t.transform_u.w == 1.0f ? 1u : 0u;
+}
+
 // A material texture slot's uv: the texture transform applied to the mesh's texcoords.
 LANTERN_FUNC vec2 texture_transform_uv(GpuTexture t, vec2 uv) {
   vec3 h = vec3(uv.x, uv.y, 1.0f);

@@ -207,10 +207,13 @@ inline vec3 medium_extinction(const VolumeMedium& m, uint, vec3 p) {
 #define LANTERN_VOLUME_MEDIUM
 #endif
 
-// Ratio tracking at each cell's majorant.
-LANTERN_FUNC vec3 volume_transmittance_ratio(LANTERN_VOLUME_GRID_PARAM uint medium, GpuVolume v,
-                                             vec3 origin, vec3 dir, float t_min, float t_max,
-                                             float roulette, LANTERN_INOUT(uint) rng) {
+// The walk both estimators share: the majorant cells front to back, one segment estimate each
+// (ratio tracking at the cell's majorant, or with `residual` residual ratio tracking with the
+// cell's min_density extinction as the control), stopping once every channel is 0.
+LANTERN_FUNC vec3 volume_transmittance_walk(LANTERN_VOLUME_GRID_PARAM uint medium, GpuVolume v,
+                                            vec3 origin, vec3 dir, float t_min, float t_max,
+                                            float roulette, bool residual,
+                                            LANTERN_INOUT(uint) rng) {
   vec3 transmittance = vec3(1.0f);
   VolumeDda dda;
   if (!volume_dda_begin(v, origin, dir, t_min, t_max, dda)) {
@@ -220,9 +223,16 @@ LANTERN_FUNC vec3 volume_transmittance_ratio(LANTERN_VOLUME_GRID_PARAM uint medi
   float t1;
   GpuVolumeCell cell;
   while (volume_dda_next(LANTERN_VOLUME_GRID v, dda, t0, t1, cell)) {
-    float majorant = cell.max_density * v.absorption.w;
-    transmittance *=
-        ratio_tracking(LANTERN_VOLUME_MEDIUM medium, origin, dir, t0, t1, majorant, roulette, rng);
+    if (residual) {
+      vec3 control = volume_extinction(v, cell.min_density);
+      float majorant = (cell.max_density - cell.min_density) * v.absorption.w;
+      transmittance *= residual_ratio_tracking(LANTERN_VOLUME_MEDIUM medium, origin, dir, t0, t1,
+                                               control, majorant, roulette, rng);
+    } else {
+      float majorant = cell.max_density * v.absorption.w;
+      transmittance *= ratio_tracking(LANTERN_VOLUME_MEDIUM medium, origin, dir, t0, t1, majorant,
+                                      roulette, rng);
+    }
     if (transmittance.x == 0.0f && transmittance.y == 0.0f && transmittance.z == 0.0f) {
       break;
     }
@@ -230,28 +240,20 @@ LANTERN_FUNC vec3 volume_transmittance_ratio(LANTERN_VOLUME_GRID_PARAM uint medi
   return transmittance;
 }
 
+// Ratio tracking at each cell's majorant.
+LANTERN_FUNC vec3 volume_transmittance_ratio(LANTERN_VOLUME_GRID_PARAM uint medium, GpuVolume v,
+                                             vec3 origin, vec3 dir, float t_min, float t_max,
+                                             float roulette, LANTERN_INOUT(uint) rng) {
+  return volume_transmittance_walk(LANTERN_VOLUME_GRID medium, v, origin, dir, t_min, t_max,
+                                   roulette, false, rng);
+}
+
 // Residual ratio tracking with each cell's min_density extinction as the control.
 LANTERN_FUNC vec3 volume_transmittance_residual(LANTERN_VOLUME_GRID_PARAM uint medium, GpuVolume v,
                                                 vec3 origin, vec3 dir, float t_min, float t_max,
                                                 float roulette, LANTERN_INOUT(uint) rng) {
-  vec3 transmittance = vec3(1.0f);
-  VolumeDda dda;
-  if (!volume_dda_begin(v, origin, dir, t_min, t_max, dda)) {
-    return transmittance;
-  }
-  float t0;
-  float t1;
-  GpuVolumeCell cell;
-  while (volume_dda_next(LANTERN_VOLUME_GRID v, dda, t0, t1, cell)) {
-    vec3 control = volume_extinction(v, cell.min_density);
-    float residual = (cell.max_density - cell.min_density) * v.absorption.w;
-    transmittance *= residual_ratio_tracking(LANTERN_VOLUME_MEDIUM medium, origin, dir, t0, t1,
-                                             control, residual, roulette, rng);
-    if (transmittance.x == 0.0f && transmittance.y == 0.0f && transmittance.z == 0.0f) {
-      break;
-    }
-  }
-  return transmittance;
+  return volume_transmittance_walk(LANTERN_VOLUME_GRID medium, v, origin, dir, t_min, t_max,
+                                   roulette, true, rng);
 }
 
 LANTERN_END_SHARED

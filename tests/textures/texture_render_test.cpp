@@ -282,13 +282,10 @@ TEST_F(TextureRenderTest, EmissiveTexturedQuadMatchesQuadrature) {
                  "restir (4 x 16 frames)");
 }
 
-// An alpha-masked 1 m quad at height 0.75 under a point light at (0, 1.5, 0): its texels with
-// z < 0 (u < 0.5) are opaque, the rest cut out (nearest sampling, cutoff 0.5).
-TEST_F(TextureRenderTest, AlphaCutoutCastsTheCutOutShadow) {
-  constexpr double kOccluderY = 0.75;
-  Level level = base_level("alpha_cutout");
-  level.meshes.push_back(make_plane(glm::vec2(1.0f, 1.0f)));
-  level.materials.push_back(make_lambert(0.5f));
+// The floor instance (mesh 0, material 0) and an alpha-masked quad (mesh 1, a 1 m plane the
+// caller added) at `height`: its material's 8x8 texture is opaque for x < 4 (u < 0.5, world
+// z < 0) and cut out elsewhere (nearest sampling, cutoff 0.5); the mask is material 1.
+void add_floor_and_masked_quad(Level& level, double height) {
   Material mask = make_lambert(0.3f);
   mask.alpha_mode = AlphaMode::Mask;
   mask.alpha_cutoff = 0.5f;
@@ -299,12 +296,22 @@ TEST_F(TextureRenderTest, AlphaCutoutCastsTheCutOutShadow) {
                     }));
   level.materials.push_back(mask);
   level.instances.push_back(Instance{});
-  Instance occluder;
-  occluder.mesh = 1;
-  occluder.material = 1;
-  occluder.transform.translation = glm::vec3(0.0f, static_cast<float>(kOccluderY), 0.0f);
-  occluder.world = occluder.transform.matrix();
-  level.instances.push_back(occluder);
+  Instance quad;
+  quad.mesh = 1;
+  quad.material = 1;
+  quad.transform.translation = glm::vec3(0.0f, static_cast<float>(height), 0.0f);
+  quad.world = quad.transform.matrix();
+  level.instances.push_back(quad);
+}
+
+// An alpha-masked 1 m quad at height 0.75 under a point light at (0, 1.5, 0): its texels with
+// z < 0 (u < 0.5) are opaque, the rest cut out (nearest sampling, cutoff 0.5).
+TEST_F(TextureRenderTest, AlphaCutoutCastsTheCutOutShadow) {
+  constexpr double kOccluderY = 0.75;
+  Level level = base_level("alpha_cutout");
+  level.meshes.push_back(make_plane(glm::vec2(1.0f, 1.0f)));
+  level.materials.push_back(make_lambert(0.5f));
+  add_floor_and_masked_quad(level, kOccluderY);
   Light light = point_light();
   light.position = glm::vec3(0.0f, 1.5f, 0.0f);
   level.lights.push_back(light);
@@ -599,21 +606,7 @@ TEST_F(TextureRenderTest, BothGBufferMethodsSampleTexturesAndCutOut) {
   Material floor = make_lambert(1.0f);
   floor.base_color_texture.image = test::add_png(level, kTex, kTex, texels);
   level.materials.push_back(floor);
-  Material mask = make_lambert(0.3f);
-  mask.alpha_mode = AlphaMode::Mask;
-  mask.base_color_texture.sampler.mag_linear = false;
-  mask.base_color_texture.image =
-      test::add_png(level, 8, 8, test::make_rgba8(8, 8, [](std::uint32_t x, std::uint32_t) {
-                      return glm::vec4(1.0f, 1.0f, 1.0f, x < 4 ? 1.0f : 0.0f);
-                    }));
-  level.materials.push_back(mask);
-  level.instances.push_back(Instance{});
-  Instance quad;
-  quad.mesh = 1;
-  quad.material = 1;
-  quad.transform.translation = glm::vec3(0.0f, static_cast<float>(kQuadY), 0.0f);
-  quad.world = quad.transform.matrix();
-  level.instances.push_back(quad);
+  add_floor_and_masked_quad(level, kQuadY);
   const TestTexture tex = decode(kTex, kTex, texels, true);
   const lighting::SceneData scene = lighting::build_scene_data(level);
   const gpu::FrameConstants fc =
