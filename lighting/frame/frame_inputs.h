@@ -70,6 +70,9 @@ class Integrator {
   // The visibility backend its tracing passes' shaders were loaded for: the FrameRenderer builds
   // the scene to match (a TLAS for ray query).
   virtual VisibilityBackend visibility() const { return VisibilityBackend::Bvh; }
+  // Samples per pixel per frame the media passes take along camera rays (transmittance and
+  // in-scattering, lighting/volume/): 1 for the real-time integrators, spp for the reference.
+  virtual std::uint32_t volume_samples() const { return 1; }
   [[nodiscard]] virtual runtime::graph::BufferHandle add_passes(
       runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
       runtime::graph::BufferHandle hdr) = 0;

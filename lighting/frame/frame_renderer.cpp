@@ -67,15 +67,8 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
   denoiser_ = std::make_unique<Denoiser>(device, shaders);
   upscaler_ = std::make_unique<Upscaler>(device, shaders);
   if (scene_->volume_count() > 0) {
-    volume_camera_ = std::make_unique<VolumeCameraPass>(device, shaders);
-    // Said once per process: what of the media is rendered this round.
-    static bool told = false;
-    if (!told) {
-      told = true;
-      log::warn("{}: {} volume(s): media absorb and out-scatter along camera and shadow rays; "
-                "in-scattered light is not rendered yet",
-                scene_->level().name, scene_->volume_count());
-    }
+    volume_camera_ =
+        std::make_unique<VolumeCameraPass>(device, shaders, integrator_->visibility());
   }
   output_ = std::make_unique<runtime::ComputePipeline>(
       device, shaders.load("frame/frame_output.comp"),
@@ -164,7 +157,9 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   inputs_.light_count = scene_->light_count();
   inputs_.previous_light_count = scene_->previous_light_count();
   hdr = integrator_->add_passes(graph, inputs_, hdr);
-  if (volume_camera_) hdr = volume_camera_->add_pass(graph, inputs_, hdr);
+  if (volume_camera_) {
+    hdr = volume_camera_->add_pass(graph, inputs_, hdr, integrator_->volume_samples());
+  }
   raw_ = hdr;
   if (frame_output_ == FrameOutput::Denoised) hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr);
   if (width_ != output_width_ || height_ != output_height_) {

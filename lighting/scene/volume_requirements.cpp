@@ -49,10 +49,10 @@ void describe_volumes(const Level& level, const std::vector<runtime::VolumeGrid>
       {"why", fmt::format("{} volume{} in the level", grids.size(), grids.size() == 1 ? "" : "s")},
       {"grids", list},
       {"passes",
-       "volume passes: volume.camera (transmittance along camera rays, after the integrator) + "
-       "transmittance "
-       "on every shadow ray (residual ratio tracking over the majorant cells); in-scattering: "
-       "not yet"},
+       "volume passes: volume.camera (after the integrator: transmittance along camera rays + "
+       "single-scattered light from every light kind, distance sampling MIS'd with "
+       "equiangular) + transmittance on every shadow ray (residual ratio tracking over the "
+       "majorant cells)"},
       {"bytes", bytes},
       {"memory", mib(bytes)}};
 }

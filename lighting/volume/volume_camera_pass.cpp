@@ -1,19 +1,25 @@
-// volume.camera: the camera rays' transmittance (volume_camera_pass.h).
+// volume.camera: the media along camera rays (volume_camera_pass.h).
 #include "lighting/volume/volume_camera_pass.h"
+
+#include <algorithm>
 
 #include "shared/volume.h"
 
 namespace lantern::lighting {
 
-VolumeCameraPass::VolumeCameraPass(runtime::Device& device, runtime::ShaderLibrary& shaders)
-    : pass_(device, shaders, "volume.camera", "volume/volume_camera.comp") {}
+VolumeCameraPass::VolumeCameraPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                                   VisibilityBackend visibility)
+    : pass_(device, shaders, "volume.camera", "volume/volume_camera.comp",
+            visibility_variant(visibility)) {}
 
 runtime::graph::BufferHandle VolumeCameraPass::add_pass(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,
-                                                        runtime::graph::BufferHandle hdr) const {
+                                                        runtime::graph::BufferHandle hdr,
+                                                        std::uint32_t samples) const {
   gpu::VolumePush push{};
   push.width = inputs.width;
   push.height = inputs.height;
+  push.samples = std::max(samples, 1u);
   return pass_.add(graph, inputs, push, {{"radiance", hdr, ShaderPassBuffer::ReadWrite}},
                    {.x = inputs.width, .y = inputs.height, .threads = true})[0];
 }

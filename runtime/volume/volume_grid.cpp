@@ -42,7 +42,7 @@ gpu::GpuVolume VolumeGrid::lookup_record() const {
   v.index_to_world = glm::mat4(1.0f);
   v.scattering = glm::vec4(1.0f, 1.0f, 1.0f, 0.0f);
   v.absorption = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  v.support_min = glm::vec4(glm::vec3(active_min) - 1.0f, 0.0f);
+  v.support_min = glm::vec4(glm::vec3(active_min) - 1.0f, mean_value);
   v.support_max = glm::vec4(glm::vec3(active_max) + 1.0f, 0.0f);
   v.cell_origin = glm::vec4(glm::vec3(cell_origin), 0.0f);
   v.cells = glm::uvec4(cell_counts, 0u);
@@ -73,6 +73,8 @@ VolumeGridBuilder::VolumeGridBuilder(glm::ivec3 active_min, glm::ivec3 active_ma
 
 void VolumeGridBuilder::set(glm::ivec3 ijk, float value) {
   if (value == 0.0f) return;
+  value_sum_ += value;
+  ++non_zero_;
   const glm::ivec3 rel = ijk - origin_;
   const glm::ivec3 cell = rel / kBrick;  // rel >= 0: the box covers every active voxel
   const std::size_t index =
@@ -92,6 +94,9 @@ VolumeGrid VolumeGridBuilder::finish(VolumeGrid grid) {
   grid.cell_counts = counts_;
   grid.cells = std::move(cells_);
   grid.values = std::move(values_);
+  grid.mean_value = non_zero_ > 0 ? static_cast<float>(value_sum_ / double(non_zero_)) : 0.0f;
+  value_sum_ = 0.0;
+  non_zero_ = 0;
   const gpu::VolumeGridView view = grid.view();
   const gpu::GpuVolume record = grid.lookup_record();
   auto has_brick = [&](glm::ivec3 c) {

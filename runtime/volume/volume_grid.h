@@ -33,6 +33,7 @@ struct VolumeGrid {
   glm::ivec3 active_max{-1};
   std::uint64_t active_voxels = 0;  // OpenVDB's count (voxels and tiles)
   float max_value = 0.0f;           // over active voxels (>= 0)
+  float mean_value = 0.0f;          // over the non-zero voxels (the scattering-distance guide)
   glm::ivec3 cell_origin{0};
   glm::uvec3 cell_counts{0};
   std::vector<gpu::GpuVolumeCell> cells;  // brick indices into this grid's `values`
@@ -66,7 +67,7 @@ class VolumeGridBuilder {
  public:
   VolumeGridBuilder(glm::ivec3 active_min, glm::ivec3 active_max);
   void set(glm::ivec3 ijk, float value);
-  // Computes the majorant grid; leaves the builder empty.
+  // Computes the majorant grid and the mean non-zero value; leaves the builder empty.
   VolumeGrid finish(VolumeGrid header);
 
  private:
@@ -74,6 +75,8 @@ class VolumeGridBuilder {
   glm::uvec3 counts_;
   std::vector<gpu::GpuVolumeCell> cells_;
   std::vector<float> values_;
+  double value_sum_ = 0.0;
+  std::uint64_t non_zero_ = 0;
 };
 
 // Appends the grid's cells and brick values to arrays several volumes share (the GPU's cell and

@@ -18,6 +18,7 @@
 #include "shared/lang.h"
 #include "shared/lights.h"
 #include "shared/sampling.h"
+#include "shared/volume.h"
 
 LANTERN_BEGIN_SHARED
 
@@ -179,6 +180,31 @@ LANTERN_FUNC vec3 light_eval_contribution(GpuLight light, vec2 uv, vec3 x, vec3 
                                           float specular, float scene_radius) {
   return light_eval_contribution_at(light, light_eval_position(light, uv, x, scene_radius), x, n,
                                     ng, v, albedo, roughness, metallic, specular);
+}
+
+// --- Media: the same light seen from a scattering point x (shared/volume.h conventions) -------
+// The phase function takes the place of f cos: a camera ray of unit direction ray_dir scatters
+// towards the light with Henyey-Greenstein anisotropy g. Multiply by sigma_s(x) for the
+// in-scattered radiance per metre.
+
+// phase(dot(ray_dir, l)) * radiance * geometry; zero for non-finite inputs.
+LANTERN_FUNC vec3 light_eval_scattered_incident(vec3 l, vec3 radiance, float geometry,
+                                                vec3 ray_dir, float g) {
+  vec3 c = hg_phase(dot(ray_dir, l), g) * radiance * geometry;
+  bool finite = is_finite(c.x) && is_finite(c.y) && is_finite(c.z);
+  return finite ? max(c, vec3(0.0f)) : vec3(0.0f);
+}
+
+// Unshadowed contribution of the light point y (light_eval_position's) at medium point x: zero
+// behind a one-sided triangle, outside a spot cone or a punctual range, and where x is on y.
+LANTERN_FUNC vec3 light_eval_scattered_at(GpuLight light, vec3 y, vec3 x, vec3 ray_dir,
+                                          float g) {
+  vec3 l;
+  float geometry = light_eval_geometry(light, y, x, l);
+  if (!(geometry > 0.0f)) {
+    return vec3(0.0f);
+  }
+  return light_eval_scattered_incident(l, light_eval_radiance(light, y), geometry, ray_dir, g);
 }
 
 // ReSTIR's target function p̂(y) at x: luminance of the unshadowed contribution, guarded.

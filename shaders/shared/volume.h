@@ -1,8 +1,8 @@
 // Participating media, shared by GPU and CPU (CLI.md "Volume units"): the GPU records of a
 // volume and its majorant cells, the Henyey-Greenstein phase function, distance sampling in a
 // homogeneous medium (exponential, also truncated to a segment), equiangular sampling toward a
-// point, and ratio / residual ratio tracking transmittance estimators over a segment of
-// constant majorant. The grid lookups (bricks, trilinear sampling) are in shared/volume_grid.h.
+// point, their one-sample MIS for scattering distances on a camera ray, and ratio / residual
+// ratio tracking transmittance estimators over a segment of constant majorant. The grid lookups (bricks, trilinear sampling) are in shared/volume_grid.h.
 //
 // Conventions
 // - Directions are directions of travel. The phase function's cos_theta is the cosine between
@@ -59,8 +59,10 @@ struct GpuVolume {
   vec4 scattering;      // xyz: density_scale * scattering (1/m per unit grid value); w: HG g
   vec4 absorption;      // xyz: density_scale * absorption; w: max channel of (scattering +
                         // absorption).xyz, the extinction majorant per unit grid value
-  vec4 support_min;     // xyz: index-space box outside which the density is zero; w: 0
-  vec4 support_max;     //   (the active voxel box grown by one voxel: trilinear reach); w: 0
+  vec4 support_min;     // xyz: index-space box outside which the density is zero (the active
+                        //   voxel box grown by one voxel: trilinear reach); w: the mean grid
+                        //   value over its non-zero voxels (scattering distances' guide)
+  vec4 support_max;     // xyz: the box's upper corner; w: 0
   vec4 cell_origin;     // xyz: index of voxel (0,0,0) of cell (0,0,0), integers; w: 0
   uvec4 cells;          // xyz: cells per axis (x fastest in the cell array); w: first cell
 };
@@ -82,12 +84,12 @@ LANTERN_STATIC_SIZE(GpuVolumeCell, 16);
 struct VolumePush {
   uint width;
   uint height;
+  uint samples;  // volume.camera: transmittance + in-scattering samples per pixel (>= 1)
   uint pad0;
-  uint pad1;
 };
 LANTERN_STATIC_SIZE(VolumePush, 16);
 LANTERN_CONST uint kVolumeGroupSize = 8u;
-// The random stream of volume.camera's transmittance estimates (frame_rng's pass).
+// The random stream of volume.camera's estimates (frame_rng's pass).
 LANTERN_CONST uint kVolumeRngCamera = 0x564f4cu;
 
 // sigma_t (1/m per channel) of volume v where the grid's value is `density`.
@@ -127,6 +129,24 @@ LANTERN_FUNC vec3 hg_sample(vec3 w, float g, vec2 u) {
 
 LANTERN_FUNC float hg_pdf(vec3 w, vec3 w_scattered, float g) {
   return hg_phase(dot(w, w_scattered), g);
+}
+
+// Clips [t0, t1] of the ray origin + t dir to the box [lo, hi] (slabs); false when nothing is left.
+LANTERN_FUNC bool ray_box_clip(vec3 lo, vec3 hi, vec3 origin, vec3 dir, LANTERN_INOUT(float) t0,
+                               LANTERN_INOUT(float) t1) {
+  for (int a = 0; a < 3; ++a) {
+    if (abs(dir[a]) < 1e-30f) {
+      if (origin[a] < lo[a] || origin[a] > hi[a]) {
+        return false;
+      }
+      continue;
+    }
+    float ta = (lo[a] - origin[a]) / dir[a];
+    float tb = (hi[a] - origin[a]) / dir[a];
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  }
+  return t1 > t0;
 }
 
 // --- Homogeneous distance sampling --------------------------------------------------------------
@@ -216,6 +236,39 @@ LANTERN_FUNC float equiangular_pdf(vec3 origin, vec3 dir, vec3 light, float t_mi
   }
   float h = t - f.x;
   return f.y / ((theta_b - theta_a) * (f.y * f.y + h * h));
+}
+
+// --- Scattering distances on a camera ray (single scattering) --------------------------------
+// One distance in the segment [t0, t1] of a ray (origin, unit dir) that crosses a volume, for the
+// in-scattering estimate sigma_s(t) T(0, t) L_s(t) / pdf(t). Two techniques:
+//   exponential: density proportional to exp(-sigma (t - t0)), sigma the volume's guide
+//     extinction (exact importance sampling of the transmittance of a homogeneous medium);
+//   equiangular toward the light point `light` (Kulla & Fajardo 2012), when `toward_light`.
+// With both, each is picked with probability 1/2 (u.x) and the pdf is their mixture: the
+// one-sample balance heuristic, unbiased for any light point chosen independently of t.
+
+LANTERN_FUNC float scatter_distance_pdf(vec3 origin, vec3 dir, float t0, float t1, float sigma,
+                                        bool toward_light, vec3 light, float t) {
+  float p_exp = exponential_pdf_truncated(sigma, t1 - t0, t - t0);
+  if (!toward_light) {
+    return p_exp;
+  }
+  return 0.5f * (p_exp + equiangular_pdf(origin, dir, light, t0, t1, t));
+}
+
+LANTERN_FUNC float scatter_distance_sample(vec3 origin, vec3 dir, float t0, float t1, float sigma,
+                                           bool toward_light, vec3 light, vec2 u,
+                                           LANTERN_OUT(float) pdf) {
+  float t;
+  if (toward_light && u.x < 0.5f) {
+    float p_eq;
+    t = equiangular_sample(origin, dir, light, t0, t1, u.y, p_eq);
+  } else {
+    t = t0 + exponential_sample_truncated(sigma, t1 - t0, u.y);
+  }
+  t = clamp(t, t0, t1);
+  pdf = scatter_distance_pdf(origin, dir, t0, t1, sigma, toward_light, light, t);
+  return t;
 }
 
 // --- Transmittance estimators over one segment of constant majorant -----------------------------

@@ -120,19 +120,7 @@ LANTERN_FUNC bool volume_dda_begin(GpuVolume v, vec3 origin, vec3 dir, float t_m
   vec3 hi = lo + cells * float(kVolumeBrickSize);
   float t0 = t_min;
   float t1 = t_max;
-  for (int a = 0; a < 3; ++a) {
-    if (abs(dir[a]) < 1e-30f) {
-      if (origin[a] < lo[a] || origin[a] > hi[a]) {
-        return false;
-      }
-      continue;
-    }
-    float ta = (lo[a] - origin[a]) / dir[a];
-    float tb = (hi[a] - origin[a]) / dir[a];
-    t0 = max(t0, min(ta, tb));
-    t1 = min(t1, max(ta, tb));
-  }
-  if (!(t1 > t0)) {
+  if (!ray_box_clip(lo, hi, origin, dir, t0, t1)) {
     return false;
   }
   vec3 cell = clamp(volume_cell_of(v, origin + t0 * dir), vec3(0.0f), cells - vec3(1.0f));

@@ -1,17 +1,20 @@
-// volume.camera: the media's transmittance along every pixel's camera ray, applied in place to
-// the integrator's radiance (one pass for every integrator: baseline, reference and ReSTIR see
-// the same attenuation). The ray runs from the camera to the G-buffer's surface point, or for a
-// sky pixel along the pixel's view direction to kDirectionalShadowRadii scene radii (the sky is
-// seen through the fog too). Residual ratio tracking (lib/volumes.glsl): unbiased, exact in
-// homogeneous cells, from its own random stream, so E[radiance x T] = E[radiance] E[T].
-// In-scattered light is not added here (single scattering is the next step).
-// Reads: radiance, gbuffer position, the scene's volumes. Writes: radiance (in place).
-// History: none. Dispatch: one thread per pixel, 8x8 groups; FrameRenderer adds the pass only
-// for levels with volumes.
+// volume.camera: what the media do to every pixel's camera ray, applied to the integrator's
+// radiance in place (one pass for every integrator: baseline, reference and ReSTIR see the same
+// media): L = T(camera, surface) L_surface + in-scattered light, single scattering from every
+// light kind (lib/volume_scatter.glsl). The ray runs from the camera to the G-buffer's surface
+// point, or for a sky pixel along the pixel's view direction to kDirectionalShadowRadii scene
+// radii (the sky is seen through the fog too). Each of push.samples samples is one residual
+// ratio tracking transmittance (lib/volumes.glsl: unbiased, exact in homogeneous cells) and one
+// in-scattering sample per volume; their mean is added. Its own random stream, so
+// E[radiance x T] = E[radiance] E[T].
+// Reads: radiance, gbuffer position, the scene (volumes, lights, environment, visibility).
+// Writes: radiance (in place). History: none. Dispatch: one thread per pixel, 8x8 groups;
+// FrameRenderer adds the pass only for levels with volumes.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
 #include "lib/scene_buffers.glsl"
+#include "lib/volume_scatter.glsl"
 #include "shared/gbuffer.h"
 #include "shared/light_eval.h"
 
@@ -29,13 +32,28 @@ void main() {
   vec3 camera = fc.camera_position.xyz;
   vec4 position = imageLoad(gbuffer_position, ivec2(pixel));
   uint rng = frame_rng(pixel, kVolumeRngCamera);
-  vec3 t = gbuffer_is_sky(position.w)
-               ? scene_transmittance(camera, env_camera_ray_dir(fc, pixel),
-                                     kDirectionalShadowRadii * fc.scene.x, rng)
-               : scene_transmittance_between(camera, position.xyz, rng);
+  vec3 dir;
+  float t_end;
+  if (gbuffer_is_sky(position.w)) {
+    dir = env_camera_ray_dir(fc, pixel);
+    t_end = kDirectionalShadowRadii * fc.scene.x;
+  } else {
+    vec3 to_surface = position.xyz - camera;
+    t_end = length(to_surface);
+    dir = t_end > 0.0 ? to_surface / t_end : vec3(0.0, 0.0, -1.0);
+  }
+  uint samples = max(push.samples, 1u);
+  vec3 t = vec3(0.0);
+  vec3 inscattered = vec3(0.0);
+  for (uint s = 0u; s < samples; ++s) {
+    t += scene_transmittance(camera, dir, t_end, rng);
+    inscattered += scene_inscatter_sample(camera, dir, t_end, rng);
+  }
+  t /= float(samples);
+  inscattered /= float(samples);
   uint index = pixel.y * push.width + pixel.x;
   vec4 value = radiance.pixels[index];
-  vec3 rgb = value.rgb * t;
+  vec3 rgb = value.rgb * t + inscattered;
   if (!(is_finite(rgb.x) && is_finite(rgb.y) && is_finite(rgb.z))) rgb = vec3(0.0);
   radiance.pixels[index] = vec4(max(rgb, vec3(0.0)), value.a);
 }

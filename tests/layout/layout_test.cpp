@@ -124,7 +124,7 @@ const std::vector<StructLayout>& cpp_layouts() {
       {"VolumePush",
        sizeof(gpu::VolumePush),
        {LANTERN_MEMBER(VolumePush, width), LANTERN_MEMBER(VolumePush, height),
-        LANTERN_MEMBER(VolumePush, pad0), LANTERN_MEMBER(VolumePush, pad1)}},
+        LANTERN_MEMBER(VolumePush, samples), LANTERN_MEMBER(VolumePush, pad0)}},
       {"GpuVertex",
        sizeof(gpu::GpuVertex),
        {LANTERN_MEMBER(GpuVertex, position_u), LANTERN_MEMBER(GpuVertex, normal_v)}},

@@ -12,11 +12,10 @@
 #include <glm/glm.hpp>
 #include <string>
 
-#include "lighting/integrators/offline_render.h"
-#include "lighting/scene/frame_constants.h"
 #include "runtime/gpu/shader_library.h"
 #include "tests/restir/restir_test_support.h"
 #include "tests/runtime/gpu_test_support.h"
+#include "tests/volume/volume_render_support.h"
 
 namespace lantern {
 namespace {
@@ -51,35 +50,10 @@ class VolumeRenderTest : public runtime::test::GpuTest {
   runtime::ShaderLibrary shaders;
 
   runtime::ImageRGBA32F render(const Level& level, const std::string& integrator) {
-    lighting::OfflineRenderRequest request;
-    request.integrator.name = integrator;
-    if (integrator == "reference") request.integrator.spp = 4;
-    request.width = kWidth;
-    request.height = kHeight;
-    request.frames = 1;
-    request.average = true;
-    request.animate = false;
-    request.seed = 3;
-    auto result = lighting::render_offline(device, shaders, level, request);
-    EXPECT_EQ(result.images.size(), 1u);
-    EXPECT_EQ(result.images[0].count_non_finite(), 0u);
-    return result.images[0];
+    return test::render_volume_level(device, shaders, level, integrator,
+                                     {.width = kWidth, .height = kHeight});
   }
 };
-
-// The floor point pixel (x, y) sees: the camera ray (the renderer's own construction from
-// inv_view_proj) against y = 0.
-glm::dvec3 floor_point(const Level& level, std::uint32_t x, std::uint32_t y) {
-  const gpu::FrameConstants fc =
-      lighting::make_frame_constants(level.camera, kWidth, kHeight, 0, 1, {});
-  const glm::dmat4 inv(fc.inv_view_proj);
-  const glm::dvec2 ndc((x + 0.5) / kWidth * 2.0 - 1.0, (y + 0.5) / kHeight * 2.0 - 1.0);
-  const glm::dvec4 a = inv * glm::dvec4(ndc, 0.0, 1.0);
-  const glm::dvec4 b = inv * glm::dvec4(ndc, 0.5, 1.0);
-  const glm::dvec3 o = glm::dvec3(a) / a.w;
-  const glm::dvec3 d = glm::normalize(glm::dvec3(b) / b.w - o);
-  return o + d * (-o.y / d.y);
-}
 
 TEST_F(VolumeRenderTest, AbsorbingFogIsBeerLambertOnCameraAndShadowRays) {
   const auto clear = test::level_from_json("volume_clear", level_json(""));
@@ -92,7 +66,7 @@ TEST_F(VolumeRenderTest, AbsorbingFogIsBeerLambertOnCameraAndShadowRays) {
     std::size_t n = 0;
     for (std::uint32_t y = 0; y < kHeight; ++y)
       for (std::uint32_t x = 0; x < kWidth; ++x) {
-        const glm::dvec3 p = floor_point(*clear, x, y);
+        const glm::dvec3 p = test::floor_point(*clear, kWidth, kHeight, x, y);
         ASSERT_LT(std::max(std::abs(p.x), std::abs(p.z)), 3.0) << "the floor fills the view";
         const double t = std::exp(-kSigmaA * (glm::length(kCamera - p) + glm::length(kLight - p)));
         const std::size_t i = 4 * (std::size_t{y} * kWidth + x);
