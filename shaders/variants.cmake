@@ -10,6 +10,8 @@ set(LANTERN_VISIBILITY_SHADERS
   ${CMAKE_CURRENT_SOURCE_DIR}/restir/restir_initial.comp
   ${CMAKE_CURRENT_SOURCE_DIR}/restir/restir_shade.comp
   ${CMAKE_CURRENT_SOURCE_DIR}/volume/volume_camera.comp
+  ${CMAKE_CURRENT_SOURCE_DIR}/volume/volume_restir_initial.comp
+  ${CMAKE_CURRENT_SOURCE_DIR}/volume/volume_restir_spatial.comp
   ${CMAKE_CURRENT_SOURCE_DIR}/tests/visibility_probe.comp)
 foreach(src IN LISTS LANTERN_VISIBILITY_SHADERS)
   lantern_compile_shader(${src} rayquery DEFINES LANTERN_VISIBILITY_RAY_QUERY)

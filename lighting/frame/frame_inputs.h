@@ -70,6 +70,12 @@ class Integrator {
   // The visibility backend its tracing passes' shaders were loaded for: the FrameRenderer builds
   // the scene to match (a TLAS for ray query).
   virtual VisibilityBackend visibility() const { return VisibilityBackend::Bvh; }
+  // Called once by the FrameRenderer with the scene it built, before warm_up: where an
+  // integrator creates the passes its content needs (ReSTIR: media reservoirs for volumes).
+  virtual void prepare(const GpuScene& /*scene*/) {}
+  // True when its own passes render the media (transmittance and in-scattering along camera
+  // rays) for the prepared scene; otherwise the FrameRenderer adds volume.camera after it.
+  virtual bool renders_media() const { return false; }
   // Samples per pixel per frame the media passes take along camera rays (transmittance and
   // in-scattering, lighting/volume/): 1 for the real-time integrators, spp for the reference.
   virtual std::uint32_t volume_samples() const { return 1; }

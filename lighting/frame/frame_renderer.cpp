@@ -66,7 +66,8 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
       device, shaders, GBufferPassOptions{.textured = !scene_->data().textures.empty()});
   denoiser_ = std::make_unique<Denoiser>(device, shaders);
   upscaler_ = std::make_unique<Upscaler>(device, shaders);
-  if (scene_->volume_count() > 0) {
+  integrator_->prepare(*scene_);
+  if (scene_->volume_count() > 0 && !integrator_->renders_media()) {
     volume_camera_ =
         std::make_unique<VolumeCameraPass>(device, shaders, integrator_->visibility());
   }

@@ -109,7 +109,8 @@ class FrameRenderer {
   std::unique_ptr<Integrator> integrator_;
   std::unique_ptr<Denoiser> denoiser_;
   std::unique_ptr<Upscaler> upscaler_;
-  std::unique_ptr<VolumeCameraPass> volume_camera_;  // only for levels with volumes
+  // Levels with volumes whose integrator does not render the media itself.
+  std::unique_ptr<VolumeCameraPass> volume_camera_;
   DenoiseSettings denoise_;
   FrameOutput frame_output_ = FrameOutput::Raw;
   Jitter jitter_mode_ = Jitter::WhenUpscaling;

@@ -20,6 +20,7 @@ using runtime::graph::BufferHandle;
 RestirIntegrator::RestirIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
                                    const RestirSettings& settings, VisibilityBackend visibility)
     : device_(device),
+      shaders_(shaders),
       settings_(settings),
       visibility_(visibility),
       presample_(device, shaders, "presample"),
@@ -33,6 +34,7 @@ void RestirIntegrator::warm_up() {
       &presample_.pipeline(), &initial_.pipeline(), &temporal_.pipeline(), &spatial_.pipeline(),
       &shade_.pipeline()};
   runtime::warm_up(device_, pipelines);
+  if (volume_) runtime::warm_up(device_, volume_->pipelines());
 }
 
 void RestirIntegrator::apply_settings(
@@ -245,7 +247,15 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
       }
     }
   }
+  // The media along camera rays (levels with volumes): their own reservoirs, after the surfaces.
+  if (volume_) hdr = volume_->add_passes(graph, inputs, s.volume, hdr);
   return hdr;
+}
+
+void RestirIntegrator::prepare(const GpuScene& scene) {
+  if (scene.volume_count() > 0 && !volume_) {
+    volume_ = std::make_unique<VolumeRestir>(device_, shaders_, visibility_);
+  }
 }
 
 }  // namespace lantern::lighting

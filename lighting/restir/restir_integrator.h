@@ -3,7 +3,9 @@
 // chosen by ReservoirBuffers (reservoir_buffers.h) and mapped to render-graph resources here:
 // "restir.reservoirs" (history: this frame's final reservoirs), "restir.surfaces" (history: the
 // packed per-pixel surfaces, for next frame's disocclusion test), "restir.reservoirs.a/.b"
-// (transient scratch), "restir.temporal_status" (transient, for the disocclusion view).
+// (transient scratch), "restir.temporal_status" (transient, for the disocclusion view). Levels
+// with volumes add the media reservoirs' passes after restir.shade (lighting/volume/
+// volume_restir.h), which replace volume.camera for this integrator.
 #pragma once
 
 #include <memory>
@@ -15,6 +17,7 @@
 #include "lighting/restir/reservoir_buffers.h"
 #include "lighting/restir/restir_pass.h"
 #include "lighting/restir/restir_settings.h"
+#include "lighting/volume/volume_restir.h"
 
 namespace lantern::lighting {
 
@@ -31,6 +34,9 @@ class RestirIntegrator final : public Integrator {
   // restir.shade traces one shadow ray per pixel; restir.initial one more with initial_visibility.
   std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const override;
   VisibilityBackend visibility() const override { return visibility_; }
+  // Creates the media reservoirs' passes when the scene has volumes.
+  void prepare(const GpuScene& scene) override;
+  bool renders_media() const override { return volume_ != nullptr; }
   [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,
                                                         runtime::graph::BufferHandle hdr) override;
@@ -51,6 +57,7 @@ class RestirIntegrator final : public Integrator {
 
  private:
   runtime::Device& device_;
+  runtime::ShaderLibrary& shaders_;
   RestirSettings settings_;
   VisibilityBackend visibility_;
   RestirPass presample_;
@@ -59,6 +66,7 @@ class RestirIntegrator final : public Integrator {
   RestirPass spatial_;
   RestirPass shade_;
   ReservoirBuffers buffers_;
+  std::unique_ptr<VolumeRestir> volume_;  // levels with volumes only (prepare)
 };
 
 }  // namespace lantern::lighting

@@ -121,6 +121,8 @@ RestirSettings restir_preset(std::string_view name) {
     s.neighbours = 2;
     s.disocclusion_boost = 2;
     s.bias_correction = gpu::kBiasCorrectionNone;
+    s.volume.candidates = 4;
+    s.volume.neighbours = 2;
     return s;
   }
   if (name == "quality") {
@@ -130,6 +132,8 @@ RestirSettings restir_preset(std::string_view name) {
     s.neighbours = 5;
     s.disocclusion_boost = 3;
     s.bias_correction = gpu::kBiasCorrectionBalance;
+    s.volume.candidates = 16;
+    s.volume.neighbours = 5;
     return s;
   }
   throw InputError(
@@ -169,6 +173,16 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.normal_threshold = parse_float(key, value, -1.0f, 1.0f);
   } else if (key == "debug_view") {
     s.debug_view = parse_choice(key, value, kDebugViews, "a debug view");
+  } else if (key == "volume_candidates") {
+    s.volume.candidates = parse_uint(key, value, 1, gpu::kVolumeRestirMaxCandidates);
+  } else if (key == "volume_temporal") {
+    s.volume.temporal = parse_bool(key, value);
+  } else if (key == "volume_m_cap") {
+    s.volume.m_cap_factor = parse_float(key, value, 0.0f, 1000.0f);
+  } else if (key == "volume_neighbours") {
+    s.volume.neighbours = parse_uint(key, value, 0, gpu::kVolumeRestirMaxNeighbours);
+  } else if (key == "volume_radius") {
+    s.volume.radius = parse_float(key, value, 1.0f, 256.0f);
   } else {
     std::string keys;
     for (const auto& [k, v] : describe(RestirSettings{})) keys += (keys.empty() ? "" : ", ") + k;
@@ -202,6 +216,11 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"depth_threshold", format_float(s.depth_threshold)},
       {"normal_threshold", format_float(s.normal_threshold)},
       {"debug_view", choice_name(kDebugViews, s.debug_view)},
+      {"volume_candidates", std::to_string(s.volume.candidates)},
+      {"volume_temporal", flag(s.volume.temporal)},
+      {"volume_m_cap", format_float(s.volume.m_cap_factor)},
+      {"volume_neighbours", std::to_string(s.volume.neighbours)},
+      {"volume_radius", format_float(s.volume.radius)},
   };
 }
 

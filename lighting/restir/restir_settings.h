@@ -12,6 +12,7 @@
 
 #include "shared/reservoir_mis.h"
 #include "shared/restir.h"
+#include "shared/volume_restir.h"
 
 namespace lantern::lighting {
 
@@ -86,6 +87,23 @@ struct RestirSettings {
   // What hdr shows: radiance, or one of restir_debug_views() (a kRestirDebug* constant).
   std::uint32_t debug_view = gpu::kRestirDebugNone;
 
+  // Media reservoirs (levels with volumes; lighting/volume/volume_restir.h). The knobs of the
+  // in-scattering along camera rays, apart from the surfaces'.
+  struct Volume {
+    // (medium, distance, light) candidates per pixel. Raise where fog around many lights stays
+    // noisy; each costs a density lookup and a light evaluation (no ray).
+    std::uint32_t candidates = 8;
+    // Reuse last frame's media reservoirs at the reprojected scattering point.
+    bool temporal = true;
+    // History confidence cap as a multiple of `candidates`: lower when media or lights move.
+    float m_cap_factor = 20.0f;
+    // Spatial neighbours (0: none). Cost is quadratic (balance heuristic over all of them).
+    std::uint32_t neighbours = 3;
+    // Spatial disk radius in pixels.
+    float radius = 12.0f;
+    float m_cap() const { return m_cap_factor * static_cast<float>(candidates); }
+  } volume;
+
   // Current M: candidates drawn per pixel per frame.
   std::uint32_t candidates() const { return light_candidates + bsdf_candidates; }
   float m_cap() const { return m_cap_factor * static_cast<float>(candidates()); }
@@ -97,8 +115,10 @@ std::vector<std::string> restir_preset_names();
 
 // Sets one knob by its key (the field names above: light_candidates, bsdf_candidates, temporal,
 // m_cap (alias of m_cap_factor), spatial_passes, neighbours, disocclusion_boost, radius,
-// presample_tiles, visibility_reuse, bias_correction (a name from restir_bias_corrections()), initial_visibility, boiling_filter,
-// depth_threshold, normal_threshold, debug_view (a name from restir_debug_views())).
+// presample_tiles, visibility_reuse, bias_correction (a name from restir_bias_corrections()),
+// initial_visibility, boiling_filter, depth_threshold, normal_threshold, debug_view (a name from
+// restir_debug_views()); the media's volume_candidates, volume_temporal, volume_m_cap,
+// volume_neighbours, volume_radius).
 // lantern::InputError naming the key and the value for unknown keys, unparsable values and
 // values outside the allowed range (e.g. light_candidates = 0 or 10^9).
 void apply_setting(RestirSettings& settings, std::string_view key, std::string_view value);

@@ -49,10 +49,11 @@ void describe_volumes(const Level& level, const std::vector<runtime::VolumeGrid>
       {"why", fmt::format("{} volume{} in the level", grids.size(), grids.size() == 1 ? "" : "s")},
       {"grids", list},
       {"passes",
-       "volume passes: volume.camera (after the integrator: transmittance along camera rays + "
-       "single-scattered light from every light kind, distance sampling MIS'd with "
-       "equiangular) + transmittance on every shadow ray (residual ratio tracking over the "
-       "majorant cells)"},
+       "volume passes after the integrator: baseline and reference volume.camera, ReSTIR "
+       "volume.restir_initial + volume.restir_spatial (media reservoirs: RIS, temporal and "
+       "spatial reuse) (transmittance along camera rays + single-scattered light from every "
+       "light kind, distance sampling MIS'd with equiangular) + transmittance on every shadow "
+       "ray (residual ratio tracking over the majorant cells)"},
       {"bytes", bytes},
       {"memory", mib(bytes)}};
 }

@@ -15,9 +15,25 @@
 
 #include "shared/alias_table.h"
 #include "shared/environment.h"
+#include "shared/gbuffer.h"
 #include "shared/light_eval.h"
 #include "shared/lights.h"
+#include "shared/reservoir.h"
 #include "shared/volume_grid.h"
+
+// The camera ray of a pixel: from the camera to its G-buffer surface, or along its view
+// direction to kDirectionalShadowRadii scene radii for a sky pixel.
+void media_camera_ray(FrameConstants fc, uvec2 pixel, vec4 position, out vec3 dir,
+                      out float t_end) {
+  if (gbuffer_is_sky(position.w)) {
+    dir = env_camera_ray_dir(fc, pixel);
+    t_end = kDirectionalShadowRadii * fc.scene.x;
+  } else {
+    vec3 to_surface = position.xyz - fc.camera_position.xyz;
+    t_end = length(to_surface);
+    dir = t_end > 0.0 ? to_surface / t_end : vec3(0.0, 0.0, -1.0);
+  }
+}
 
 // A light chosen for a scattering point before its distance is drawn (nothing in the choice
 // depends on the point, so equiangular sampling can aim at it).
@@ -65,45 +81,138 @@ bool medium_choose_light(inout uint rng, out MediumLight m) {
   return m.pdf > 0.0;
 }
 
-// The unshadowed contribution phase Le G of light `m` at medium point x (camera ray direction
-// `dir`, anisotropy g), and the point its shadow ray ends at.
-vec3 medium_light_contribution(MediumLight m, vec3 x, vec3 dir, float g, out vec3 target) {
-  float far_t = kDirectionalShadowRadii * frame_constants.frame.scene.x;
-  if (m.index == kInvalidLight) {
-    target = x + m.direction * far_t;
-    return light_eval_scattered_incident(m.direction, m.radiance, 1.0, dir, g);
+// A scattering sample y = (medium, t, light, uv) (shared/volume_restir.h): the point at distance
+// t along a camera ray, lit by light sample (light, uv); kEnvironmentLight: uv is the map
+// coordinate of the direction; kInvalidLight: no sample.
+struct VolumeSample {
+  uint medium;
+  float t;
+  uint light;
+  vec2 uv;
+};
+
+VolumeSample volume_sample_of(uint medium, float t, MediumLight m) {
+  VolumeSample s;
+  s.medium = medium;
+  s.t = t;
+  s.light = m.index == kInvalidLight ? kEnvironmentLight : m.index;
+  s.uv = m.index == kInvalidLight ? env_world_direction_to_uv(env_header.env, m.direction) : m.uv;
+  return s;
+}
+
+// Where sample s lies on the ray origin + t dir (dir unit) ending at t_end: its volume, the ray
+// in that volume's index space (o, d) and where the ray enters its support. False past t_end,
+// outside the support, or for a medium or light that no longer exists.
+bool volume_sample_locate(VolumeSample s, vec3 origin, vec3 dir, float t_end, out GpuVolume v,
+                          out vec3 o, out vec3 d, out float t_enter) {
+  FrameConstants fc = frame_constants.frame;
+  t_enter = 0.0;
+  o = vec3(0.0);
+  d = dir;
+  bool light_ok = s.light == kEnvironmentLight || s.light < fc.counts.x;
+  if (!light_ok || s.medium >= fc.media.x || !(s.t <= t_end)) return false;
+  v = scene_volumes.v[s.medium];
+  o = (v.world_to_index * vec4(origin, 1.0)).xyz;
+  d = mat3(v.world_to_index) * dir;
+  float t_exit = t_end;
+  if (!ray_box_clip(v.support_min.xyz, v.support_max.xyz, o, d, t_enter, t_exit)) return false;
+  return s.t >= t_enter && s.t <= t_exit;
+}
+
+// The light of sample s seen from medium point x on a ray of direction dir (anisotropy g):
+// phase Le G (unshadowed), and the point its shadow ray ends at.
+vec3 volume_sample_light(VolumeSample s, vec3 x, vec3 dir, float g, out vec3 target) {
+  FrameConstants fc = frame_constants.frame;
+  if (s.light == kEnvironmentLight) {
+    vec3 l = env_uv_to_world_direction(env_header.env, s.uv);
+    target = x + l * (kDirectionalShadowRadii * fc.scene.x);
+    return light_eval_scattered_incident(l, env_miss_radiance(l), 1.0, dir, g);
   }
-  GpuLight light = scene_lights.l[m.index];
-  target = m.positional ? m.y : light_eval_position(light, m.uv, x, frame_constants.frame.scene.x);
+  GpuLight light = scene_lights.l[s.light];
+  target = light_eval_position(light, s.uv, x, fc.scene.x);
   return light_eval_scattered_at(light, target, x, dir, g);
 }
 
-// One single-scattering sample of volume `medium` along origin + t dir (dir unit), t in
-// [0, t_end]: an unbiased estimate of the radiance it scatters towards the origin.
-vec3 volume_inscatter_sample(uint medium, vec3 origin, vec3 dir, float t_end, inout uint rng) {
+// Sample s on the ray: the scattering point x, its shadow ray's end, and f = sigma_s(x) phase
+// Le G (unshadowed, no transmittance). False (f = 0) where volume_sample_locate is, or where the
+// light does not reach x.
+bool volume_sample_eval(VolumeSample s, vec3 origin, vec3 dir, float t_end, out vec3 x,
+                        out vec3 target, out vec3 f) {
+  x = origin + s.t * dir;
+  target = x;
+  f = vec3(0.0);
+  GpuVolume v;
+  vec3 o, d;
+  float t_enter;
+  if (!volume_sample_locate(s, origin, dir, t_end, v, o, d, t_enter)) return false;
+  vec3 sigma_s = volume_density_index(v, o + s.t * d) * v.scattering.xyz;
+  if (!(max(sigma_s.x, max(sigma_s.y, sigma_s.z)) > 0.0)) return false;
+  f = sigma_s * volume_sample_light(s, x, dir, v.scattering.w, target);
+  return f != vec3(0.0);
+}
+
+// ReSTIR's target p̂ of sample s on the ray (shared/volume_restir.h), made cheap: the cell's
+// majorant extinction stands in for sigma_s (one cell read instead of eight voxels; it bounds
+// the density, so p̂ > 0 wherever the integrand is), scaled by the medium's scattering share,
+// times luminance(phase Le G) and the cheap transmittance exp(-guide (t - t_enter)).
+float volume_sample_target(VolumeSample s, vec3 origin, vec3 dir, float t_end) {
+  GpuVolume v;
+  vec3 o, d;
+  float t_enter;
+  if (!volume_sample_locate(s, origin, dir, t_end, v, o, d, t_enter)) return 0.0;
+  float majorant = volume_majorant_index(v, o + s.t * d);  // max_density * absorption.w
+  if (!(majorant > 0.0)) return 0.0;
+  vec3 target;
+  vec3 c = volume_sample_light(s, origin + s.t * dir, dir, v.scattering.w, target);
+  float scattering_share = luminance(v.scattering.xyz) / max(v.absorption.w, 1e-30);
+  float guide = v.support_min.w * v.absorption.w;
+  return finite_positive_or_zero(luminance(c) * majorant * scattering_share *
+                                 exp(-guide * max(s.t - t_enter, 0.0)));
+}
+
+// The unbiased in-scattering integrand of sample s: f V(x, target) T(origin, x) T(x, target)
+// (both transmittances residual ratio tracking estimates of every medium).
+vec3 volume_sample_shade(VolumeSample s, vec3 origin, vec3 dir, float t_end, inout uint rng) {
+  vec3 x, target, f;
+  if (!volume_sample_eval(s, origin, dir, t_end, x, target, f)) return vec3(0.0);
+  if (!vis_visible(x, target)) return vec3(0.0);
+  return f * scene_transmittance(origin, dir, s.t, rng) * scene_transmittance_between(x, target, rng);
+}
+
+// Draws one candidate of volume `medium` on the ray: a light (medium_choose_light) and a distance
+// in the ray's segment through the support (scatter_distance_sample, MIS'd toward the light's
+// point). pdf: their joint density in the sample's measure (0: no candidate).
+VolumeSample volume_sample_draw(uint medium, vec3 origin, vec3 dir, float t_end, inout uint rng,
+                                out float pdf) {
+  VolumeSample none;
+  none.medium = medium;
+  none.t = 0.0;
+  none.light = kInvalidLight;
+  none.uv = vec2(0.0);
+  pdf = 0.0;
   GpuVolume v = scene_volumes.v[medium];
   vec3 o = (v.world_to_index * vec4(origin, 1.0)).xyz;
   vec3 d = mat3(v.world_to_index) * dir;
   float t0 = 0.0;
   float t1 = t_end;
-  if (!ray_box_clip(v.support_min.xyz, v.support_max.xyz, o, d, t0, t1)) return vec3(0.0);
+  if (!ray_box_clip(v.support_min.xyz, v.support_max.xyz, o, d, t0, t1)) return none;
   MediumLight m;
-  if (!medium_choose_light(rng, m)) return vec3(0.0);
+  if (!medium_choose_light(rng, m)) return none;
   float guide = v.support_min.w * v.absorption.w;  // mean non-zero extinction (max channel)
   float pdf_t;
   float t = scatter_distance_sample(origin, dir, t0, t1, guide, m.positional, m.y,
                                     rng_next_vec2(rng), pdf_t);
-  if (!(pdf_t > 0.0)) return vec3(0.0);
-  vec3 sigma_s = volume_density_index(v, o + t * d) * v.scattering.xyz;
-  if (!(max(sigma_s.x, max(sigma_s.y, sigma_s.z)) > 0.0)) return vec3(0.0);
-  vec3 x = origin + t * dir;
-  vec3 target;
-  vec3 c = medium_light_contribution(m, x, dir, v.scattering.w, target);
-  if (c == vec3(0.0)) return vec3(0.0);
-  if (!vis_visible(x, target)) return vec3(0.0);
-  vec3 transmittance =
-      scene_transmittance(origin, dir, t, rng) * scene_transmittance_between(x, target, rng);
-  return transmittance * sigma_s * c / (pdf_t * m.pdf);
+  pdf = pdf_t * m.pdf;
+  return pdf > 0.0 ? volume_sample_of(medium, t, m) : none;
+}
+
+// One single-scattering sample of volume `medium` along origin + t dir (dir unit), t in
+// [0, t_end]: an unbiased estimate of the radiance it scatters towards the origin.
+vec3 volume_inscatter_sample(uint medium, vec3 origin, vec3 dir, float t_end, inout uint rng) {
+  float pdf;
+  VolumeSample s = volume_sample_draw(medium, origin, dir, t_end, rng, pdf);
+  if (!(pdf > 0.0)) return vec3(0.0);
+  return volume_sample_shade(s, origin, dir, t_end, rng) / pdf;
 }
 
 // One sample of every volume's in-scattering along the ray (their sum).

@@ -29,6 +29,7 @@
 GpuVolumeCell volume_fetch_cell(uint i);
 float volume_fetch_value(uint i);
 #include "shared/volume_grid.h"
+#include "shared/volume_restir.h"
 
 layout(local_size_x = 1) in;
 
@@ -60,6 +61,8 @@ layout(std430, binding = 23) buffer GpuVolumeProbe { GpuVolume gpu_volumes[]; };
 layout(std430, binding = 24) buffer GpuVolumeCellProbe { GpuVolumeCell gpu_volume_cells[]; };
 layout(std430, binding = 25) buffer VolumeDdaProbe { VolumeDda volume_ddas[]; };
 layout(std430, binding = 26) buffer VolumePushProbe { VolumePush volume_pushes[]; };
+layout(std430, binding = 27) buffer VolumeReservoirProbe { VolumeReservoir volume_reservoirs[]; };
+layout(std430, binding = 28) buffer VolumeRestirPushProbe { VolumeRestirPush volume_restir_pushes[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -90,4 +93,6 @@ void main() {
   gpu_volume_cells[0] = gpu_volume_cells[1];
   volume_ddas[0] = volume_ddas[1];
   volume_pushes[0] = volume_pushes[1];
+  volume_reservoirs[0] = volume_reservoirs[1];
+  volume_restir_pushes[0] = volume_restir_pushes[1];
 }

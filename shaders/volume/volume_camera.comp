@@ -34,14 +34,7 @@ void main() {
   uint rng = frame_rng(pixel, kVolumeRngCamera);
   vec3 dir;
   float t_end;
-  if (gbuffer_is_sky(position.w)) {
-    dir = env_camera_ray_dir(fc, pixel);
-    t_end = kDirectionalShadowRadii * fc.scene.x;
-  } else {
-    vec3 to_surface = position.xyz - camera;
-    t_end = length(to_surface);
-    dir = t_end > 0.0 ? to_surface / t_end : vec3(0.0, 0.0, -1.0);
-  }
+  media_camera_ray(fc, pixel, position, dir, t_end);
   uint samples = max(push.samples, 1u);
   vec3 t = vec3(0.0);
   vec3 inscattered = vec3(0.0);

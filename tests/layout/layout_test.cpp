@@ -26,6 +26,7 @@
 #include "shared/textures.h"
 #include "shared/volume.h"
 #include "shared/volume_grid.h"
+#include "shared/volume_restir.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/gpu/spirv_reflect.h"
 
@@ -155,6 +156,16 @@ const std::vector<StructLayout>& cpp_layouts() {
        sizeof(gpu::GpuVolumeCell),
        {LANTERN_MEMBER(GpuVolumeCell, brick), LANTERN_MEMBER(GpuVolumeCell, max_density),
         LANTERN_MEMBER(GpuVolumeCell, min_density), LANTERN_MEMBER(GpuVolumeCell, pad0)}},
+      {"VolumeReservoir",
+       sizeof(gpu::VolumeReservoir),
+       {LANTERN_MEMBER(VolumeReservoir, scatter), LANTERN_MEMBER(VolumeReservoir, weight),
+        LANTERN_MEMBER(VolumeReservoir, ray)}},
+      {"VolumeRestirPush",
+       sizeof(gpu::VolumeRestirPush),
+       {LANTERN_MEMBER(VolumeRestirPush, width), LANTERN_MEMBER(VolumeRestirPush, height),
+        LANTERN_MEMBER(VolumeRestirPush, candidates), LANTERN_MEMBER(VolumeRestirPush, flags),
+        LANTERN_MEMBER(VolumeRestirPush, neighbours), LANTERN_MEMBER(VolumeRestirPush, radius),
+        LANTERN_MEMBER(VolumeRestirPush, m_cap), LANTERN_MEMBER(VolumeRestirPush, pad0)}},
       {"VolumeDda",
        sizeof(gpu::VolumeDda),
        {LANTERN_MEMBER(VolumeDda, t_next), LANTERN_MEMBER(VolumeDda, t_delta),

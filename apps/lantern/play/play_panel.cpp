@@ -151,6 +151,16 @@ void draw_panel(PanelState& s) {
     slider_f("depth threshold", r.depth_threshold, 0.001f, 1.0f, "%.3f");
     slider_f("normal threshold", r.normal_threshold, -1.0f, 1.0f, "%.2f");
     choice("debug view", r.debug_view, lighting::restir_debug_views());
+    // The media reservoirs (levels with volumes; no effect elsewhere).
+    ImGui::Separator();
+    ImGui::TextUnformatted("media (volumes)");
+    slider_u("volume candidates", r.volume.candidates, 1,
+             static_cast<int>(gpu::kVolumeRestirMaxCandidates));
+    c |= ImGui::Checkbox("volume temporal", &r.volume.temporal);
+    slider_f("volume M cap factor", r.volume.m_cap_factor, 0.0f, 100.0f, "%.1f");
+    slider_u("volume neighbours", r.volume.neighbours, 0,
+             static_cast<int>(gpu::kVolumeRestirMaxNeighbours));
+    slider_f("volume radius (px)", r.volume.radius, 1.0f, 64.0f, "%.1f");
     if (c) s.settings_changed = true;
   }
 
