@@ -33,11 +33,11 @@ MediaReservoir media_reservoir_load(VolumeReservoir v) {
   MediaReservoir r;
   r.y.t = v.scatter.x;
   r.y.uv = v.scatter.yz;
-  r.y.light = floatBitsToUint(v.scatter.w);
-  r.y.medium = floatBitsToUint(v.weight.w);
-  r.W = v.weight.x;
-  r.M = v.weight.y;
-  r.target = v.weight.z;
+  r.y.light = v.light;
+  r.y.medium = v.medium;
+  r.W = v.scatter.w;
+  r.M = v.M;
+  r.target = v.target;
   r.dir = v.ray.xyz;
   r.t_end = v.ray.w;
   return r;
@@ -50,10 +50,12 @@ VolumeReservoir media_reservoir_store(MediaReservoir r) {
             r.target > 0.0 && is_finite(r.y.t);
   VolumeReservoir v;
   v.scatter = vec4(ok ? r.y.t : 0.0, ok ? r.y.uv : vec2(0.0),
-                  uintBitsToFloat(ok ? r.y.light : kInvalidLight));
-  v.weight = vec4(ok ? min(r.W, kMaxReservoirWeight) : 0.0, finite_positive_or_zero(r.M),
-                  ok ? r.target : 0.0, uintBitsToFloat(ok ? r.y.medium : 0u));
+                   ok ? min(r.W, kMaxReservoirWeight) : 0.0);
   v.ray = vec4(r.dir, r.t_end);
+  v.M = finite_positive_or_zero(r.M);
+  v.target = ok ? r.target : 0.0;
+  v.light = ok ? r.y.light : kInvalidLight;
+  v.medium = ok ? r.y.medium : 0u;
   return v;
 }
 

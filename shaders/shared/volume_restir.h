@@ -19,12 +19,16 @@
 
 LANTERN_BEGIN_SHARED
 
-// One pixel's reservoir (std430). An empty one has light == kInvalidLight and W = 0.
+// One pixel's reservoir (std430). An empty one has light == kInvalidLight and W = 0; indices
+// are stored as integers (small ones would be denormals as float bits, which a CPU device may
+// flush to zero).
 struct VolumeReservoir {
-  vec4 scatter;  // x: t (m); yz: the light sample's uv; w: uintBitsToFloat(light index)
-  vec4 weight;  // x: W (contribution weight); y: M (confidence); z: p̂ at its own pixel;
-                // w: uintBitsToFloat(medium)
-  vec4 ray;     // xyz: the owning pixel's unit camera ray; w: where it ends (surface or far)
+  vec4 scatter;  // x: t (m); yz: the light sample's uv; w: W (contribution weight)
+  vec4 ray;      // xyz: the owning pixel's unit camera ray; w: where it ends (surface or far)
+  float M;       // confidence
+  float target;  // p̂ at its own pixel
+  uint light;    // light index, kEnvironmentLight, or kInvalidLight (empty)
+  uint medium;   // volume index
 };
 LANTERN_STATIC_SIZE(VolumeReservoir, 48);
 

@@ -1,7 +1,7 @@
 // volume.restir_initial: each pixel's media reservoir for this frame (shared/volume_restir.h).
 // Initial: push.candidates (medium, distance, light) candidates drawn along the pixel's camera
 // ray (a medium uniformly, then lib/volume_scatter.glsl volume_sample_draw), resampled by the
-// target p̂ (RIS). Temporal: the selected scattering point (the surface point when nothing was
+// target p̂ (RIS). Temporal: the selected scattering point (where the ray ends when nothing was
 // selected) is projected into last frame's camera; the reservoir there (its light remapped to
 // this frame's index, its confidence capped at push.m_cap) is combined with this frame's by the
 // balance heuristic over the two pixels' targets (both evaluated in this frame's scene on each
@@ -88,9 +88,11 @@ void main() {
   MediaReservoir r = initial_reservoir(camera, dir, t_end, rng);
 
   MediaReservoir h;
-  bool has_point = r.target > 0.0 || !gbuffer_is_sky(position.w);
-  vec3 point = r.target > 0.0 ? camera + r.y.t * dir : position.xyz;
-  if ((push.flags & kVolumeRestirFlagHistoryValid) != 0u && has_point && history_at(point, h)) {
+  // The selected scattering point, else where the ray ends (the surface, or the far point of a
+  // sky pixel): every pixel looks for history, whatever its own candidates found (skipping it
+  // when they found nothing would make the reuse depend on the outcome it combines: a bias).
+  vec3 point = camera + (r.target > 0.0 ? r.y.t : t_end) * dir;
+  if ((push.flags & kVolumeRestirFlagHistoryValid) != 0u && history_at(point, h)) {
     vec3 prev_camera = fc.prev_camera_position.xyz;
     // Balance heuristic with confidence weights over {this frame, history}.
     float p_c_of_c = r.target;
