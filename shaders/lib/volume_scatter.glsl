@@ -171,12 +171,21 @@ float volume_sample_target(VolumeSample s, vec3 origin, vec3 dir, float t_end) {
 }
 
 // The unbiased in-scattering integrand of sample s: f V(x, target) T(origin, x) T(x, target)
-// (both transmittances residual ratio tracking estimates of every medium).
-vec3 volume_sample_shade(VolumeSample s, vec3 origin, vec3 dir, float t_end, inout uint rng) {
+// (both transmittances residual ratio tracking estimates of every medium), and the camera ray's
+// transmittance to t_end, `surface`: T(origin, x) T(x, t_end) when s is shaded (one walk over
+// [0, t] serves both: an unbiased estimate of each, and they only ever add), else a walk of its
+// own.
+vec3 volume_sample_shade(VolumeSample s, vec3 origin, vec3 dir, float t_end, inout uint rng,
+                         out vec3 surface) {
   vec3 x, target, f;
-  if (!volume_sample_eval(s, origin, dir, t_end, x, target, f)) return vec3(0.0);
+  if (!volume_sample_eval(s, origin, dir, t_end, x, target, f)) {
+    surface = scene_transmittance(origin, dir, t_end, rng);
+    return vec3(0.0);
+  }
+  vec3 to_x = scene_transmittance(origin, dir, s.t, rng);
+  surface = to_x * scene_transmittance_segment(origin, dir, s.t, t_end, rng);
   if (!vis_visible(x, target)) return vec3(0.0);
-  return f * scene_transmittance(origin, dir, s.t, rng) * scene_transmittance_between(x, target, rng);
+  return f * to_x * scene_transmittance_between(x, target, rng);
 }
 
 // Draws one candidate of volume `medium` on the ray: a light (medium_choose_light) and a distance
@@ -206,20 +215,24 @@ VolumeSample volume_sample_draw(uint medium, vec3 origin, vec3 dir, float t_end,
   return pdf > 0.0 ? volume_sample_of(medium, t, m) : none;
 }
 
-// One single-scattering sample of volume `medium` along origin + t dir (dir unit), t in
-// [0, t_end]: an unbiased estimate of the radiance it scatters towards the origin.
-vec3 volume_inscatter_sample(uint medium, vec3 origin, vec3 dir, float t_end, inout uint rng) {
-  float pdf;
-  VolumeSample s = volume_sample_draw(medium, origin, dir, t_end, rng, pdf);
-  if (!(pdf > 0.0)) return vec3(0.0);
-  return volume_sample_shade(s, origin, dir, t_end, rng) / pdf;
-}
-
-// One sample of every volume's in-scattering along the ray (their sum).
-vec3 scene_inscatter_sample(vec3 origin, vec3 dir, float t_end, inout uint rng) {
+// One sample of every volume's in-scattering along origin + t dir (dir unit), t in [0, t_end]
+// (their sum: an unbiased estimate of the radiance the media scatter towards the origin), and
+// an unbiased estimate of the ray's transmittance to t_end, `surface` (shared with the first
+// volume's sample, volume_sample_shade).
+vec3 scene_inscatter_sample(vec3 origin, vec3 dir, float t_end, inout uint rng,
+                            out vec3 surface) {
   vec3 sum = vec3(0.0);
+  surface = vec3(1.0);
   uint count = frame_constants.frame.media.x;
-  for (uint i = 0u; i < count; ++i) sum += volume_inscatter_sample(i, origin, dir, t_end, rng);
+  for (uint i = 0u; i < count; ++i) {
+    float pdf;
+    VolumeSample s = volume_sample_draw(i, origin, dir, t_end, rng, pdf);
+    if (!(pdf > 0.0)) s.light = kInvalidLight;  // nothing to shade: only the transmittance
+    vec3 t_surface;
+    vec3 f = volume_sample_shade(s, origin, dir, t_end, rng, t_surface);
+    if (i == 0u) surface = t_surface;
+    if (pdf > 0.0) sum += f / pdf;
+  }
   return sum;
 }
 

@@ -30,19 +30,25 @@ vec3 medium_extinction(uint medium, vec3 p) {
   return volume_extinction(v, volume_density_index(v, p));
 }
 
-// Transmittance of every medium along origin + t dir, t in [0, t_max] (dir unit, world space):
-// the product of each volume's residual ratio tracking estimate over its majorant cells
+// Transmittance of every medium along origin + t dir, t in [t_min, t_max] (dir unit, world
+// space): the product of each volume's residual ratio tracking estimate over its majorant cells
 // (unbiased; exact where a cell is homogeneous, since the control is then the extinction).
-vec3 scene_transmittance(vec3 origin, vec3 dir, float t_max, inout uint rng) {
+vec3 scene_transmittance_segment(vec3 origin, vec3 dir, float t_min, float t_max,
+                                 inout uint rng) {
   vec3 transmittance = vec3(1.0);
   uint count = frame_constants.frame.media.x;
   for (uint i = 0u; i < count; ++i) {
     GpuVolume v = scene_volumes.v[i];
     vec3 o = (v.world_to_index * vec4(origin, 1.0)).xyz;
     vec3 d = mat3(v.world_to_index) * dir;
-    transmittance *= volume_transmittance_residual(i, v, o, d, 0.0, t_max, 0.0, rng);
+    transmittance *= volume_transmittance_residual(i, v, o, d, t_min, t_max, 0.0, rng);
   }
   return transmittance;
+}
+
+// The same over t in [0, t_max].
+vec3 scene_transmittance(vec3 origin, vec3 dir, float t_max, inout uint rng) {
+  return scene_transmittance_segment(origin, dir, 0.0, t_max, rng);
 }
 
 // The same along the segment a -> b.

@@ -3,9 +3,10 @@
 // media): L = T(camera, surface) L_surface + in-scattered light, single scattering from every
 // light kind (lib/volume_scatter.glsl). The ray runs from the camera to the G-buffer's surface
 // point, or for a sky pixel along the pixel's view direction to kDirectionalShadowRadii scene
-// radii (the sky is seen through the fog too). Each of push.samples samples is one residual
-// ratio tracking transmittance (lib/volumes.glsl: unbiased, exact in homogeneous cells) and one
-// in-scattering sample per volume; their mean is added. Its own random stream, so
+// radii (the sky is seen through the fog too). Each of push.samples samples is one
+// in-scattering sample per volume and one transmittance estimate to the surface (residual ratio
+// tracking, lib/volumes.glsl: unbiased, exact in homogeneous cells; it continues the first
+// volume's walk to its scattering point); their means are used. Its own random stream, so
 // E[radiance x T] = E[radiance] E[T].
 // Reads: radiance, gbuffer position, the scene (volumes, lights, environment, visibility).
 // Writes: radiance (in place). History: none. Dispatch: one thread per pixel, 8x8 groups;
@@ -39,8 +40,9 @@ void main() {
   vec3 t = vec3(0.0);
   vec3 inscattered = vec3(0.0);
   for (uint s = 0u; s < samples; ++s) {
-    t += scene_transmittance(camera, dir, t_end, rng);
-    inscattered += scene_inscatter_sample(camera, dir, t_end, rng);
+    vec3 t_surface;
+    inscattered += scene_inscatter_sample(camera, dir, t_end, rng, t_surface);
+    t += t_surface;
   }
   t /= float(samples);
   inscattered /= float(samples);

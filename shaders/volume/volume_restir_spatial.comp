@@ -78,11 +78,10 @@ void main() {
   reservoirs.r[index] = media_reservoir_store(r);
 
   uint shade_rng = frame_rng(pixel, kVolumeRngRestirShade);
-  vec3 transmittance = scene_transmittance(camera, dir, t_end, shade_rng);
-  vec3 inscattered = vec3(0.0);
-  if (r.target > 0.0 && r.W > 0.0) {
-    inscattered = r.W * volume_sample_shade(r.y, camera, dir, t_end, shade_rng);
-  }
+  if (!(r.target > 0.0 && r.W > 0.0)) r.y.light = kInvalidLight;
+  vec3 transmittance;
+  vec3 inscattered = volume_sample_shade(r.y, camera, dir, t_end, shade_rng, transmittance);
+  if (r.y.light != kInvalidLight) inscattered *= r.W;
   vec4 value = radiance.pixels[index];
   vec3 rgb = value.rgb * transmittance + inscattered;
   if (!(is_finite(rgb.x) && is_finite(rgb.y) && is_finite(rgb.z))) rgb = vec3(0.0);

@@ -13,8 +13,9 @@
 //   integrated in the angle the ray subtends at the light (t = delta + h tan(theta), so
 //   dt / r^2 = dtheta / h: a smooth integrand) by Simpson's rule.
 // Tolerances: the image mean within 0.5% for the reference, 1% for baseline and ReSTIR (64
-// frames, static camera); the mean absolute per-pixel error is printed and bounded loosely (the
-// estimators are noisy per pixel by design).
+// frames, static camera); the mean absolute per-pixel error is printed and bounded loosely (5%
+// for the reference, 10% for the others: the estimators are noisy per pixel by design, most of
+// all the sun's transmittance through the slab's top cell, which ratio tracking estimates).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -95,7 +96,7 @@ class VolumeScatterTest : public runtime::test::GpuTest {
       std::printf("[volume] %s, %s: image mean / closed form %.5f, mean |pixel error| %.4f\n",
                   what, integrator, ratio, mean_abs);
       EXPECT_NEAR(ratio, 1.0, reference ? 0.005 : 0.01) << what << ", " << integrator;
-      EXPECT_LT(mean_abs, reference ? 0.03 : 0.1) << what << ", " << integrator;
+      EXPECT_LT(mean_abs, reference ? 0.05 : 0.1) << what << ", " << integrator;
     }
   }
 };
