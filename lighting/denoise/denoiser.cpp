@@ -3,6 +3,8 @@
 #include "lighting/denoise/denoiser.h"
 
 #include "lighting/restir/restir_settings.h"
+#include "lighting/scene/gpu_scene.h"
+#include "shared/light_eval.h"
 #include "shared/restir.h"
 
 namespace lantern::lighting {
@@ -33,6 +35,11 @@ gpu::DenoisePush Denoiser::make_push(const DenoiseSettings& s, const FrameInputs
   p.phi_depth = s.phi_depth;
   p.firefly = s.firefly;
   p.max_history = s.max_history;
+  // Levels with volumes: the fog in front of the sky is as noisy as any lit surface, so sky
+  // pixels are filtered as a surface where camera rays end (volume passes, light_eval.h).
+  p.sky_distance = inputs.scene != nullptr && inputs.scene->volume_count() > 0
+                       ? gpu::kDirectionalShadowRadii * inputs.scene->scene_radius()
+                       : 0.0f;
   // Reprojection rejects history exactly where ReSTIR's temporal reuse does by default (the same
   // test, restir_surfaces_similar, with RestirSettings' default thresholds; roughness 0.25 as
   // RestirIntegrator::make_push).

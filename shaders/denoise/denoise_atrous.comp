@@ -55,7 +55,7 @@ void main() {
     return;
   }
   vec3 n = denoise_guide_normal(g);
-  float depth = imageLoad(gbuffer_position, pixel).w;
+  float depth = denoise_view_depth(imageLoad(gbuffer_position, pixel).w);
   float l = stop_luminance(index, centre.rgb);
   float lum_scale = push.phi_luminance * sqrt(max(min(filtered_variance(pixel), centre.a), 0.0)) + 1e-6;
   int step = int(push.step);

@@ -33,7 +33,19 @@ vec3 denoise_finite(vec3 c) {
 // where it matters; filtering it would spread its residual noise (and its value, 10^4 above its
 // surroundings on cornell_lights) into the dark surfaces around it.
 bool denoise_passthrough(float view_depth, vec3 emission) {
-  return gbuffer_is_sky(view_depth) || max(emission.r, max(emission.g, emission.b)) > 0.0;
+  if (gbuffer_is_sky(view_depth)) return !(push.sky_distance > 0.0);
+  return max(emission.r, max(emission.g, emission.b)) > 0.0;
+}
+
+// The view depth the edge stops scale with: the G-buffer's, or for a filtered sky pixel (the
+// only sky pixels that reach a filter) push.sky_distance.
+float denoise_view_depth(float view_depth) {
+  return gbuffer_is_sky(view_depth) ? push.sky_distance : view_depth;
+}
+
+// The albedo a pixel's radiance is demodulated by: 1 for a filtered sky pixel.
+vec3 denoise_albedo(float view_depth, vec3 gbuffer_albedo) {
+  return gbuffer_is_sky(view_depth) ? vec3(1.0) : gbuffer_albedo;
 }
 
 // The edge-stopping guide denoise.temporal writes once per pixel ("denoise.guide", read by

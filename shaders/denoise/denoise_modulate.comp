@@ -1,6 +1,6 @@
 // denoise.modulate: the filtered illumination back to radiance: albedo demodulation x
-// illumination (the same factor denoise.temporal divided by); sky and emitters
-// (denoise_passthrough) keep the raw radiance.
+// illumination (the same factor denoise.temporal divided by; 1 for a filtered sky pixel);
+// emitters and an unfiltered sky (denoise_passthrough) keep the raw radiance.
 // Reads: accum_in (rgb illumination), hdr_in (raw radiance, for the sky), gbuffer
 // position/albedo_roughness/emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
 // History: none. Dispatch: one thread per pixel, 8x8 groups.
@@ -25,7 +25,8 @@ void main() {
                           imageLoad(gbuffer_emission_metallic, pixel).rgb)) {
     rgb = denoise_finite(hdr_in.p[index].rgb);
   } else {
-    vec3 albedo = imageLoad(gbuffer_albedo_roughness, pixel).rgb;
+    vec3 albedo = denoise_albedo(imageLoad(gbuffer_position, pixel).w,
+                                 imageLoad(gbuffer_albedo_roughness, pixel).rgb);
     rgb = denoise_demodulation(albedo) * accum_in.p[index].rgb;
   }
   hdr_out.p[index] = vec4(denoise_finite(rgb), 1.0);

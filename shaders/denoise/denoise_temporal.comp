@@ -3,8 +3,10 @@
 // motion vector (bilinear over the 2x2 previous pixels, each kept only when it passes ReSTIR's
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
 // history), clamps a firefly against the history's mean + firefly x sigma, and blends
-// (alpha = max(1 / history length, push.color_alpha)). Sky and emitters pass through unfiltered
-// (denoise_passthrough).
+// (alpha = max(1 / history length, push.color_alpha)). Emitters pass through unfiltered
+// (denoise_passthrough), and so does the sky unless push.sky_distance > 0 (levels with volumes):
+// then a sky pixel is a surface that far along its view ray, facing the camera, albedo 1,
+// reprojected as that point.
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
 // surfaces_history, color_history, moments_history, frame constants (prev_view_proj).
 // Writes: denoise_surfaces (this frame's "denoise.surfaces"), accum_out (rgb illumination, a:
@@ -53,12 +55,32 @@ void main() {
   vec4 normals = imageLoad(gbuffer_normal, pixel);
   vec4 albedo_roughness = imageLoad(gbuffer_albedo_roughness, pixel);
   uint material = imageLoad(gbuffer_ids, pixel).y;
-  RestirSurface surface = restir_surface_pack(position, oct_decode(normals.xy),
-                                              oct_decode(normals.zw), albedo_roughness.rgb,
-                                              albedo_roughness.a, emission_metallic.a, 0.0,
-                                              material);
+  vec3 n = oct_decode(normals.xy);
+  vec3 ng = oct_decode(normals.zw);
+  vec2 motion = imageLoad(gbuffer_motion, pixel).xy;
+  bool sky = gbuffer_is_sky(position.w);
+  if (sky) {
+    // A filtered sky pixel (levels with volumes): a surface push.sky_distance along the view
+    // ray, facing the camera, albedo 1; its motion is that point's reprojection.
+    FrameConstants fc = frame_constants.frame;
+    vec3 dir = env_camera_ray_dir(fc, uvec2(pixel));
+    vec3 far_point = fc.camera_position.xyz + dir * push.sky_distance;
+    position = vec4(far_point, (fc.view_proj * vec4(far_point, 1.0)).w);
+    n = -dir;
+    ng = -dir;
+    albedo_roughness = vec4(1.0);
+    material = 0xffffffffu;
+    vec4 prev_clip = fc.prev_view_proj * vec4(far_point, 1.0);
+    motion = prev_clip.w > 0.0
+                 ? (prev_clip.xy / prev_clip.w * 0.5 + 0.5) * vec2(push.width, push.height) -
+                       (vec2(pixel) + 0.5)
+                 : vec2(uintBitsToFloat(0x7f800000u));  // behind last frame's camera
+  }
+  RestirSurface surface = restir_surface_pack(position, n, ng, albedo_roughness.rgb,
+                                              albedo_roughness.a, sky ? 0.0 : emission_metallic.a,
+                                              0.0, material);
   denoise_surfaces.s[index] = surface;
-  guide_out.p[index] = denoise_guide(position, oct_decode(normals.xy));
+  guide_out.p[index] = denoise_guide(position, n);
   vec3 illumination = radiance / denoise_demodulation(albedo_roughness.rgb);
   float l = luminance(illumination);
 
@@ -66,7 +88,6 @@ void main() {
   vec3 history_color = vec3(0.0);
   vec3 history_moments = vec3(0.0);  // x, y moments, z length
   float weight_sum = 0.0;
-  vec2 motion = imageLoad(gbuffer_motion, pixel).xy;
   if ((push.flags & kDenoiseFlagHistoryValid) != 0u && is_finite(motion.x) && is_finite(motion.y)) {
     vec2 p = vec2(pixel) + motion;  // previous pixel centre minus 0.5
     ivec2 base = ivec2(floor(p));

@@ -34,7 +34,7 @@ void main() {
     return;
   }
   vec3 n = denoise_guide_normal(g);
-  float depth = imageLoad(gbuffer_position, pixel).w;
+  float depth = denoise_view_depth(imageLoad(gbuffer_position, pixel).w);
   // The first à-trous iteration's luminance edge stop compares these 3x3 means, not single
   // samples: a bright sample among dark neighbours (ReSTIR's heavy tail) is not rejected by all
   // of them while it spreads itself over them (which lost 5% of night_market's energy).

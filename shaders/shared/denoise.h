@@ -35,13 +35,15 @@ struct DenoisePush {
   float phi_depth;       // à-trous depth edge stop: relative depth difference per tap step
   float firefly;         // temporal clamp of the new sample to mean + firefly x sigma (0: off)
   float max_history;     // history length cap (frames)
-  uint pad0;
+  float sky_distance;    // > 0 (levels with volumes: the fog before the sky is noisy): sky pixels
+                         // are denoised as a surface this far along their view ray, facing the
+                         // camera, albedo 1; 0: the sky passes through unfiltered
   vec4 similarity;       // restir_surfaces_similar's thresholds (shared/restir.h) for reprojection
 };
 LANTERN_STATIC_SIZE(DenoisePush, 64);
 
 // What illumination is divided by: the surface's albedo (base colour), floored. Radiance =
-// factor x illumination; sky and emitters are not filtered.
+// factor x illumination; emitters are not filtered, nor is the sky unless sky_distance > 0.
 LANTERN_FUNC vec3 denoise_demodulation(vec3 albedo) {
   return max(albedo, vec3(kDenoiseMinAlbedo));
 }

@@ -101,7 +101,7 @@ const std::vector<StructLayout>& cpp_layouts() {
         LANTERN_MEMBER(DenoisePush, color_alpha), LANTERN_MEMBER(DenoisePush, moments_alpha),
         LANTERN_MEMBER(DenoisePush, phi_luminance), LANTERN_MEMBER(DenoisePush, phi_normal),
         LANTERN_MEMBER(DenoisePush, phi_depth), LANTERN_MEMBER(DenoisePush, firefly),
-        LANTERN_MEMBER(DenoisePush, max_history), LANTERN_MEMBER(DenoisePush, pad0),
+        LANTERN_MEMBER(DenoisePush, max_history), LANTERN_MEMBER(DenoisePush, sky_distance),
         LANTERN_MEMBER(DenoisePush, similarity)}},
       {"UpscalePush",
        sizeof(gpu::UpscalePush),
