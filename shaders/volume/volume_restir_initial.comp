@@ -7,8 +7,8 @@
 // balance heuristic over the two pixels' targets (both evaluated in this frame's scene on each
 // pixel's own ray: the keep-t shift, Jacobian 1), so the combination stays unbiased where the
 // media and lights hold still.
-// Reads: gbuffer position; last frame's final media reservoirs ("reservoirs_history", this
-// frame's output as a stand-in without history); the scene (volumes, lights, environment).
+// Reads: gbuffer position; last frame's final media reservoirs ("reservoirs_history"; without
+// history a stand-in that is not read); the scene (volumes, lights, environment).
 // Writes: "reservoirs" (one VolumeReservoir per pixel). Dispatch: one thread per pixel, 8x8.
 #version 460
 #extension GL_GOOGLE_include_directive : require

@@ -59,6 +59,22 @@ TEST(RestirSettings, AppliesValues) {
   EXPECT_FLOAT_EQ(s.m_cap(), 5.0f * 32.0f);
 }
 
+// The media reservoirs' knobs: their own keys, presets and cap (RestirSettings::Volume).
+TEST(RestirSettings, VolumeKnobsApplyAndScaleWithThePresets) {
+  RestirSettings s = make_restir_settings(
+      "balanced", {{"volume_candidates", "12"}, {"volume_temporal", "off"},
+                   {"volume_m_cap", "5"}, {"volume_neighbours", "0"}, {"volume_radius", "20"}});
+  EXPECT_EQ(s.volume.candidates, 12u);
+  EXPECT_FALSE(s.volume.temporal);
+  EXPECT_FLOAT_EQ(s.volume.m_cap(), 5.0f * 12.0f);
+  EXPECT_EQ(s.volume.neighbours, 0u);
+  EXPECT_FLOAT_EQ(s.volume.radius, 20.0f);
+  EXPECT_LT(restir_preset("fast").volume.candidates, restir_preset("balanced").volume.candidates);
+  EXPECT_LT(restir_preset("balanced").volume.candidates,
+            restir_preset("quality").volume.candidates);
+  EXPECT_LE(restir_preset("quality").volume.neighbours, gpu::kVolumeRestirMaxNeighbours);
+}
+
 TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
   EXPECT_NE(error_of("light_candidate", "8").find("light_candidate"), std::string::npos);
   EXPECT_NE(error_of("light_candidate", "8").find("light_candidates"), std::string::npos)
@@ -80,6 +96,12 @@ TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
            {"bias_correction", "unbiased"},
            {"temporal", "maybe"},
            {"debug_view", "normals"},
+           {"volume_candidates", "0"},
+           {"volume_candidates", "65"},
+           {"volume_neighbours", "7"},
+           {"volume_radius", "0"},
+           {"volume_m_cap", "nan"},
+           {"volume_temporal", "sometimes"},
        }) {
     const std::string message = error_of(key, value);
     EXPECT_NE(message.find(key), std::string::npos) << key << "=" << value << ": " << message;
