@@ -19,7 +19,8 @@ namespace lantern::lighting {
 namespace {
 
 // Bump when the reference integrator's output changes for the same inputs (estimator, conventions).
-constexpr std::uint32_t kReferenceFormatVersion = 2;  // 2: media attenuate (issue 14)
+// 2: media attenuate (issue 14); 3: media scatter light into camera rays.
+constexpr std::uint32_t kReferenceFormatVersion = 3;
 
 class Fnv1a {
  public:

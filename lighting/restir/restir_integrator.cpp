@@ -248,7 +248,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
     }
   }
   // The media along camera rays (levels with volumes): their own reservoirs, after the surfaces.
-  if (volume_) hdr = volume_->add_passes(graph, inputs, s.volume, hdr);
+  if (volume_) hdr = volume_->add_passes(graph, inputs, s, hdr);
   return hdr;
 }
 

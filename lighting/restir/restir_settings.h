@@ -97,7 +97,8 @@ struct RestirSettings {
     bool temporal = true;
     // History confidence cap as a multiple of `candidates`: lower when media or lights move.
     float m_cap_factor = 20.0f;
-    // Spatial neighbours (0: none). Cost is quadratic (balance heuristic over all of them).
+    // Spatial neighbours (0: none). Their MIS weights follow bias_correction: linear cost for
+    // pairwise, quadratic for balance.
     std::uint32_t neighbours = 3;
     // Spatial disk radius in pixels.
     float radius = 12.0f;

@@ -17,8 +17,9 @@ VolumeRestir::VolumeRestir(runtime::Device& device, runtime::ShaderLibrary& shad
 
 BufferHandle VolumeRestir::add_passes(runtime::graph::RenderGraph& graph,
                                       const FrameInputs& inputs,
-                                      const RestirSettings::Volume& settings,
+                                      const RestirSettings& restir,
                                       BufferHandle hdr) const {
+  const RestirSettings::Volume& settings = restir.volume;
   const VkDeviceSize pixels = VkDeviceSize{inputs.width} * inputs.height;
   const runtime::graph::BufferDesc desc{pixels * sizeof(gpu::VolumeReservoir)};
   BufferHandle final_reservoirs = graph.create_history_buffer("volume.reservoirs", desc);
@@ -36,6 +37,7 @@ BufferHandle VolumeRestir::add_passes(runtime::graph::RenderGraph& graph,
   push.neighbours = settings.neighbours;
   push.radius = settings.radius;
   push.m_cap = settings.m_cap();
+  push.bias_correction = restir.bias_correction;
   const ShaderPassDispatch dispatch{.x = inputs.width, .y = inputs.height, .threads = true};
 
   BufferHandle scratch = graph.create_buffer("volume.reservoirs.a", desc);

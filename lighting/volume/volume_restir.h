@@ -23,10 +23,11 @@ class VolumeRestir {
   VolumeRestir(runtime::Device& device, runtime::ShaderLibrary& shaders,
                VisibilityBackend visibility);
   // Adds both passes; returns the new version of `hdr` (the surfaces' radiance, attenuated and
-  // with the in-scattered light added).
+  // with the in-scattered light added). Knobs: settings.volume, and the surfaces'
+  // bias_correction for the spatial MIS weights.
   [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,
-                                                        const RestirSettings::Volume& settings,
+                                                        const RestirSettings& settings,
                                                         runtime::graph::BufferHandle hdr) const;
   std::array<const runtime::ComputePipeline*, 2> pipelines() const {
     return {&initial_.pipeline(), &spatial_.pipeline()};

@@ -6,10 +6,12 @@
 // camera ray inside volume `medium`, lit by light sample (light, uv) (shared/light_eval.h's
 // measure; kEnvironmentLight: uv is the map coordinate of a direction). Reuse between pixels and
 // frames keeps y as it is (the same t on the other pixel's ray, the same light point): a shift
-// whose Jacobian is 1 in this measure. The target p̂ at a pixel is the unshadowed in-scattering
-// made cheap: luminance(phase Le G) x the cell's majorant extinction x the medium's scattering
-// share x exp(-guide (t - t_enter)) (the volume's guide extinction from where the ray enters
-// it; lib/volume_scatter.glsl volume_sample_target). The final shading uses the true density,
+// whose Jacobian is 1 in this measure; the pixels are weighed by their own targets (the balance
+// heuristic between frames, VolumeRestirPush.bias_correction's mode between neighbours). The
+// target p̂ at a pixel is the unshadowed in-scattering made cheap: luminance(phase Le G) x the
+// cell's majorant extinction x the medium's scattering share x exp(-guide (t - t_enter)) (the
+// volume's guide extinction from where the ray enters it; lib/volume_scatter.glsl
+// volume_sample_target). The final shading uses the true density,
 // the unbiased transmittances and the shadow ray, so the estimate stays unbiased (Lin, Wyman &
 // Yuksel 2021: a cheap target inside resampling adds no bias).
 #ifndef LANTERN_SHARED_VOLUME_RESTIR_H
@@ -41,7 +43,7 @@ struct VolumeRestirPush {
   uint neighbours;  // spatial neighbours (0: no spatial reuse)
   float radius;     // spatial disk radius, pixels
   float m_cap;      // temporal history's confidence cap
-  uint pad0;
+  uint bias_correction;  // spatial MIS weights: a kBiasCorrection* (shared/reservoir_mis.h)
 };
 LANTERN_STATIC_SIZE(VolumeRestirPush, 32);
 

@@ -1,7 +1,8 @@
 // volume.restir_spatial: spatial reuse of the media reservoirs, then the final shading. Each
 // pixel combines its reservoir with push.neighbours others from a disk of push.radius pixels
-// (this frame's volume.restir_initial output) by the balance heuristic over all their targets
-// (each evaluated on its own pixel's ray: the keep-t shift), writes the result as this frame's
+// (this frame's volume.restir_initial output) with the MIS weights of push.bias_correction
+// (pairwise or the balance heuristic over the pixels' targets, each evaluated on its own
+// pixel's ray: the keep-t shift; or 1/M), writes the result as this frame's
 // final reservoir (next frame's history), and shades it unbiasedly:
 //   radiance = radiance T(camera, surface) + W f(y) V T(camera, x) T(x, light)
 // (lib/volume_scatter.glsl volume_sample_shade; its own random stream).
@@ -13,6 +14,7 @@
 #include "lib/scene_buffers.glsl"
 #include "lib/volume_scatter.glsl"
 #include "lib/volume_reservoir.glsl"
+#include "shared/reservoir_mis.h"
 
 layout(local_size_x = kVolumeGroupSize, local_size_y = kVolumeGroupSize) in;
 
@@ -41,7 +43,7 @@ void main() {
   uint rng = frame_rng(pixel, kVolumeRngRestirSpatial);
   uint count = 1u;
   uint neighbours = min(push.neighbours, kVolumeRestirMaxNeighbours);
-  for (uint k = 0u; k < neighbours; ++k) {
+  for (uint n = 0u; n < neighbours; ++n) {
     vec2 u = rng_next_vec2(rng);
     float radius = push.radius * sqrt(u.x);
     ivec2 q = ivec2(pixel) + ivec2(round(radius * vec2(cos(kTwoPi * u.y), sin(kTwoPi * u.y))));
@@ -52,27 +54,47 @@ void main() {
     set[count++] = media_reservoir_load(reservoirs_in.r[uint(q.y) * push.width + uint(q.x)]);
   }
 
+  // MIS weights by the surfaces' bias_correction mode (shared/reservoir_mis.h): pairwise (O(k)
+  // target evaluations), balance (O(k^2)), or none (1/M: biased where the pixels differ).
   MediaReservoir r = media_reservoir_empty(dir, t_end);
+  float k = float(count - 1u);
+  float m_total = 0.0;
+  for (uint j = 0u; j < count; ++j) m_total += set[j].M;
   float w_sum = 0.0;
   for (uint i = 0u; i < count; ++i) {
     if (set[i].y.light == kInvalidLight || !(set[i].W > 0.0)) continue;
     float p_here = i == 0u ? set[0].target : volume_sample_target(set[i].y, camera, dir, t_end);
     if (!(p_here > 0.0)) continue;
-    float denominator = 0.0;
-    for (uint j = 0u; j < count; ++j) {
-      float p_j = j == i ? set[i].target
-                         : (j == 0u ? p_here
-                                    : volume_sample_target(set[i].y, camera, set[j].dir,
-                                                           set[j].t_end));
-      denominator += set[j].M * p_j;
+    float m;
+    if (push.bias_correction == kBiasCorrectionNone) {
+      m = mis_weight_none(set[i].M, m_total);
+    } else if (push.bias_correction == kBiasCorrectionPairwise) {
+      if (i == 0u) {
+        m = mis_pairwise_canonical_init(k);
+        for (uint j = 1u; j < count; ++j) {
+          float p_j = volume_sample_target(set[0].y, camera, set[j].dir, set[j].t_end);
+          m += mis_pairwise_canonical_term(set[j].M, p_j, set[0].M, set[0].target, k);
+        }
+      } else {
+        m = mis_pairwise_neighbour(set[i].M, set[i].target, set[0].M, p_here, k);
+      }
+    } else {
+      float denominator = 0.0;
+      for (uint j = 0u; j < count; ++j) {
+        float p_j = j == i ? set[i].target
+                           : (j == 0u ? p_here
+                                      : volume_sample_target(set[i].y, camera, set[j].dir,
+                                                             set[j].t_end));
+        denominator += mis_balance_term(set[j].M, p_j);
+      }
+      m = mis_weight_balance(set[i].M, set[i].target, denominator);
     }
-    float m = denominator > 0.0 ? set[i].M * set[i].target / denominator : 0.0;
     if (media_reservoir_take(w_sum, m * p_here * set[i].W, rng)) {
       r.y = set[i].y;
       r.target = p_here;
     }
   }
-  for (uint j = 0u; j < count; ++j) r.M += set[j].M;
+  r.M = m_total;
   r.W = r.target > 0.0 ? w_sum / r.target : 0.0;
   if (!(r.target > 0.0)) r.y.light = kInvalidLight;
   reservoirs.r[index] = media_reservoir_store(r);
