@@ -1,6 +1,8 @@
 # GLSL -> SPIR-V at build time with glslangValidator. Each shader writes a depfile, so editing an
 # included header (e.g. shaders/shared/*.h) rebuilds exactly its dependants.
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
+# PNanoVDB.h (libnanovdb-dev) compiles as GLSL: the volume lookup benchmark's kernel includes it.
+find_path(LANTERN_NANOVDB_INCLUDE_DIR nanovdb/PNanoVDB.h REQUIRED)
 set(LANTERN_SHADER_OUTPUT_DIR ${CMAKE_BINARY_DIR}/shaders)
 set(LANTERN_SHADER_TARGET_ENV vulkan1.2)
 
@@ -22,7 +24,8 @@ function(lantern_compile_shader source variant)
   add_custom_command(OUTPUT ${out}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir}
     COMMAND ${GLSLANG_VALIDATOR} --quiet --target-env ${LANTERN_SHADER_TARGET_ENV}
-            -I${PROJECT_SOURCE_DIR}/shaders ${defines} --depfile ${out}.d -o ${out} ${source}
+            -I${PROJECT_SOURCE_DIR}/shaders -I${LANTERN_NANOVDB_INCLUDE_DIR} ${defines}
+            --depfile ${out}.d -o ${out} ${source}
     DEPENDS ${source}
     DEPFILE ${out}.d
     COMMENT "glslang ${rel} ${variant}"

@@ -10,6 +10,7 @@ packages=(
   libglfw3-dev libglm-dev libimgui-dev
   libopenimageio-dev openimageio-tools
   libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev
+  libnanovdb-dev  # PNanoVDB.h: volume_lookup_bench (the bricks against NanoVDB)
   libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev spirv-headers
   libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev  # visibility_bench only: the Embree anchor (optional at configure time)

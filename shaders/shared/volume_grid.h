@@ -67,10 +67,35 @@ LANTERN_FUNC float volume_voxel(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 ijk)
 }
 
 // The grid value at index-space point p, trilinear between the eight voxel centres around it
-// (centres at integer coordinates, OpenVDB's convention).
+// (centres at integer coordinates, OpenVDB's convention). When all eight lie in one brick (7/8
+// of the voxels per axis) the cell is read once and the values straight from its brick; else
+// each voxel finds its own cell.
 LANTERN_FUNC float volume_density_index(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 p) {
   vec3 base = floor(p);
   vec3 f = p - base;
+  vec3 cell = volume_cell_of(v, base);
+  vec3 local = base - vec3(v.cell_origin) - cell * float(kVolumeBrickSize);
+  float last = float(kVolumeBrickSize - 1u);
+  if (local.x < last && local.y < last && local.z < last && volume_cell_inside(v, cell)) {
+    GpuVolumeCell c = volume_fetch_cell(LANTERN_VOLUME_GRID volume_cell_index(v, cell));
+    if (c.brick == kVolumeEmptyBrick) {
+      return 0.0f;
+    }
+    uvec3 l = uvec3(local);
+    uint i = c.brick * kVolumeBrickVoxels + l.x + kVolumeBrickSize * (l.y + kVolumeBrickSize * l.z);
+    const uint dy = kVolumeBrickSize;
+    const uint dz = kVolumeBrickSize * kVolumeBrickSize;
+    float b000 = volume_fetch_value(LANTERN_VOLUME_GRID i);
+    float b100 = volume_fetch_value(LANTERN_VOLUME_GRID i + 1u);
+    float b010 = volume_fetch_value(LANTERN_VOLUME_GRID i + dy);
+    float b110 = volume_fetch_value(LANTERN_VOLUME_GRID i + dy + 1u);
+    float b001 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz);
+    float b101 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz + 1u);
+    float b011 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz + dy);
+    float b111 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz + dy + 1u);
+    return mix(mix(mix(b000, b100, f.x), mix(b010, b110, f.x), f.y),
+               mix(mix(b001, b101, f.x), mix(b011, b111, f.x), f.y), f.z);
+  }
   float c000 = volume_voxel(LANTERN_VOLUME_GRID v, base);
   float c100 = volume_voxel(LANTERN_VOLUME_GRID v, base + vec3(1.0f, 0.0f, 0.0f));
   float c010 = volume_voxel(LANTERN_VOLUME_GRID v, base + vec3(0.0f, 1.0f, 0.0f));
