@@ -117,9 +117,16 @@ GlslResult compile_glsl(const std::filesystem::path& path, VkShaderStageFlagBits
                     : fmt::format("#define {} {}\n", define.substr(0, eq), define.substr(eq + 1));
   }
   std::vector<std::filesystem::path> dirs(include_dirs.begin(), include_dirs.end());
+  // The build's own include path (cmake/LanternShaders.cmake): shaders/, then the NanoVDB
+  // headers (PNanoVDB.h, which the volume lookup benchmark's kernel includes).
+  if (dirs.empty()) {
 #ifdef LANTERN_SOURCE_DIR
-  if (dirs.empty()) dirs.emplace_back(std::filesystem::path(LANTERN_SOURCE_DIR) / "shaders");
+    dirs.emplace_back(std::filesystem::path(LANTERN_SOURCE_DIR) / "shaders");
 #endif
+#ifdef LANTERN_NANOVDB_INCLUDE_DIR
+    dirs.emplace_back(LANTERN_NANOVDB_INCLUDE_DIR);
+#endif
+  }
 
   const std::string name = path.string();
   const char* text = source->c_str();

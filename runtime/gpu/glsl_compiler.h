@@ -19,7 +19,8 @@ struct GlslResult {
 };
 
 // `stage` 0: derived from the extension (.comp .vert .frag .rgen .rmiss .rchit .rahit).
-// `defines`: "NAME" or "NAME=VALUE". `include_dirs` empty: the source tree's shaders/ directory.
+// `defines`: "NAME" or "NAME=VALUE". `include_dirs` empty: the build's include path (the source
+// tree's shaders/ directory, then the NanoVDB headers).
 // Never throws for shader errors (they are in the result); throws lantern::InputError when the
 // file cannot be read or the stage is unknown.
 GlslResult compile_glsl(const std::filesystem::path& path, VkShaderStageFlagBits stage = {},
