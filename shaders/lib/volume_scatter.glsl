@@ -172,18 +172,19 @@ float volume_sample_target(VolumeSample s, vec3 origin, vec3 dir, float t_end) {
 
 // The unbiased in-scattering integrand of sample s: f V(x, target) T(origin, x) T(x, target)
 // (both transmittances residual ratio tracking estimates of every medium), and the camera ray's
-// transmittance to t_end, `surface`: T(origin, x) T(x, t_end) when s is shaded (one walk over
-// [0, t] serves both: an unbiased estimate of each, and they only ever add), else a walk of its
-// own.
-vec3 volume_sample_shade(VolumeSample s, vec3 origin, vec3 dir, float t_end, inout uint rng,
-                         out vec3 surface) {
+// transmittance to t_end, `surface`, when `want_surface` (else 1): T(origin, x) T(x, t_end) when
+// s is shaded (one walk over [0, t] serves both: an unbiased estimate of each, and they only
+// ever add), else a walk of its own.
+vec3 volume_sample_shade(VolumeSample s, vec3 origin, vec3 dir, float t_end, bool want_surface,
+                         inout uint rng, out vec3 surface) {
   vec3 x, target, f;
+  surface = vec3(1.0);
   if (!volume_sample_eval(s, origin, dir, t_end, x, target, f)) {
-    surface = scene_transmittance(origin, dir, t_end, rng);
+    if (want_surface) surface = scene_transmittance(origin, dir, t_end, rng);
     return vec3(0.0);
   }
   vec3 to_x = scene_transmittance(origin, dir, s.t, rng);
-  surface = to_x * scene_transmittance_segment(origin, dir, s.t, t_end, rng);
+  if (want_surface) surface = to_x * scene_transmittance_segment(origin, dir, s.t, t_end, rng);
   if (!vis_visible(x, target)) return vec3(0.0);
   return f * to_x * scene_transmittance_between(x, target, rng);
 }
@@ -229,7 +230,7 @@ vec3 scene_inscatter_sample(vec3 origin, vec3 dir, float t_end, inout uint rng,
     VolumeSample s = volume_sample_draw(i, origin, dir, t_end, rng, pdf);
     if (!(pdf > 0.0)) s.light = kInvalidLight;  // nothing to shade: only the transmittance
     vec3 t_surface;
-    vec3 f = volume_sample_shade(s, origin, dir, t_end, rng, t_surface);
+    vec3 f = volume_sample_shade(s, origin, dir, t_end, i == 0u, rng, t_surface);
     if (i == 0u) surface = t_surface;
     if (pdf > 0.0) sum += f / pdf;
   }

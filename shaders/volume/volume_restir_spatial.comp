@@ -102,7 +102,8 @@ void main() {
   uint shade_rng = frame_rng(pixel, kVolumeRngRestirShade);
   if (!(r.target > 0.0 && r.W > 0.0)) r.y.light = kInvalidLight;
   vec3 transmittance;
-  vec3 inscattered = volume_sample_shade(r.y, camera, dir, t_end, shade_rng, transmittance);
+  vec3 inscattered =
+      volume_sample_shade(r.y, camera, dir, t_end, true, shade_rng, transmittance);
   if (r.y.light != kInvalidLight) inscattered *= r.W;
   vec4 value = radiance.pixels[index];
   vec3 rgb = value.rgb * transmittance + inscattered;
