@@ -3,7 +3,6 @@
 
 #include <fmt/format.h>
 
-
 namespace lantern::lighting {
 namespace {
 
@@ -51,9 +50,9 @@ void describe_volumes(const Level& level, const std::vector<runtime::VolumeGrid>
       {"passes",
        "volume passes after the integrator: baseline and reference volume.camera, ReSTIR "
        "volume.restir_initial + volume.restir_spatial (media reservoirs: RIS, temporal and "
-       "spatial reuse) (transmittance along camera rays + single-scattered light from every "
-       "light kind, distance sampling MIS'd with equiangular) + transmittance on every shadow "
-       "ray (residual ratio tracking over the majorant cells)"},
+       "spatial reuse); both give transmittance along camera rays and single-scattered light "
+       "from every light kind (distance sampling MIS'd with equiangular); transmittance on "
+       "every shadow ray (residual ratio tracking over the majorant cells)"},
       {"bytes", bytes},
       {"memory", mib(bytes)}};
 }

@@ -100,9 +100,22 @@ VolumeSample volume_sample_of(uint medium, float t, MediumLight m) {
   return s;
 }
 
-// Where sample s lies on the ray origin + t dir (dir unit) ending at t_end: its volume, the ray
-// in that volume's index space (o, d) and where the ray enters its support. False past t_end,
-// outside the support, or for a medium or light that no longer exists.
+// The ray origin + t dir (dir unit, t in [0, t_end]) in volume `medium`: its record, the ray in
+// its index space (o, d; t keeps its units) and the part [t0, t1] inside its support. False when
+// the ray misses it.
+bool volume_ray_segment(uint medium, vec3 origin, vec3 dir, float t_end, out GpuVolume v,
+                        out vec3 o, out vec3 d, out float t0, out float t1) {
+  v = scene_volumes.v[medium];
+  o = (v.world_to_index * vec4(origin, 1.0)).xyz;
+  d = mat3(v.world_to_index) * dir;
+  t0 = 0.0;
+  t1 = t_end;
+  return ray_box_clip(v.support_min.xyz, v.support_max.xyz, o, d, t0, t1);
+}
+
+// Where sample s lies on the ray ending at t_end: its volume, the ray in that volume's index
+// space (o, d) and where the ray enters its support. False past t_end, outside the support, or
+// for a medium or light that no longer exists.
 bool volume_sample_locate(VolumeSample s, vec3 origin, vec3 dir, float t_end, out GpuVolume v,
                           out vec3 o, out vec3 d, out float t_enter) {
   FrameConstants fc = frame_constants.frame;
@@ -111,11 +124,8 @@ bool volume_sample_locate(VolumeSample s, vec3 origin, vec3 dir, float t_end, ou
   d = dir;
   bool light_ok = s.light == kEnvironmentLight || s.light < fc.counts.x;
   if (!light_ok || s.medium >= fc.media.x || !(s.t <= t_end)) return false;
-  v = scene_volumes.v[s.medium];
-  o = (v.world_to_index * vec4(origin, 1.0)).xyz;
-  d = mat3(v.world_to_index) * dir;
-  float t_exit = t_end;
-  if (!ray_box_clip(v.support_min.xyz, v.support_max.xyz, o, d, t_enter, t_exit)) return false;
+  float t_exit;
+  if (!volume_ray_segment(s.medium, origin, dir, t_end, v, o, d, t_enter, t_exit)) return false;
   return s.t >= t_enter && s.t <= t_exit;
 }
 
@@ -165,9 +175,8 @@ float volume_sample_target(VolumeSample s, vec3 origin, vec3 dir, float t_end) {
   vec3 target;
   vec3 c = volume_sample_light(s, origin + s.t * dir, dir, v.scattering.w, target);
   float scattering_share = luminance(v.scattering.xyz) / max(v.absorption.w, 1e-30);
-  float guide = v.support_min.w * v.absorption.w;
   return finite_positive_or_zero(luminance(c) * majorant * scattering_share *
-                                 exp(-guide * max(s.t - t_enter, 0.0)));
+                                 exp(-volume_guide_extinction(v) * max(s.t - t_enter, 0.0)));
 }
 
 // The unbiased in-scattering integrand of sample s: f V(x, target) T(origin, x) T(x, target)
@@ -200,18 +209,15 @@ VolumeSample volume_sample_draw(uint medium, vec3 origin, vec3 dir, float t_end,
   none.light = kInvalidLight;
   none.uv = vec2(0.0);
   pdf = 0.0;
-  GpuVolume v = scene_volumes.v[medium];
-  vec3 o = (v.world_to_index * vec4(origin, 1.0)).xyz;
-  vec3 d = mat3(v.world_to_index) * dir;
-  float t0 = 0.0;
-  float t1 = t_end;
-  if (!ray_box_clip(v.support_min.xyz, v.support_max.xyz, o, d, t0, t1)) return none;
+  GpuVolume v;
+  vec3 o, d;
+  float t0, t1;
+  if (!volume_ray_segment(medium, origin, dir, t_end, v, o, d, t0, t1)) return none;
   MediumLight m;
   if (!medium_choose_light(rng, m)) return none;
-  float guide = v.support_min.w * v.absorption.w;  // mean non-zero extinction (max channel)
   float pdf_t;
-  float t = scatter_distance_sample(origin, dir, t0, t1, guide, m.positional, m.y,
-                                    rng_next_vec2(rng), pdf_t);
+  float t = scatter_distance_sample(origin, dir, t0, t1, volume_guide_extinction(v),
+                                    m.positional, m.y, rng_next_vec2(rng), pdf_t);
   pdf = pdf_t * m.pdf;
   return pdf > 0.0 ? volume_sample_of(medium, t, m) : none;
 }

@@ -92,6 +92,12 @@ LANTERN_CONST uint kVolumeGroupSize = 8u;
 // The random stream of volume.camera's estimates (frame_rng's pass).
 LANTERN_CONST uint kVolumeRngCamera = 0x564f4cu;
 
+// The volume's guide extinction (1/m): its mean non-zero grid value times the extinction
+// majorant per unit value, the rate scattering distances are drawn with.
+LANTERN_FUNC float volume_guide_extinction(GpuVolume v) {
+  return v.support_min.w * v.absorption.w;
+}
+
 // sigma_t (1/m per channel) of volume v where the grid's value is `density`.
 LANTERN_FUNC vec3 volume_extinction(GpuVolume v, float density) {
   return density * (vec3(v.scattering) + vec3(v.absorption));

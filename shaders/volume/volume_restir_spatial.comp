@@ -96,11 +96,10 @@ void main() {
   }
   r.M = m_total;
   r.W = r.target > 0.0 ? w_sum / r.target : 0.0;
-  if (!(r.target > 0.0)) r.y.light = kInvalidLight;
+  if (!(r.target > 0.0 && r.W > 0.0)) r.y.light = kInvalidLight;
   reservoirs.r[index] = media_reservoir_store(r);
 
   uint shade_rng = frame_rng(pixel, kVolumeRngRestirShade);
-  if (!(r.target > 0.0 && r.W > 0.0)) r.y.light = kInvalidLight;
   vec3 transmittance;
   vec3 inscattered =
       volume_sample_shade(r.y, camera, dir, t_end, true, shade_rng, transmittance);

@@ -43,6 +43,23 @@ inline runtime::ImageRGBA32F render_volume_level(runtime::Device& device,
   return result.images[0];
 }
 
+// A level's JSON object text with a "volumes" array of `volume` (one entry's JSON) added, or
+// unchanged when `volume` is empty: the same level with and without its media.
+inline std::string with_volume(std::string level, const std::string& volume) {
+  if (volume.empty()) return level;
+  level.insert(level.rfind('}'), R"(, "volumes": [ )" + volume + " ]");
+  return level;
+}
+
+// A 6 m floor under a point light (intensity 20 at kFloorLight), seen from 4 m straight above.
+inline const glm::dvec3 kFloorCamera(0.0, 4.0, 0.0);
+inline const glm::dvec3 kFloorLight(0.8, 3.0, -0.6);
+inline constexpr const char* kFloorUnderPointLight = R"({
+  "materials": { "floor": { "base_color": [0.6, 0.6, 0.6], "roughness": 1.0 } },
+  "primitives": [ { "type": "plane", "size": [6, 6], "material": "floor" } ],
+  "lights": [ { "type": "point", "position": [0.8, 3.0, -0.6], "color": [1, 1, 1], "intensity": 20 } ],
+  "camera": { "position": [0.0, 4.0, 0.0], "target": [0.0, 0.0, -0.001], "yfov_deg": 40 } })";
+
 struct PixelRay {
   glm::dvec3 origin;
   glm::dvec3 dir;  // unit

@@ -23,18 +23,9 @@ namespace {
 constexpr std::uint32_t kWidth = 64;
 constexpr std::uint32_t kHeight = 36;
 constexpr double kSigmaA = 0.15;  // 1/m
-const glm::dvec3 kCamera(0.0, 4.0, 0.0);
-const glm::dvec3 kLight(0.8, 3.0, -0.6);
-
 // The level, with a volume entry (`volume` JSON text) or none.
 std::string level_json(const std::string& volume) {
-  std::string json = R"({
-  "materials": { "floor": { "base_color": [0.6, 0.6, 0.6], "roughness": 1.0 } },
-  "primitives": [ { "type": "plane", "size": [6, 6], "material": "floor" } ],
-  "lights": [ { "type": "point", "position": [0.8, 3.0, -0.6], "color": [1, 1, 1], "intensity": 20 } ],
-  "camera": { "position": [0.0, 4.0, 0.0], "target": [0.0, 0.0, -0.001], "yfov_deg": 40 })";
-  if (!volume.empty()) json += R"(, "volumes": [ )" + volume + " ]";
-  return json + "}";
+  return test::with_volume(test::kFloorUnderPointLight, volume);
 }
 
 std::string fog(double density_scale) {
@@ -68,7 +59,7 @@ TEST_F(VolumeRenderTest, AbsorbingFogIsBeerLambertOnCameraAndShadowRays) {
       for (std::uint32_t x = 0; x < kWidth; ++x) {
         const glm::dvec3 p = test::floor_point(*clear, kWidth, kHeight, x, y);
         ASSERT_LT(std::max(std::abs(p.x), std::abs(p.z)), 3.0) << "the floor fills the view";
-        const double t = std::exp(-kSigmaA * (glm::length(kCamera - p) + glm::length(kLight - p)));
+        const double t = std::exp(-kSigmaA * (glm::length(test::kFloorCamera - p) + glm::length(test::kFloorLight - p)));
         const std::size_t i = 4 * (std::size_t{y} * kWidth + x);
         for (int k = 0; k < 3; ++k) {
           const double clear_value = a.pixels[i + static_cast<std::size_t>(k)];

@@ -114,9 +114,8 @@ TEST_F(VolumeScatterTest, DirectionalLightOverAHomogeneousSlabSeenFromInside) {
   "primitives": [ { "type": "plane", "size": [40, 40], "material": "floor" } ],
   "lights": [ { "type": "directional", "direction": [0.5, -1.0, 0.3], "color": [1, 1, 1], "intensity": )" +
                        std::to_string(irradiance) + R"( } ],
-  "camera": { "position": [0.0, 1.5, 0.0], "target": [0.0, 0.0, -1.5], "yfov_deg": 40 })";
-    if (!volume.empty()) json += R"(, "volumes": [ )" + volume + " ]";
-    return json + "}";
+  "camera": { "position": [0.0, 1.5, 0.0], "target": [0.0, 0.0, -1.5], "yfov_deg": 40 } })";
+    return test::with_volume(json, volume);
   };
   const auto clear = test::level_from_json("slab_clear", level_json(""));
   const auto foggy =
@@ -142,16 +141,10 @@ TEST_F(VolumeScatterTest, DirectionalLightOverAHomogeneousSlabSeenFromInside) {
 
 TEST_F(VolumeScatterTest, PointLightInAThinHomogeneousMedium) {
   const Fog fog{.scattering = 0.05, .absorption = 0.05, .anisotropy = -0.4};
-  const double intensity = 20.0;
-  const glm::dvec3 light(0.8, 3.0, -0.6);
-  auto level_json = [&](const std::string& volume) {
-    std::string json = R"({
-  "materials": { "floor": { "base_color": [0.6, 0.6, 0.6], "roughness": 1.0 } },
-  "primitives": [ { "type": "plane", "size": [6, 6], "material": "floor" } ],
-  "lights": [ { "type": "point", "position": [0.8, 3.0, -0.6], "color": [1, 1, 1], "intensity": 20 } ],
-  "camera": { "position": [0.0, 4.0, 0.0], "target": [0.0, 0.0, -0.001], "yfov_deg": 40 })";
-    if (!volume.empty()) json += R"(, "volumes": [ )" + volume + " ]";
-    return json + "}";
+  const double intensity = 20.0;  // test::kFloorUnderPointLight's light
+  const glm::dvec3 light = test::kFloorLight;
+  auto level_json = [](const std::string& volume) {
+    return test::with_volume(test::kFloorUnderPointLight, volume);
   };
   const auto clear = test::level_from_json("thin_clear", level_json(""));
   const auto foggy =
