@@ -1,4 +1,5 @@
-// VolumeGrid: bricks, the majorant grid and lookups through the shared code (volume_grid.h).
+// VolumeGrid: bricks with their aprons, the majorant grid and lookups through the shared code
+// (volume_grid.h).
 #include "runtime/volume/volume_grid.h"
 
 #include <algorithm>
@@ -8,6 +9,8 @@ namespace lantern::runtime {
 namespace {
 
 constexpr int kBrick = static_cast<int>(gpu::kVolumeBrickSize);
+// The builder stages each cell's own 8^3 voxels before finish() adds the aprons.
+constexpr std::size_t kBlockVoxels = std::size_t{kBrick} * kBrick * kBrick;
 
 int floor_div(int a, int b) {
   return a >= 0 ? a / b : -((-a + b - 1) / b);
@@ -67,8 +70,7 @@ VolumeGridBuilder::VolumeGridBuilder(glm::ivec3 active_min, glm::ivec3 active_ma
   cell_box(active_min, active_max, first, count);
   origin_ = first * kBrick;
   counts_ = glm::uvec3(count);
-  cells_.assign(std::size_t(counts_.x) * counts_.y * counts_.z,
-                gpu::GpuVolumeCell{gpu::kVolumeEmptyBrick, 0.0f, 0.0f, 0u});
+  blocks_.assign(std::size_t(counts_.x) * counts_.y * counts_.z, gpu::kVolumeEmptyBrick);
 }
 
 void VolumeGridBuilder::set(glm::ivec3 ijk, float value) {
@@ -77,60 +79,74 @@ void VolumeGridBuilder::set(glm::ivec3 ijk, float value) {
   ++non_zero_;
   const glm::ivec3 rel = ijk - origin_;
   const glm::ivec3 cell = rel / kBrick;  // rel >= 0: the box covers every active voxel
-  const std::size_t index =
-      std::size_t(cell.x) + counts_.x * (std::size_t(cell.y) + counts_.y * std::size_t(cell.z));
-  gpu::GpuVolumeCell& c = cells_[index];
-  if (c.brick == gpu::kVolumeEmptyBrick) {
-    c.brick = static_cast<std::uint32_t>(values_.size() / gpu::kVolumeBrickVoxels);
-    values_.resize(values_.size() + gpu::kVolumeBrickVoxels, 0.0f);
+  std::uint32_t& block = blocks_[cell_index(cell)];
+  if (block == gpu::kVolumeEmptyBrick) {
+    block = static_cast<std::uint32_t>(voxels_.size() / kBlockVoxels);
+    voxels_.resize(voxels_.size() + kBlockVoxels, 0.0f);
   }
   const glm::ivec3 local = rel - cell * kBrick;
-  values_[std::size_t(c.brick) * gpu::kVolumeBrickVoxels +
+  voxels_[std::size_t(block) * kBlockVoxels +
           std::size_t(local.x + kBrick * (local.y + kBrick * local.z))] = value;
+}
+
+std::size_t VolumeGridBuilder::cell_index(glm::ivec3 c) const {
+  return std::size_t(c.x) + counts_.x * (std::size_t(c.y) + counts_.y * std::size_t(c.z));
+}
+
+float VolumeGridBuilder::staged(glm::ivec3 rel) const {
+  const glm::ivec3 cell = rel / kBrick;  // rel >= 0 here
+  if (glm::any(glm::greaterThanEqual(glm::uvec3(cell), counts_))) return 0.0f;
+  const std::uint32_t block = blocks_[cell_index(cell)];
+  if (block == gpu::kVolumeEmptyBrick) return 0.0f;
+  const glm::ivec3 local = rel - cell * kBrick;
+  return voxels_[std::size_t(block) * kBlockVoxels +
+                 std::size_t(local.x + kBrick * (local.y + kBrick * local.z))];
 }
 
 VolumeGrid VolumeGridBuilder::finish(VolumeGrid grid) {
   grid.cell_origin = origin_;
   grid.cell_counts = counts_;
-  grid.cells = std::move(cells_);
-  grid.values = std::move(values_);
   grid.mean_value = non_zero_ > 0 ? static_cast<float>(value_sum_ / double(non_zero_)) : 0.0f;
-  value_sum_ = 0.0;
-  non_zero_ = 0;
-  const gpu::VolumeGridView view = grid.view();
-  const gpu::GpuVolume record = grid.lookup_record();
-  auto has_brick = [&](glm::ivec3 c) {
-    if (glm::any(glm::greaterThanEqual(glm::uvec3(c), counts_))) return false;
-    return grid.cells[std::size_t(c.x) +
-                      counts_.x * (std::size_t(c.y) + counts_.y * std::size_t(c.z))]
-               .brick != gpu::kVolumeEmptyBrick;
-  };
-  // Bounds over the 9^3 voxels a trilinear sample in the cell reads. Cells with no brick in
-  // themselves or their +x/+y/+z neighbours read only zeros: max = min = 0 (the default).
+  grid.cells.assign(blocks_.size(), gpu::GpuVolumeCell{gpu::kVolumeEmptyBrick, 0.0f, 0.0f, 0u});
+  grid.values.clear();
+  const int edge = static_cast<int>(gpu::kVolumeBrickEdge);
+  std::vector<float> brick(gpu::kVolumeBrickVoxels);
+  // Each cell's brick holds the 9^3 voxels a trilinear sample in the cell reads (its own and the
+  // first layer of its +x/+y/+z neighbours); the cell's bounds are taken over exactly those.
+  // Cells whose 9^3 voxels are all zero keep no brick and max = min = 0.
   for (unsigned z = 0; z < counts_.z; ++z)
     for (unsigned y = 0; y < counts_.y; ++y)
       for (unsigned x = 0; x < counts_.x; ++x) {
         const glm::ivec3 c(x, y, z);
         bool any = false;
-        for (int n = 0; n < 8 && !any; ++n)
-          any = has_brick(c + glm::ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1));
+        for (int n = 0; n < 8 && !any; ++n) {
+          const glm::ivec3 nc = c + glm::ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1);
+          any = glm::all(glm::lessThan(glm::uvec3(nc), counts_)) &&
+                blocks_[cell_index(nc)] != gpu::kVolumeEmptyBrick;
+        }
         if (!any) continue;
         float hi = 0.0f, lo = std::numeric_limits<float>::max();
-        const glm::ivec3 base = origin_ + c * kBrick;
-        for (int k = 0; k <= kBrick; ++k)
-          for (int j = 0; j <= kBrick; ++j)
-            for (int i = 0; i <= kBrick; ++i) {
-              const float v =
-                  gpu::volume_voxel(view, record, glm::vec3(base + glm::ivec3(i, j, k)));
+        const glm::ivec3 base = c * kBrick;
+        for (int k = 0; k < edge; ++k)
+          for (int j = 0; j < edge; ++j)
+            for (int i = 0; i < edge; ++i) {
+              const float v = staged(base + glm::ivec3(i, j, k));
+              brick[std::size_t(i + edge * (j + edge * k))] = v;
               hi = std::max(hi, v);
               lo = std::min(lo, v);
             }
-        gpu::GpuVolumeCell& cell =
-            grid.cells[std::size_t(x) + counts_.x * (std::size_t(y) + counts_.y * std::size_t(z))];
+        if (hi == 0.0f) continue;
+        gpu::GpuVolumeCell& cell = grid.cells[cell_index(c)];
+        cell.brick = static_cast<std::uint32_t>(grid.values.size() / gpu::kVolumeBrickVoxels);
         cell.max_density = hi;
         cell.min_density = lo;
+        grid.values.insert(grid.values.end(), brick.begin(), brick.end());
       }
+  value_sum_ = 0.0;
+  non_zero_ = 0;
   counts_ = glm::uvec3(0);
+  blocks_.clear();
+  voxels_.clear();
   return grid;
 }
 

@@ -7,11 +7,13 @@
 //   the support (trilinear interpolation reaches one voxel out). It is covered by a box of
 //   cells_x * cells_y * cells_z cells of 8^3 voxels, aligned to multiples of 8 in index space
 //   (OpenVDB's leaf nodes); cell (0,0,0) starts at voxel cell_origin; cells are stored x fastest.
-// - Each cell holds one brick of 512 values (x fastest, then y, z) in `values`, or no brick
-//   (kVolumeEmptyBrick) when all its voxels are zero: memory follows the occupied space.
+// - Each cell holds one brick of 9^3 values (x fastest, then y, z) in `values`: its own 8^3
+//   voxels and an apron, the first layer of its +x, +y, +z neighbours, so a trilinear sample in
+//   the cell reads one brick. A cell whose 9^3 voxels are all zero has no brick
+//   (kVolumeEmptyBrick): memory follows the occupied space.
 // - The majorant grid is the cells' max_density (and min_density): bounds of the grid value
-//   over everything a trilinear sample inside the cell reads (its voxels and the next layer in
-//   +x, +y, +z), so max_density * (max channel of sigma_t per unit value) bounds sigma_t.
+//   over the brick, everything a trilinear sample inside the cell reads, so max_density * (max
+//   channel of sigma_t per unit value) bounds sigma_t.
 // - index_to_world is the grid's affine transform (non-affine grids are refused at load).
 #pragma once
 
@@ -71,10 +73,14 @@ class VolumeGridBuilder {
   VolumeGrid finish(VolumeGrid header);
 
  private:
+  std::size_t cell_index(glm::ivec3 cell) const;
+  // A staged voxel by its index relative to origin_ (>= 0): 0 outside the box or a block.
+  float staged(glm::ivec3 rel) const;
+
   glm::ivec3 origin_;
   glm::uvec3 counts_;
-  std::vector<gpu::GpuVolumeCell> cells_;
-  std::vector<float> values_;
+  std::vector<std::uint32_t> blocks_;  // per cell: its staged 8^3 block, or kVolumeEmptyBrick
+  std::vector<float> voxels_;          // blocks * 512, x fastest
   double value_sum_ = 0.0;
   std::uint64_t non_zero_ = 0;
 };

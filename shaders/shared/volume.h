@@ -2,7 +2,8 @@
 // volume and its majorant cells, the Henyey-Greenstein phase function, distance sampling in a
 // homogeneous medium (exponential, also truncated to a segment), equiangular sampling toward a
 // point, their one-sample MIS for scattering distances on a camera ray, and ratio / residual
-// ratio tracking transmittance estimators over a segment of constant majorant. The grid lookups (bricks, trilinear sampling) are in shared/volume_grid.h.
+// ratio tracking transmittance estimators over a segment of constant majorant. The grid
+// lookups (bricks, trilinear sampling) are in shared/volume_grid.h.
 //
 // Conventions
 // - Directions are directions of travel. The phase function's cos_theta is the cosine between
@@ -37,11 +38,14 @@ vec3 medium_extinction(uint medium, vec3 p);
 
 LANTERN_BEGIN_SHARED
 
-// Voxels per brick edge: grids are stored as 8^3 bricks (OpenVDB's leaf size), and each brick
-// cell of the grid is also one cell of the majorant grid.
+// Voxels per cell edge: grids are cut into 8^3-voxel cells (OpenVDB's leaf size), each one cell
+// of the majorant grid too. A cell's brick stores 9^3 values: its own 8^3 voxels plus an apron,
+// the first layer of its +x, +y and +z neighbours, so every trilinear sample inside the cell
+// reads its own brick only (one cell record, eight values, no branch per voxel).
 LANTERN_CONST uint kVolumeBrickSize = 8u;
-LANTERN_CONST uint kVolumeBrickVoxels = 512u;
-// GpuVolumeCell.brick of a cell whose 8^3 voxels are all zero (no values stored).
+LANTERN_CONST uint kVolumeBrickEdge = 9u;
+LANTERN_CONST uint kVolumeBrickVoxels = 729u;
+// GpuVolumeCell.brick of a cell whose 9^3 brick voxels are all zero (no values stored).
 LANTERN_CONST uint kVolumeEmptyBrick = 0xFFFFFFFFu;
 // "No collision": what exponential_sample returns in a medium with zero extinction.
 LANTERN_CONST float kVolumeNoCollision = 3.0e38f;
@@ -73,7 +77,8 @@ LANTERN_STATIC_SIZE(GpuVolume, 224);
 // [origin + 8c, origin + 8c + 8]^3 only, over which max/min_density are taken, so they bound
 // the interpolated density in the whole cell.
 struct GpuVolumeCell {
-  uint brick;         // first value = brick * 512 (x fastest, then y, z); kVolumeEmptyBrick: zeros
+  uint brick;         // first value = brick * 729 (9^3, x fastest, then y, z); kVolumeEmptyBrick:
+                      // zeros
   float max_density;  // majorant grid value; extinction majorant = max_density * absorption.w
   float min_density;  // lower bound, the control density of residual ratio tracking
   uint pad0;

@@ -1,5 +1,6 @@
 // A volume's grid as the GPU (and the CPU, runtime/volume/volume_grid.h) stores it: a box of
-// majorant cells, each one 8^3 brick of voxels or empty (all zero), and the trilinear sampling in
+// majorant cells of 8^3 voxels, each with a 9^3 brick (its voxels and the first layer of its +x,
+// +y, +z neighbours) or empty (all zero), and the trilinear sampling in
 // index space that every volume pass uses. Memory is reached through two fetch functions: GLSL
 // defines them before including this file; the C++ ones (below) read a VolumeGridView.
 //   GpuVolumeCell volume_fetch_cell(uint i);  float volume_fetch_value(uint i)
@@ -50,6 +51,11 @@ LANTERN_FUNC uint volume_cell_index(GpuVolume v, vec3 cell) {
   return v.cells.w + c.x + v.cells.x * (c.y + v.cells.y * c.z);
 }
 
+// Offset of brick-local voxel l (each component in [0, 8]) within a brick's 9^3 values.
+LANTERN_FUNC uint volume_brick_offset(uvec3 l) {
+  return l.x + kVolumeBrickEdge * (l.y + kVolumeBrickEdge * l.z);
+}
+
 // The grid value of voxel ijk (integer-valued index coordinates): 0 outside the cells, in an
 // empty brick and (by construction of the bricks) outside the active region.
 LANTERN_FUNC float volume_voxel(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 ijk) {
@@ -62,53 +68,40 @@ LANTERN_FUNC float volume_voxel(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 ijk)
     return 0.0f;
   }
   uvec3 local = uvec3(ijk - vec3(v.cell_origin) - cell * float(kVolumeBrickSize));
-  uint offset = local.x + kVolumeBrickSize * (local.y + kVolumeBrickSize * local.z);
-  return volume_fetch_value(LANTERN_VOLUME_GRID c.brick * kVolumeBrickVoxels + offset);
+  return volume_fetch_value(LANTERN_VOLUME_GRID c.brick * kVolumeBrickVoxels +
+                            volume_brick_offset(local));
 }
 
 // The grid value at index-space point p, trilinear between the eight voxel centres around it
-// (centres at integer coordinates, OpenVDB's convention). When all eight lie in one brick (7/8
-// of the voxels per axis) the cell is read once and the values straight from its brick; else
-// each voxel finds its own cell.
+// (centres at integer coordinates, OpenVDB's convention). The cell holding floor(p) is read once
+// and all eight values come from its brick (the apron holds the +1 layer). 0 when that cell is
+// outside the box: the box covers the support grown by a voxel, so every voxel such a sample
+// would read is zero.
 LANTERN_FUNC float volume_density_index(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 p) {
   vec3 base = floor(p);
   vec3 f = p - base;
   vec3 cell = volume_cell_of(v, base);
-  vec3 local = base - vec3(v.cell_origin) - cell * float(kVolumeBrickSize);
-  float last = float(kVolumeBrickSize - 1u);
-  if (local.x < last && local.y < last && local.z < last && volume_cell_inside(v, cell)) {
-    GpuVolumeCell c = volume_fetch_cell(LANTERN_VOLUME_GRID volume_cell_index(v, cell));
-    if (c.brick == kVolumeEmptyBrick) {
-      return 0.0f;
-    }
-    uvec3 l = uvec3(local);
-    uint i = c.brick * kVolumeBrickVoxels + l.x + kVolumeBrickSize * (l.y + kVolumeBrickSize * l.z);
-    const uint dy = kVolumeBrickSize;
-    const uint dz = kVolumeBrickSize * kVolumeBrickSize;
-    float b000 = volume_fetch_value(LANTERN_VOLUME_GRID i);
-    float b100 = volume_fetch_value(LANTERN_VOLUME_GRID i + 1u);
-    float b010 = volume_fetch_value(LANTERN_VOLUME_GRID i + dy);
-    float b110 = volume_fetch_value(LANTERN_VOLUME_GRID i + dy + 1u);
-    float b001 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz);
-    float b101 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz + 1u);
-    float b011 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz + dy);
-    float b111 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz + dy + 1u);
-    return mix(mix(mix(b000, b100, f.x), mix(b010, b110, f.x), f.y),
-               mix(mix(b001, b101, f.x), mix(b011, b111, f.x), f.y), f.z);
+  if (!volume_cell_inside(v, cell)) {
+    return 0.0f;
   }
-  float c000 = volume_voxel(LANTERN_VOLUME_GRID v, base);
-  float c100 = volume_voxel(LANTERN_VOLUME_GRID v, base + vec3(1.0f, 0.0f, 0.0f));
-  float c010 = volume_voxel(LANTERN_VOLUME_GRID v, base + vec3(0.0f, 1.0f, 0.0f));
-  float c110 = volume_voxel(LANTERN_VOLUME_GRID v, base + vec3(1.0f, 1.0f, 0.0f));
-  float c001 = volume_voxel(LANTERN_VOLUME_GRID v, base + vec3(0.0f, 0.0f, 1.0f));
-  float c101 = volume_voxel(LANTERN_VOLUME_GRID v, base + vec3(1.0f, 0.0f, 1.0f));
-  float c011 = volume_voxel(LANTERN_VOLUME_GRID v, base + vec3(0.0f, 1.0f, 1.0f));
-  float c111 = volume_voxel(LANTERN_VOLUME_GRID v, base + vec3(1.0f, 1.0f, 1.0f));
-  float x00 = mix(c000, c100, f.x);
-  float x10 = mix(c010, c110, f.x);
-  float x01 = mix(c001, c101, f.x);
-  float x11 = mix(c011, c111, f.x);
-  return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+  GpuVolumeCell c = volume_fetch_cell(LANTERN_VOLUME_GRID volume_cell_index(v, cell));
+  if (c.brick == kVolumeEmptyBrick) {
+    return 0.0f;
+  }
+  uvec3 l = uvec3(base - vec3(v.cell_origin) - cell * float(kVolumeBrickSize));
+  uint i = c.brick * kVolumeBrickVoxels + volume_brick_offset(l);
+  const uint dy = kVolumeBrickEdge;
+  const uint dz = kVolumeBrickEdge * kVolumeBrickEdge;
+  float b000 = volume_fetch_value(LANTERN_VOLUME_GRID i);
+  float b100 = volume_fetch_value(LANTERN_VOLUME_GRID i + 1u);
+  float b010 = volume_fetch_value(LANTERN_VOLUME_GRID i + dy);
+  float b110 = volume_fetch_value(LANTERN_VOLUME_GRID i + dy + 1u);
+  float b001 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz);
+  float b101 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz + 1u);
+  float b011 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz + dy);
+  float b111 = volume_fetch_value(LANTERN_VOLUME_GRID i + dz + dy + 1u);
+  return mix(mix(mix(b000, b100, f.x), mix(b010, b110, f.x), f.y),
+             mix(mix(b001, b101, f.x), mix(b011, b111, f.x), f.y), f.z);
 }
 
 // The majorant (scalar, >= every channel of sigma_t) of the cell holding index-space point p;

@@ -4,7 +4,10 @@
 // generators (deterministic, small) and transmittance through a generated constant box.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
+
+#include <openvdb/tools/Interpolation.h>
 
 #include "runtime/volume/vdb_reader.h"
 #include "runtime/volume/volume_generator.h"
@@ -74,7 +77,34 @@ TEST_F(VolumeGridTest, InactiveVoxelsReadZeroAndEmptyBricksAreNotStored) {
   EXPECT_EQ(g.brick_count(), 2u);
   EXPECT_EQ(g.voxel(glm::ivec3(30, 1, 1)), 0.0f);
   EXPECT_EQ(g.voxel(glm::ivec3(60, 1, 1)), 3.0f);
-  EXPECT_EQ(g.bytes(), g.cells.size() * 16 + 2 * 512 * 4);
+  EXPECT_EQ(g.bytes(), g.cells.size() * 16 + 2 * gpu::kVolumeBrickVoxels * 4);
+}
+
+// Random values over a box that crosses cell faces on every axis (negative coordinates too):
+// the bricks' trilinear lookup (each cell's apron holding its +x/+y/+z neighbours' first layer)
+// agrees with OpenVDB's own BoxSampler at random points, near faces, edges and corners included.
+TEST_F(VolumeGridTest, TrilinearAcrossCellFacesMatchesOpenVdbsBoxSampler) {
+  const fs::path file = volume_scratch("random_box.vdb");
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  gpu::uint rng = gpu::rng_init(glm::uvec2(5u), 0u, 77u, 0u);
+  for (int k = -9; k <= 10; ++k)
+    for (int j = -3; j <= 17; ++j)
+      for (int i = -17; i <= 1; ++i)
+        grid->tree().setValue(openvdb::Coord(i, j, k), 0.1f + gpu::rng_next_float(rng));
+  write_vdb(file, {grid});
+  const runtime::VolumeGrid g = runtime::read_vdb_grid(file, "density", "test");
+  const openvdb::FloatGrid::ConstAccessor acc = grid->getConstAccessor();
+  const glm::vec3 lo(-19.0f, -5.0f, -11.0f), hi(3.0f, 19.0f, 12.0f);
+  for (int n = 0; n < 20000; ++n) {
+    glm::vec3 p = lo + (hi - lo) * glm::vec3(gpu::rng_next_float(rng), gpu::rng_next_float(rng),
+                                             gpu::rng_next_float(rng));
+    if (n % 4 == 0) p.x = 8.0f * std::floor(p.x / 8.0f) - 0.5f;  // between two cells in x
+    const float expected =
+        openvdb::tools::BoxSampler::sample(acc, openvdb::Vec3R(p.x, p.y, p.z));
+    ASSERT_NEAR(g.sample(p), expected, 1e-5f * (1.0f + expected))
+        << n << ": " << p.x << " " << p.y << " " << p.z;
+  }
 }
 
 TEST_F(VolumeGridTest, ActiveTilesAreExpanded) {
@@ -88,7 +118,10 @@ TEST_F(VolumeGridTest, ActiveTilesAreExpanded) {
   const runtime::VolumeGrid g = runtime::read_vdb_grid(file, "density", "test");
   EXPECT_EQ(g.active_voxels, 16u * 16u * 16u);
   EXPECT_EQ(g.voxel(glm::ivec3(9, 3, 15)), 0.75f);
-  EXPECT_EQ(g.brick_count(), 8u);
+  // The 2^3 cells the tile covers, and the cells on their -x, -y, -z sides whose apron holds
+  // the tile's first layer: 3^3 bricks.
+  EXPECT_EQ(g.brick_count(), 27u);
+  EXPECT_EQ(g.sample(glm::vec3(-0.5f, 3.0f, 3.0f)), 0.375f);
 }
 
 // Every channel of sigma_t at random points is <= the majorant of the cell holding the point,

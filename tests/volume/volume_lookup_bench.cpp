@@ -1,6 +1,6 @@
 // Benchmark, not a test: which GPU layout of a volume's grid looks densities up faster on this
-// device — the project's 8^3 float bricks with a majorant cell box (runtime/volume/volume_grid.h,
-// what the volume passes read) or NanoVDB's tree (nanovdb::openToNanoVDB on the same OpenVDB
+// device — the project's bricks (9^3 floats per 8^3 cell, apron included) with a majorant cell
+// box (runtime/volume/volume_grid.h, what the volume passes read) or NanoVDB's tree (nanovdb::openToNanoVDB on the same OpenVDB
 // grid, read through PNanoVDB.h in GLSL with its value accessor). For each volume of a level:
 // 16384 rays x 256 trilinear lookups half a voxel apart (the access pattern of tracking), median
 // GPU ms of 9 alternating dispatches per layout, the memory of each, and a check that both
