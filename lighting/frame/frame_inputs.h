@@ -53,6 +53,13 @@ struct FrameInputs {
 // A lighting integrator: adds its passes to the frame's graph. They write linear radiance into
 // `hdr` (a buffer of width*height vec4, row-major from the top-left, alpha 1) and the new version
 // of `hdr` is returned. Pass names are module.stage ("integrators.baseline", "restir.initial").
+// Samples per pixel per frame of volume.camera (transmittance and in-scattering, >= 1), and
+// whether each adds a phase-sampled estimate MIS'd with the light-sampled one.
+struct VolumeCameraSampling {
+  std::uint32_t samples = 1;
+  bool phase_mis = false;
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -76,9 +83,10 @@ class Integrator {
   // True when its own passes render the media (transmittance and in-scattering along camera
   // rays) for the prepared scene; otherwise the FrameRenderer adds volume.camera after it.
   virtual bool renders_media() const { return false; }
-  // Samples per pixel per frame the media passes take along camera rays (transmittance and
-  // in-scattering, lighting/volume/): 1 for the real-time integrators, spp for the reference.
-  virtual std::uint32_t volume_samples() const { return 1; }
+  // How volume.camera estimates the media along camera rays for it (lighting/volume/): one
+  // light-sampled estimate per pixel for the real-time integrators; spp, each with light/phase
+  // MIS, for the reference.
+  virtual VolumeCameraSampling volume_sampling() const { return {}; }
   [[nodiscard]] virtual runtime::graph::BufferHandle add_passes(
       runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
       runtime::graph::BufferHandle hdr) = 0;

@@ -159,7 +159,7 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   inputs_.previous_light_count = scene_->previous_light_count();
   hdr = integrator_->add_passes(graph, inputs_, hdr);
   if (volume_camera_) {
-    hdr = volume_camera_->add_pass(graph, inputs_, hdr, integrator_->volume_samples());
+    hdr = volume_camera_->add_pass(graph, inputs_, hdr, integrator_->volume_sampling());
   }
   raw_ = hdr;
   if (frame_output_ == FrameOutput::Denoised) hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr);

@@ -55,7 +55,9 @@ class ReferenceIntegrator final : public Integrator {
   std::vector<std::pair<std::string, std::string>> describe_settings() const override;
   void apply_settings(const std::vector<std::pair<std::string, std::string>>& changes) override;
   VisibilityBackend visibility() const override { return visibility_; }
-  std::uint32_t volume_samples() const override { return settings_.spp; }
+  VolumeCameraSampling volume_sampling() const override {
+    return {.samples = settings_.spp, .phase_mis = true};
+  }
   // Writes every pixel of `hdr` (StorageWrite): the mean of this frame's spp samples.
   [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,

@@ -245,7 +245,9 @@ void GpuScene::update_instances(const FrameSnapshot& snapshot) {
 }
 
 // A volume's record follows its placement this frame: the grid's own index-to-world, then the
-// snapshot's object_to_world (behaviours move volumes like instances).
+// snapshot's object_to_world (behaviours move volumes like instances), and carries its motion
+// since last frame from the snapshot's prev_object_to_world (identity when still, and in a
+// frozen snapshot), which the media reservoirs' reuse follows.
 void GpuScene::update_volumes(const FrameSnapshot& snapshot) {
   for (const SnapshotVolume& s : snapshot.volumes) {
     if (s.stable_id >= data_.volumes.size()) {
@@ -256,9 +258,15 @@ void GpuScene::update_volumes(const FrameSnapshot& snapshot) {
     }
     gpu::GpuVolume& v = data_.volumes[s.stable_id];
     const glm::mat4 index_to_world = s.object_to_world * data_.volume_grid_to_world[s.stable_id];
-    if (v.index_to_world == index_to_world) continue;
+    const bool still = s.prev_object_to_world == s.object_to_world;
+    const glm::mat4 motion =
+        still ? glm::mat4(1.0f) : s.object_to_world * glm::inverse(s.prev_object_to_world);
+    if (v.index_to_world == index_to_world && v.motion == motion) continue;
     v.index_to_world = index_to_world;
     v.world_to_index = glm::inverse(index_to_world);
+    v.motion = motion;
+    v.motion_inverse =
+        still ? glm::mat4(1.0f) : s.prev_object_to_world * glm::inverse(s.object_to_world);
     mark_dirty(gpu::kSceneVolumes, std::uint64_t{s.stable_id} * sizeof(gpu::GpuVolume),
                std::uint64_t{s.stable_id + 1} * sizeof(gpu::GpuVolume));
   }

@@ -15,11 +15,12 @@ VolumeCameraPass::VolumeCameraPass(runtime::Device& device, runtime::ShaderLibra
 runtime::graph::BufferHandle VolumeCameraPass::add_pass(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,
                                                         runtime::graph::BufferHandle hdr,
-                                                        std::uint32_t samples) const {
+                                                        VolumeCameraSampling sampling) const {
   gpu::VolumePush push{};
   push.width = inputs.width;
   push.height = inputs.height;
-  push.samples = std::max(samples, 1u);
+  push.samples = std::max(sampling.samples, 1u);
+  push.flags = sampling.phase_mis ? gpu::kVolumePushPhaseMis : 0u;
   return pass_.add(graph, inputs, push, {{"radiance", hdr, ShaderPassBuffer::ReadWrite}},
                    {.x = inputs.width, .y = inputs.height, .threads = true})[0];
 }

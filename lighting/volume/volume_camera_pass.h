@@ -17,12 +17,12 @@ class VolumeCameraPass {
  public:
   VolumeCameraPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
                    VisibilityBackend visibility);
-  // Returns the new version of `hdr` (inputs.width x inputs.height vec4 radiance); `samples`
-  // per pixel (>= 1; Integrator::volume_samples).
+  // Returns the new version of `hdr` (inputs.width x inputs.height vec4 radiance), estimated
+  // as the integrator asks (Integrator::volume_sampling).
   [[nodiscard]] runtime::graph::BufferHandle add_pass(runtime::graph::RenderGraph& graph,
                                                       const FrameInputs& inputs,
                                                       runtime::graph::BufferHandle hdr,
-                                                      std::uint32_t samples) const;
+                                                      VolumeCameraSampling sampling) const;
   // JIT-compiles the pipeline now (lavapipe compiles at first dispatch).
   void warm_up() const { pass_.pipeline().warm_up(); }
 

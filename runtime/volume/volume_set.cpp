@@ -65,6 +65,8 @@ gpu::GpuVolume volume_record(const Volume& volume, const VolumeGrid& grid,
   gpu::GpuVolume v = grid.lookup_record();
   v.index_to_world = placement * grid.index_to_world;
   v.world_to_index = glm::inverse(v.index_to_world);
+  v.motion = glm::mat4(1.0f);
+  v.motion_inverse = glm::mat4(1.0f);
   if (!all_finite(v.world_to_index))
     throw InputError(
         fmt::format("{}: the placement makes the grid's transform singular", volume.where));

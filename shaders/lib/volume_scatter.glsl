@@ -13,6 +13,7 @@
 #ifndef LANTERN_LIB_VOLUME_SCATTER_GLSL
 #define LANTERN_LIB_VOLUME_SCATTER_GLSL
 
+#include "lib/emitter_hit.glsl"
 #include "shared/alias_table.h"
 #include "shared/environment.h"
 #include "shared/gbuffer.h"
@@ -222,11 +223,96 @@ VolumeSample volume_sample_draw(uint medium, vec3 origin, vec3 dir, float t_end,
   return pdf > 0.0 ? volume_sample_of(medium, t, m) : none;
 }
 
+// --- Light/phase MIS (the reference) ------------------------------------------------------------
+// With phase MIS each volume's in-scattering sample is two, combined by the power heuristic over
+// (distance, light point), both densities in solid angle at the scattering point x:
+//   light: volume_sample_draw's (a light, then a distance MIS'd toward its point):
+//     p_light(l) p(t | light point);
+//   phase: a distance from the truncated exponential alone, p_exp(t), then a direction from the
+//     HG phase function traced to the emitter (or the environment) it finds: p_exp(t) hg(l).
+// Each technique's density is evaluated for every sample the other makes; a delta light (point,
+// spot, directional) only light sampling reaches (weight 1).
+
+// The power heuristic weight of light-drawn sample s (its light still exists): 1 for a delta
+// light, else against the phase technique's density of the same (t, direction).
+float volume_light_mis_weight(VolumeSample s, vec3 origin, vec3 dir, float t_end) {
+  GpuVolume v;
+  vec3 o, d;
+  float t0, t1;
+  if (!volume_ray_segment(s.medium, origin, dir, t_end, v, o, d, t0, t1)) return 1.0;
+  float guide = volume_guide_extinction(v);
+  float p_exp = exponential_pdf_truncated(guide, t1 - t0, s.t - t0);
+  vec3 x = origin + s.t * dir;
+  vec3 l;
+  float p_light;
+  if (s.light == kEnvironmentLight) {
+    l = env_uv_to_world_direction(env_header.env, s.uv);
+    p_light = env_header.env.params.x * env_pdf(env_header.env, l) * p_exp;
+  } else {
+    GpuLight light = scene_lights.l[s.light];
+    if (light_kind(light) != kLightTriangle) return 1.0;
+    vec3 y = light_eval_position(light, s.uv, x, frame_constants.frame.scene.x);
+    vec3 to_light = y - x;
+    float dist2 = dot(to_light, to_light);
+    l = to_light * inversesqrt(max(dist2, 1e-30));
+    p_light = triangle_light_pdf(s.light, dist2, l) *
+              scatter_distance_pdf(origin, dir, t0, t1, guide, true, y, s.t);
+  }
+  return power_heuristic(p_light, p_exp * hg_pdf(dir, l, v.scattering.w));
+}
+
+// The phase technique's estimate for volume `medium` on the ray, MIS-weighted (unbiased
+// transmittances from `rng`).
+vec3 volume_phase_sample(uint medium, vec3 origin, vec3 dir, float t_end, inout uint rng) {
+  GpuVolume v;
+  vec3 o, d;
+  float t0, t1;
+  float u_t = rng_next_float(rng);
+  vec2 u_dir = rng_next_vec2(rng);
+  if (!volume_ray_segment(medium, origin, dir, t_end, v, o, d, t0, t1)) return vec3(0.0);
+  float guide = volume_guide_extinction(v);
+  float t = clamp(t0 + exponential_sample_truncated(guide, t1 - t0, u_t), t0, t1);
+  float p_exp = exponential_pdf_truncated(guide, t1 - t0, t - t0);
+  vec3 sigma_s = volume_density_index(v, o + t * d) * v.scattering.xyz;
+  if (!(p_exp > 0.0) || !(max(sigma_s.x, max(sigma_s.y, sigma_s.z)) > 0.0)) return vec3(0.0);
+  float g = v.scattering.w;
+  vec3 l = hg_sample(dir, g, u_dir);
+  float p_dir = hg_pdf(dir, l, g);
+  if (!(p_dir > 0.0)) return vec3(0.0);
+  vec3 x = origin + t * dir;
+  vec3 le;
+  vec3 end;
+  float p_light;
+  VisHit hit;
+  if (vis_trace_closest(x, l, kVisInfinity, hit)) {
+    SurfaceHit h = surface_at(hit);
+    le = emitted(h, scene_materials.m[h.material], l);
+    if (le == vec3(0.0)) return vec3(0.0);
+    vec3 to_hit = h.position - x;
+    p_light = h.light != kInvalidLight
+                  ? triangle_light_pdf(h.light, dot(to_hit, to_hit), l) *
+                        scatter_distance_pdf(origin, dir, t0, t1, guide, true, h.position, t)
+                  : 0.0;
+    end = h.position;
+  } else {
+    if (env_header.env.size.z == 0u) return vec3(0.0);
+    le = env_miss_radiance(l);  // as the light technique sees it (volume_sample_light)
+    p_light = env_header.env.params.x * env_pdf(env_header.env, l) * p_exp;
+    end = x + l * (kDirectionalShadowRadii * frame_constants.frame.scene.x);
+  }
+  float p_phase = p_exp * p_dir;
+  vec3 c = sigma_s * light_eval_scattered_incident(l, le, 1.0, dir, g) / p_phase;
+  if (c == vec3(0.0)) return vec3(0.0);
+  c *= scene_transmittance(origin, dir, t, rng) * scene_transmittance_between(x, end, rng);
+  return c * power_heuristic(p_phase, p_light);
+}
+
 // One sample of every volume's in-scattering along origin + t dir (dir unit), t in [0, t_end]
 // (their sum: an unbiased estimate of the radiance the media scatter towards the origin), and
 // an unbiased estimate of the ray's transmittance to t_end, `surface` (shared with the first
-// volume's sample, volume_sample_shade).
-vec3 scene_inscatter_sample(vec3 origin, vec3 dir, float t_end, inout uint rng,
+// volume's sample, volume_sample_shade). With `phase_mis` each volume adds a phase-sampled
+// estimate, the two MIS-weighted (above).
+vec3 scene_inscatter_sample(vec3 origin, vec3 dir, float t_end, bool phase_mis, inout uint rng,
                             out vec3 surface) {
   vec3 sum = vec3(0.0);
   surface = vec3(1.0);
@@ -238,7 +324,12 @@ vec3 scene_inscatter_sample(vec3 origin, vec3 dir, float t_end, inout uint rng,
     vec3 t_surface;
     vec3 f = volume_sample_shade(s, origin, dir, t_end, i == 0u, rng, t_surface);
     if (i == 0u) surface = t_surface;
-    if (pdf > 0.0) sum += f / pdf;
+    if (pdf > 0.0) {
+      float weight = phase_mis && f != vec3(0.0) ? volume_light_mis_weight(s, origin, dir, t_end)
+                                                 : 1.0;
+      sum += f * (weight / pdf);
+    }
+    if (phase_mis) sum += volume_phase_sample(i, origin, dir, t_end, rng);
   }
   return sum;
 }

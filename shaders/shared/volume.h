@@ -69,8 +69,11 @@ struct GpuVolume {
   vec4 support_max;     // xyz: the box's upper corner; w: 0
   vec4 cell_origin;     // xyz: index of voxel (0,0,0) of cell (0,0,0), integers; w: 0
   uvec4 cells;          // xyz: cells per axis (x fastest in the cell array); w: first cell
+  mat4 motion;          // last frame's world -> this frame's for points of this medium (its
+                        //   placement now * inverse(its placement last frame)); identity when still
+  mat4 motion_inverse;  // this frame's world -> last frame's
 };
-LANTERN_STATIC_SIZE(GpuVolume, 224);
+LANTERN_STATIC_SIZE(GpuVolume, 352);
 
 // One cell of the majorant grid = one brick of voxels. Cell c covers the index-space box
 // [origin + 8c, origin + 8c + 8)^3; every trilinear sample in it reads voxels of
@@ -90,9 +93,12 @@ struct VolumePush {
   uint width;
   uint height;
   uint samples;  // volume.camera: transmittance + in-scattering samples per pixel (>= 1)
-  uint pad0;
+  uint flags;    // kVolumePush*
 };
 LANTERN_STATIC_SIZE(VolumePush, 16);
+// VolumePush.flags: each sample adds a phase-sampled estimate, MIS'd with the light-sampled one
+// (the reference; lib/volume_scatter.glsl).
+LANTERN_CONST uint kVolumePushPhaseMis = 1u;
 LANTERN_CONST uint kVolumeGroupSize = 8u;
 // The random stream of volume.camera's estimates (frame_rng's pass).
 LANTERN_CONST uint kVolumeRngCamera = 0x564f4cu;

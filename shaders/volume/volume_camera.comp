@@ -4,7 +4,8 @@
 // light kind (lib/volume_scatter.glsl). The ray runs from the camera to the G-buffer's surface
 // point, or for a sky pixel along the pixel's view direction to kDirectionalShadowRadii scene
 // radii (the sky is seen through the fog too). Each of push.samples samples is one
-// in-scattering sample per volume and one transmittance estimate to the surface (residual ratio
+// in-scattering sample per volume (with kVolumePushPhaseMis, the reference's, a light-sampled
+// and a phase-sampled one, MIS-weighted) and one transmittance estimate to the surface (residual ratio
 // tracking, lib/volumes.glsl: unbiased, exact in homogeneous cells; it continues the first
 // volume's walk to its scattering point); their means are used. Its own random stream, so
 // E[radiance x T] = E[radiance] E[T].
@@ -41,7 +42,8 @@ void main() {
   vec3 inscattered = vec3(0.0);
   for (uint s = 0u; s < samples; ++s) {
     vec3 t_surface;
-    inscattered += scene_inscatter_sample(camera, dir, t_end, rng, t_surface);
+    inscattered += scene_inscatter_sample(camera, dir, t_end,
+                                          (push.flags & kVolumePushPhaseMis) != 0u, rng, t_surface);
     t += t_surface;
   }
   t /= float(samples);

@@ -1,12 +1,14 @@
 // volume.restir_initial: each pixel's media reservoir for this frame (shared/volume_restir.h).
 // Initial: push.candidates (medium, distance, light) candidates drawn along the pixel's camera
 // ray (a medium uniformly, then lib/volume_scatter.glsl volume_sample_draw), resampled by the
-// target p̂ (RIS). Temporal: the selected scattering point (where the ray ends when nothing was
-// selected) is projected into last frame's camera; the reservoir there (its light remapped to
-// this frame's index, its confidence capped at push.m_cap) is combined with this frame's by the
-// balance heuristic over the two pixels' targets (both evaluated in this frame's scene on each
-// pixel's own ray: the keep-t shift, Jacobian 1), so the combination stays unbiased where the
-// media and lights hold still.
+// target p̂ (RIS). Temporal: a point of the ray chosen without its samples (history_point,
+// carried back by its medium's motion) is projected into last frame's camera; the reservoir
+// there (its light remapped to this frame's index, its confidence capped at push.m_cap) is
+// shifted onto this frame's ray at the point nearest where its medium carried it
+// (shared/volume_restir.h volume_temporal_shift, Jacobian a) and
+// combined with this frame's by the balance heuristic over the two pixels' targets (both
+// evaluated in this frame's scene on each pixel's own ray, the Jacobian applied), so the
+// combination stays unbiased where the media and lights hold still.
 // Reads: gbuffer position; last frame's final media reservoirs ("reservoirs_history"; without
 // history a stand-in that is not read); the scene (volumes, lights, environment).
 // Writes: "reservoirs" (one VolumeReservoir per pixel). Dispatch: one thread per pixel, 8x8.
@@ -53,6 +55,42 @@ MediaReservoir initial_reservoir(vec3 origin, vec3 dir, float t_end, inout uint 
   return r;
 }
 
+// Where a pixel looks for history: a point of its ray chosen without its samples (pairing by
+// the selected sample, or skipping pixels whose candidates found nothing, would make the reuse
+// depend on the outcome it combines: a bias under camera motion), one mean free path (at the
+// guide extinction) into the nearest volume the ray crosses, at most halfway through it, carried
+// back by that medium's motion to where it was last frame; where the ray ends (the surface, or a
+// sky pixel's far point) when it crosses none.
+vec3 history_point(vec3 origin, vec3 dir, float t_end) {
+  float nearest = t_end;
+  float point = t_end;
+  uint medium = kInvalidLight;
+  uint media = frame_constants.frame.media.x;
+  for (uint i = 0u; i < media; ++i) {
+    GpuVolume v;
+    vec3 o, d;
+    float t0, t1;
+    if (!volume_ray_segment(i, origin, dir, t_end, v, o, d, t0, t1) || !(t0 < nearest)) continue;
+    float half_way = 0.5 * (t1 - t0);
+    float guide = volume_guide_extinction(v);
+    nearest = t0;
+    point = t0 + (guide > 0.0 ? min(half_way, 1.0 / guide) : half_way);
+    medium = i;
+  }
+  vec3 x = origin + point * dir;
+  if (medium == kInvalidLight) return x;
+  return vec3(scene_volumes.v[medium].motion_inverse * vec4(x, 1.0));
+}
+
+// The temporal shift of a sample of `medium` from last frame's ray (prev_origin, prev_dir) to
+// this frame's (shared/volume_restir.h), its motion applied; a = 0 (no shift) for a medium that
+// no longer exists.
+vec2 media_shift(uint medium, vec3 prev_origin, vec3 prev_dir, vec3 origin, vec3 dir) {
+  if (medium >= frame_constants.frame.media.x) return vec2(0.0);
+  return volume_temporal_shift(scene_volumes.v[medium].motion, prev_origin, prev_dir, origin,
+                               dir);
+}
+
 // Last frame's reservoir at the pixel `point` projects to (light remapped, M capped); false
 // outside last frame's image or without confidence.
 bool history_at(vec3 point, out MediaReservoir h) {
@@ -88,24 +126,37 @@ void main() {
   MediaReservoir r = initial_reservoir(camera, dir, t_end, rng);
 
   MediaReservoir h;
-  // The selected scattering point, else where the ray ends (the surface, or the far point of a
-  // sky pixel): every pixel looks for history, whatever its own candidates found (skipping it
-  // when they found nothing would make the reuse depend on the outcome it combines: a bias).
-  vec3 point = camera + (r.target > 0.0 ? r.y.t : t_end) * dir;
-  if ((push.flags & kVolumeRestirFlagHistoryValid) != 0u && history_at(point, h)) {
-    vec3 prev_camera = fc.prev_camera_position.xyz;
-    // Balance heuristic with confidence weights over {this frame, history}.
+  vec3 prev_camera = fc.prev_camera_position.xyz;
+  bool reuse = (push.flags & kVolumeRestirFlagHistoryValid) != 0u &&
+               history_at(history_point(camera, dir, t_end), h);
+  if (reuse) {
+    // Balance heuristic with confidence weights over {this frame, history}, in this frame's
+    // measure: the history's target of a sample y of medium m here is p̂_h(shift_m^-1 y) / a_m
+    // (0 where medium m has no shift); the history's sample contributes through its own
+    // medium's shift, its Jacobian applied.
+    vec2 shift_c = media_shift(r.y.medium, prev_camera, h.dir, camera, dir);
+    vec2 shift_h = media_shift(h.y.medium, prev_camera, h.dir, camera, dir);
+    float a_c = shift_c.x >= kVolumeShiftMinCos ? shift_c.x : 0.0;
+    float a_h = shift_h.x >= kVolumeShiftMinCos ? shift_h.x : 0.0;
+    VolumeSample back = r.y;
+    back.t = a_c > 0.0 ? volume_shift_back(shift_c, r.y.t) : -1.0;
+    VolumeSample moved = h.y;
+    moved.t = a_h > 0.0 ? volume_shift_forward(shift_h, h.y.t) : -1.0;
     float p_c_of_c = r.target;
     float p_h_of_c =
-        r.target > 0.0 ? volume_sample_target(r.y, prev_camera, h.dir, h.t_end) : 0.0;
-    float p_c_of_h = volume_sample_target(h.y, camera, dir, t_end);
+        r.target > 0.0 ? volume_sample_target(back, prev_camera, h.dir, h.t_end) : 0.0;
+    float p_c_of_h = volume_sample_target(moved, camera, dir, t_end);
     float p_h_of_h = volume_sample_target(h.y, prev_camera, h.dir, h.t_end);
-    float m_c = p_c_of_c > 0.0 ? r.M * p_c_of_c / (r.M * p_c_of_c + h.M * p_h_of_c) : 0.0;
-    float m_h = p_h_of_h > 0.0 ? h.M * p_h_of_h / (r.M * p_c_of_h + h.M * p_h_of_h) : 0.0;
+    float m_c = 0.0;  // 1 where the history cannot reach this sample (no shift)
+    if (p_c_of_c > 0.0) {
+      m_c = a_c > 0.0 ? a_c * r.M * p_c_of_c / (a_c * r.M * p_c_of_c + h.M * p_h_of_c) : 1.0;
+    }
+    float m_h =
+        p_h_of_h > 0.0 ? h.M * p_h_of_h / (a_h * r.M * p_c_of_h + h.M * p_h_of_h) : 0.0;
     float w_sum = 0.0;
     media_reservoir_take(w_sum, m_c * p_c_of_c * r.W, rng);
-    if (media_reservoir_take(w_sum, m_h * p_c_of_h * h.W, rng)) {
-      r.y = h.y;
+    if (media_reservoir_take(w_sum, m_h * p_c_of_h * h.W * a_h, rng)) {
+      r.y = moved;
       r.target = p_c_of_h;
     }
     r.M += h.M;

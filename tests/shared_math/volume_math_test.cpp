@@ -2,15 +2,18 @@
 // exponential, equiangular and scattering-distance (their MIS) samplers against their own pdfs (bin probabilities integrated
 // from the pdf functions, so sampler and pdf must agree), and the ratio / residual ratio
 // tracking estimators through a constant medium against exp(-sigma_t d): the mean (4 standard
-// errors) and, for ratio tracking, the variance against its closed form. Seeds are fixed.
+// errors) and, for ratio tracking, the variance against its closed form; the media reservoirs'
+// temporal shift (shared/volume_restir.h). Seeds are fixed.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "shared/volume.h"
+#include "shared/volume_restir.h"
 #include "statistics.h"
 
 namespace lantern::gpu {
@@ -293,6 +296,43 @@ TEST(VolumeMath, EmptySegmentsAndZeroMajorantAreTransparent) {
   EXPECT_EQ(ratio_tracking(ConstantMedium{vec3(0.0f)}, 0u, vec3(0.0f), vec3(1, 0, 0), 0.0f, 5.0f,
                            0.0f, 0.0f, rng),
             vec3(1.0f));
+}
+
+// The temporal shift puts a history sample at the point of this frame's ray nearest where its
+// medium carried the world point it stood for (the offset is perpendicular to the ray), is
+// inverted by volume_shift_back, and has Jacobian a (finite differences); with a still camera,
+// a still medium and the same ray it is the identity.
+TEST(VolumeMath, TemporalShiftFollowsTheMediumsPointAndItsJacobianIsTheRaysCosine) {
+  uint rng = rng_init(uvec2(23u), 0u, 113u, 0u);
+  auto random_unit = [&]() {
+    return normalize(vec3(rng_next_float(rng), rng_next_float(rng), rng_next_float(rng)) -
+                     vec3(0.5f));
+  };
+  for (int i = 0; i < 1000; ++i) {
+    const vec3 prev_origin = 4.0f * random_unit();
+    const vec3 origin = prev_origin + 0.3f * random_unit();
+    const vec3 prev_dir = random_unit();
+    const vec3 dir = normalize(prev_dir + 0.2f * random_unit());
+    // Half the cases a still medium, half one that moved and turned a little.
+    const mat4 motion = i % 2 == 0 ? mat4(1.0f)
+                                   : glm::translate(mat4(1.0f), 0.2f * random_unit()) *
+                                         glm::rotate(mat4(1.0f), 0.05f, random_unit());
+    const vec2 s = volume_temporal_shift(motion, prev_origin, prev_dir, origin, dir);
+    ASSERT_GT(s.x, kVolumeShiftMinCos);
+    const float t = 10.0f * rng_next_float(rng);
+    const float moved = volume_shift_forward(s, t);
+    const vec3 carried = vec3(motion * vec4(prev_origin + t * prev_dir, 1.0f));
+    EXPECT_NEAR(dot(origin + moved * dir - carried, dir), 0.0f, 1e-4f) << i;
+    EXPECT_NEAR(volume_shift_back(s, moved), t, 1e-4f) << i;
+    const float h = 1e-2f;
+    const float jacobian =
+        (volume_shift_forward(s, t + h) - volume_shift_forward(s, t - h)) / (2 * h);
+    EXPECT_NEAR(jacobian, s.x, 1e-3f) << i;
+  }
+  const vec2 still = volume_temporal_shift(mat4(1.0f), vec3(1, 2, 3), vec3(0, 0, -1),
+                                           vec3(1, 2, 3), vec3(0, 0, -1));
+  EXPECT_EQ(volume_shift_forward(still, 2.5f), 2.5f);
+  EXPECT_EQ(still.x, 1.0f);
 }
 
 }  // namespace

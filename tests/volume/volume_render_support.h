@@ -21,9 +21,10 @@ struct VolumeRender {
   std::uint32_t frames = 1;
   std::uint32_t spp = 4;  // the reference's samples per pixel per frame
   std::uint32_t seed = 3;
+  bool animate = false;  // step the level (its camera path) every frame; else one still frame
 };
 
-// The mean of `r.frames` static frames of `integrator`; no non-finite pixel.
+// The mean of `r.frames` frames of `integrator` (static unless r.animate); no non-finite pixel.
 inline runtime::ImageRGBA32F render_volume_level(runtime::Device& device,
                                                  runtime::ShaderLibrary& shaders,
                                                  const Level& level, const std::string& integrator,
@@ -35,7 +36,7 @@ inline runtime::ImageRGBA32F render_volume_level(runtime::Device& device,
   request.height = r.height;
   request.frames = r.frames;
   request.average = true;
-  request.animate = false;
+  request.animate = r.animate;
   request.seed = r.seed;
   auto result = lighting::render_offline(device, shaders, level, request);
   EXPECT_EQ(result.images.size(), 1u);

@@ -4,7 +4,8 @@
 // image's value times exp(-sigma_a (|camera - p| + |light - p|)), p the floor point the pixel
 // sees (the fog box reaches 5 m beyond every path, so every cell on them is homogeneous and the
 // residual ratio tracking estimate is exact). A zero-density volume renders bit for bit as the
-// level without it. The fog-free image is the renderer's own: this isolates the media.
+// level without it. The fog-free image is the renderer's own: this isolates the media. A moving
+// volume's record carries its motion.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,9 @@
 #include <glm/glm.hpp>
 #include <string>
 
+#include "engine/level/level_loader.h"
+#include "engine/world/world.h"
+#include "lighting/scene/gpu_scene.h"
 #include "runtime/gpu/shader_library.h"
 #include "tests/restir/restir_test_support.h"
 #include "tests/runtime/gpu_test_support.h"
@@ -92,6 +96,36 @@ TEST_F(VolumeRenderTest, ZeroDensityVolumeRendersExactlyAsWithout) {
       differing += std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(float)) != 0 ? 1 : 0;
     EXPECT_EQ(differing, 0u) << integrator;
   }
+}
+
+// The GPU record of a moving volume carries its motion since last frame (what the media
+// reservoirs' temporal shift follows): the circling plume's maps last frame's world points to
+// this frame's, the still fog bank's is the identity, and a frozen snapshot makes both still.
+TEST_F(VolumeRenderTest, MovingVolumeRecordsCarryTheirMotion) {
+  const auto level = std::make_shared<const Level>(load_level_argument("smoke_yard"));
+  World world(level, {.threads = 2});
+  const FrameSnapshot first = world.step();
+  const FrameSnapshot second = world.step();
+  lighting::GpuScene scene(device, level);
+  scene.update(second);
+  const gpu::GpuVolume& fog = scene.data().volumes[0];
+  const gpu::GpuVolume& plume = scene.data().volumes[1];
+  EXPECT_EQ(fog.motion, glm::mat4(1.0f));
+  EXPECT_NE(plume.motion, glm::mat4(1.0f));
+  for (const glm::vec4 p : {glm::vec4(0, 0, 0, 1), glm::vec4(3, 1, -2, 1), glm::vec4(-1, 4, 5, 1)}) {
+    // The same point of the plume (index space) last frame and now.
+    const glm::vec4 before = first.volumes[1].object_to_world * p;
+    const glm::vec4 now = second.volumes[1].object_to_world * p;
+    const glm::vec4 moved = plume.motion * before;
+    const glm::vec4 back = plume.motion_inverse * now;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(moved[c], now[c], 1e-4f);
+      EXPECT_NEAR(back[c], before[c], 1e-4f);
+    }
+  }
+  scene.update(frozen(second));
+  EXPECT_EQ(scene.data().volumes[1].motion, glm::mat4(1.0f));
+  EXPECT_EQ(scene.data().volumes[1].motion_inverse, glm::mat4(1.0f));
 }
 
 }  // namespace
