@@ -45,7 +45,7 @@ for t in "${targets[@]}"; do
   jobs=()
   [ -n "${LANTERN_FUZZ_JOBS:-}" ] && jobs=(-fork="$LANTERN_FUZZ_JOBS" -ignore_crashes=0)
   # OpenVDB's smallest float grid file is ~10 KB (the 32^3 node's masks): longer inputs for vdb.
-  # (Its harness throws bad_alloc above 64 MiB, as a small machine would: tests/fuzz/fuzz_vdb.cpp.)
+  # (Its harness throws bad_alloc above 512 MiB, as a small machine would: tests/fuzz/fuzz_vdb.cpp.)
   max_len=8192
   [ "$t" = vdb ] && max_len=32768
   log=$build/fuzz_$t.log
