@@ -50,9 +50,6 @@ struct FrameInputs {
   std::uint32_t previous_light_count = 0;  // entries of light_previous_to_current
 };
 
-// A lighting integrator: adds its passes to the frame's graph. They write linear radiance into
-// `hdr` (a buffer of width*height vec4, row-major from the top-left, alpha 1) and the new version
-// of `hdr` is returned. Pass names are module.stage ("integrators.baseline", "restir.initial").
 // Samples per pixel per frame of volume.camera (transmittance and in-scattering, >= 1), and
 // whether each adds a phase-sampled estimate MIS'd with the light-sampled one.
 struct VolumeCameraSampling {
@@ -60,6 +57,9 @@ struct VolumeCameraSampling {
   bool phase_mis = false;
 };
 
+// A lighting integrator: adds its passes to the frame's graph. They write linear radiance into
+// `hdr` (a buffer of width*height vec4, row-major from the top-left, alpha 1) and the new version
+// of `hdr` is returned. Pass names are module.stage ("integrators.baseline", "restir.initial").
 class Integrator {
  public:
   virtual ~Integrator() = default;

@@ -233,6 +233,21 @@ VolumeSample volume_sample_draw(uint medium, vec3 origin, vec3 dir, float t_end,
 // Each technique's density is evaluated for every sample the other makes; a delta light (point,
 // spot, directional) only light sampling reaches (weight 1).
 
+// Light sampling's density of a scattering sample at distance t in the segment [t0, t1] (guide
+// extinction `guide`) lit along l: from triangle light `light`'s point y at squared distance
+// dist2, or from the environment (light == kEnvironmentLight; y, dist2 unused). The light's
+// selection and point in solid angle at the scattering point, times the distance's density
+// (MIS'd toward y for a triangle, volume_sample_draw).
+float volume_light_technique_pdf(uint light, vec3 y, float dist2, vec3 l, vec3 origin, vec3 dir,
+                                 float t0, float t1, float guide, float t) {
+  if (light == kEnvironmentLight) {
+    return env_header.env.params.x * env_pdf(env_header.env, l) *
+           exponential_pdf_truncated(guide, t1 - t0, t - t0);
+  }
+  return triangle_light_pdf(light, dist2, l) *
+         scatter_distance_pdf(origin, dir, t0, t1, guide, true, y, t);
+}
+
 // The power heuristic weight of light-drawn sample s (its light still exists): 1 for a delta
 // light, else against the phase technique's density of the same (t, direction).
 float volume_light_mis_weight(VolumeSample s, vec3 origin, vec3 dir, float t_end) {
@@ -243,21 +258,21 @@ float volume_light_mis_weight(VolumeSample s, vec3 origin, vec3 dir, float t_end
   float guide = volume_guide_extinction(v);
   float p_exp = exponential_pdf_truncated(guide, t1 - t0, s.t - t0);
   vec3 x = origin + s.t * dir;
+  vec3 y = x;
+  float dist2 = 0.0;
   vec3 l;
-  float p_light;
   if (s.light == kEnvironmentLight) {
     l = env_uv_to_world_direction(env_header.env, s.uv);
-    p_light = env_header.env.params.x * env_pdf(env_header.env, l) * p_exp;
   } else {
     GpuLight light = scene_lights.l[s.light];
     if (light_kind(light) != kLightTriangle) return 1.0;
-    vec3 y = light_eval_position(light, s.uv, x, frame_constants.frame.scene.x);
+    y = light_eval_position(light, s.uv, x, frame_constants.frame.scene.x);
     vec3 to_light = y - x;
-    float dist2 = dot(to_light, to_light);
+    dist2 = dot(to_light, to_light);
     l = to_light * inversesqrt(max(dist2, 1e-30));
-    p_light = triangle_light_pdf(s.light, dist2, l) *
-              scatter_distance_pdf(origin, dir, t0, t1, guide, true, y, s.t);
   }
+  float p_light =
+      volume_light_technique_pdf(s.light, y, dist2, l, origin, dir, t0, t1, guide, s.t);
   return power_heuristic(p_light, p_exp * hg_pdf(dir, l, v.scattering.w));
 }
 
@@ -290,14 +305,15 @@ vec3 volume_phase_sample(uint medium, vec3 origin, vec3 dir, float t_end, inout 
     if (le == vec3(0.0)) return vec3(0.0);
     vec3 to_hit = h.position - x;
     p_light = h.light != kInvalidLight
-                  ? triangle_light_pdf(h.light, dot(to_hit, to_hit), l) *
-                        scatter_distance_pdf(origin, dir, t0, t1, guide, true, h.position, t)
+                  ? volume_light_technique_pdf(h.light, h.position, dot(to_hit, to_hit), l,
+                                               origin, dir, t0, t1, guide, t)
                   : 0.0;
     end = h.position;
   } else {
     if (env_header.env.size.z == 0u) return vec3(0.0);
     le = env_miss_radiance(l);  // as the light technique sees it (volume_sample_light)
-    p_light = env_header.env.params.x * env_pdf(env_header.env, l) * p_exp;
+    p_light = volume_light_technique_pdf(kEnvironmentLight, x, 0.0, l, origin, dir, t0, t1,
+                                         guide, t);
     end = x + l * (kDirectionalShadowRadii * frame_constants.frame.scene.x);
   }
   float p_phase = p_exp * p_dir;

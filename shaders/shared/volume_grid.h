@@ -56,20 +56,31 @@ LANTERN_FUNC uint volume_brick_offset(uvec3 l) {
   return l.x + kVolumeBrickEdge * (l.y + kVolumeBrickEdge * l.z);
 }
 
-// The grid value of voxel ijk (integer-valued index coordinates): 0 outside the cells, in an
-// empty brick and (by construction of the bricks) outside the active region.
-LANTERN_FUNC float volume_voxel(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 ijk) {
+// Where voxel ijk (integer-valued index coordinates) is stored: its index in the value array,
+// in the brick of the cell holding it. False outside the cells or in an empty brick, where it
+// (and, by construction of the bricks, every voxel outside the active region) reads 0.
+LANTERN_FUNC bool volume_voxel_index(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 ijk,
+                                     LANTERN_OUT(uint) index) {
+  index = 0u;
   vec3 cell = volume_cell_of(v, ijk);
   if (!volume_cell_inside(v, cell)) {
-    return 0.0f;
+    return false;
   }
   GpuVolumeCell c = volume_fetch_cell(LANTERN_VOLUME_GRID volume_cell_index(v, cell));
   if (c.brick == kVolumeEmptyBrick) {
-    return 0.0f;
+    return false;
   }
   uvec3 local = uvec3(ijk - vec3(v.cell_origin) - cell * float(kVolumeBrickSize));
-  return volume_fetch_value(LANTERN_VOLUME_GRID c.brick * kVolumeBrickVoxels +
-                            volume_brick_offset(local));
+  index = c.brick * kVolumeBrickVoxels + volume_brick_offset(local);
+  return true;
+}
+
+// The grid value of voxel ijk.
+LANTERN_FUNC float volume_voxel(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 ijk) {
+  uint index;
+  return volume_voxel_index(LANTERN_VOLUME_GRID v, ijk, index)
+             ? volume_fetch_value(LANTERN_VOLUME_GRID index)
+             : 0.0f;
 }
 
 // The grid value at index-space point p, trilinear between the eight voxel centres around it
@@ -80,16 +91,10 @@ LANTERN_FUNC float volume_voxel(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 ijk)
 LANTERN_FUNC float volume_density_index(LANTERN_VOLUME_GRID_PARAM GpuVolume v, vec3 p) {
   vec3 base = floor(p);
   vec3 f = p - base;
-  vec3 cell = volume_cell_of(v, base);
-  if (!volume_cell_inside(v, cell)) {
+  uint i;
+  if (!volume_voxel_index(LANTERN_VOLUME_GRID v, base, i)) {
     return 0.0f;
   }
-  GpuVolumeCell c = volume_fetch_cell(LANTERN_VOLUME_GRID volume_cell_index(v, cell));
-  if (c.brick == kVolumeEmptyBrick) {
-    return 0.0f;
-  }
-  uvec3 l = uvec3(base - vec3(v.cell_origin) - cell * float(kVolumeBrickSize));
-  uint i = c.brick * kVolumeBrickVoxels + volume_brick_offset(l);
   const uint dy = kVolumeBrickEdge;
   const uint dz = kVolumeBrickEdge * kVolumeBrickEdge;
   float b000 = volume_fetch_value(LANTERN_VOLUME_GRID i);
