@@ -16,5 +16,12 @@ set(LANTERN_VISIBILITY_SHADERS
 foreach(src IN LISTS LANTERN_VISIBILITY_SHADERS)
   lantern_compile_shader(${src} rayquery DEFINES LANTERN_VISIBILITY_RAY_QUERY)
 endforeach()
+# Host visibility (shared/host_visibility.h): the passes whose one shadow ray per pixel the host
+# traces run twice, writing rays ("hostemit") and shading with the answers ("hostresolve").
+foreach(src IN ITEMS ${CMAKE_CURRENT_SOURCE_DIR}/integrators/baseline.comp
+                     ${CMAKE_CURRENT_SOURCE_DIR}/restir/restir_shade.comp)
+  lantern_compile_shader(${src} hostemit DEFINES LANTERN_VISIBILITY_HOST_EMIT)
+  lantern_compile_shader(${src} hostresolve DEFINES LANTERN_VISIBILITY_HOST_RESOLVE)
+endforeach()
 lantern_compile_shader(${CMAKE_CURRENT_SOURCE_DIR}/tests/visibility_probe.comp storage
   DEFINES VIS_BVH_STORAGE_BUFFERS)

@@ -72,7 +72,8 @@ void FrameSession::render(const runtime::TargetFrame& frame, const FrameSnapshot
                           const FrameHooks& hooks, FrameTiming* timing) {
   const auto start = Clock::now();
   runtime::GpuTimer& timer = *timers_.at(frame.slot);
-  timer.reset(frame.cmd);
+  // On the host: a frame with host passes is submitted in parts before frame.cmd.
+  timer.reset_on_host();
   timer_used_[frame.slot] = true;
   graph_.begin_frame();
   runtime::graph::BufferHandle hdr = renderer_->add_frame(graph_, snapshot);

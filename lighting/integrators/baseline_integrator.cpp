@@ -9,6 +9,7 @@
 #include "lighting/frame/tile_order.h"
 #include "lighting/integrators/gbuffer_shading_pass.h"
 #include "lighting/scene/gpu_scene.h"
+#include "lighting/visibility/host_visibility.h"
 
 namespace lantern::lighting {
 
@@ -16,9 +17,29 @@ using runtime::graph::BufferHandle;
 
 BaselineIntegrator::BaselineIntegrator(runtime::Device& device, runtime::ShaderLibrary& shaders,
                                        VisibilityBackend visibility)
-    : visibility_(visibility),
+    : device_(device),
+      shaders_(shaders),
+      visibility_(visibility),
       pipeline_(device, shaders.load("integrators/baseline.comp", visibility_variant(visibility)),
                 runtime::ComputePipelineDesc{.name = "integrators.baseline", .constants = {}}) {}
+
+void BaselineIntegrator::warm_up() {
+  pipeline_.warm_up();
+  if (host_) {
+    emit_->pipeline().warm_up();
+    resolve_->pipeline().warm_up();
+  }
+}
+
+void BaselineIntegrator::prepare(const GpuScene& scene) {
+  host_ = scene.host_visibility();
+  if (host_ != nullptr && !emit_) {
+    emit_ = std::make_unique<ShaderPass>(device_, shaders_, "integrators.baseline_rays",
+                                         "integrators/baseline.comp", "hostemit");
+    resolve_ = std::make_unique<ShaderPass>(device_, shaders_, "integrators.baseline",
+                                            "integrators/baseline.comp", "hostresolve");
+  }
+}
 
 void BaselineIntegrator::check_settings(
     const std::vector<std::pair<std::string, std::string>>& settings) {
@@ -35,8 +56,19 @@ BufferHandle BaselineIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   gpu::BaselinePush push{};
   const std::uint32_t tiles = tile_count(width, height, gpu::kBaselineTileSize);
   push.tile_stride = tile_stride(tiles);
-  return add_gbuffer_shading_pass(graph, "integrators.baseline", pipeline_, inputs, push, tiles,
-                                  hdr);
+  if (host_ == nullptr) {
+    return add_gbuffer_shading_pass(graph, "integrators.baseline", pipeline_, inputs, push, tiles,
+                                    hdr);
+  }
+  // Host visibility: the rays, visibility.host, then the shading with the answers.
+  const BufferHandle rays =
+      host_->add_shadow_rays(graph, width * height, [&](BufferHandle empty) {
+        return emit_->add(graph, inputs, push, {{"host_rays", empty, ShaderPassBuffer::Write}},
+                          {.x = tiles})[0];
+      });
+  return resolve_->add(graph, inputs, push,
+                       {{"host_rays", rays}, {"radiance", hdr, ShaderPassBuffer::Write}},
+                       {.x = tiles})[0];
 }
 
 }  // namespace lantern::lighting

@@ -5,15 +5,19 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "lighting/frame/frame_inputs.h"
+#include "lighting/frame/shader_pass.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/shader_library.h"
 
 namespace lantern::lighting {
+
+class HostVisibility;
 
 class BaselineIntegrator final : public Integrator {
  public:
@@ -26,11 +30,14 @@ class BaselineIntegrator final : public Integrator {
   static void check_settings(const std::vector<std::pair<std::string, std::string>>& settings);
 
   const char* name() const override { return kName; }
-  void warm_up() override { pipeline_.warm_up(); }
+  void warm_up() override;
   VisibilityBackend visibility() const override { return visibility_; }
-  // One shadow ray per pixel (as restir.shade), so bench reports baseline's shadow rays/s too.
+  // Host visibility: the scene's HostVisibility answers the shadow rays (prepare).
+  void prepare(const GpuScene& scene) override;
+  // One shadow ray per pixel (as restir.shade), so bench reports baseline's shadow rays/s too
+  // (traced by visibility.host with host visibility).
   std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const override {
-    return {{"integrators.baseline", 1.0}};
+    return {{host_ != nullptr ? "visibility.host" : "integrators.baseline", 1.0}};
   }
   std::vector<std::pair<std::string, std::string>> describe_settings() const override {
     return {};
@@ -44,8 +51,15 @@ class BaselineIntegrator final : public Integrator {
                                                         runtime::graph::BufferHandle hdr) override;
 
  private:
+  runtime::Device& device_;
+  runtime::ShaderLibrary& shaders_;
   VisibilityBackend visibility_;
   runtime::ComputePipeline pipeline_;
+  // Host visibility: integrators.baseline_rays writes the rays, visibility.host traces them,
+  // integrators.baseline (the "hostresolve" variant) shades.
+  HostVisibility* host_ = nullptr;
+  std::unique_ptr<ShaderPass> emit_;
+  std::unique_ptr<ShaderPass> resolve_;
 };
 
 }  // namespace lantern::lighting

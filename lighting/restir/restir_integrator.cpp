@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "lighting/frame/tile_order.h"
 #include "lighting/scene/gpu_scene.h"
+#include "lighting/visibility/host_visibility.h"
 #include "shared/reservoir_pack.h"
 
 namespace lantern::lighting {
@@ -34,6 +35,11 @@ void RestirIntegrator::warm_up() {
       &presample_.pipeline(), &initial_.pipeline(), &temporal_.pipeline(), &spatial_.pipeline(),
       &shade_.pipeline()};
   runtime::warm_up(device_, pipelines);
+  if (host_) {
+    const std::array<const runtime::ComputePipeline*, 2> host_pipelines{
+        &shadow_rays_->pipeline(), &shade_resolve_->pipeline()};
+    runtime::warm_up(device_, host_pipelines);
+  }
   if (volume_) runtime::warm_up(device_, volume_->pipelines());
 }
 
@@ -45,7 +51,8 @@ void RestirIntegrator::apply_settings(
 }
 
 std::vector<std::pair<std::string, double>> RestirIntegrator::shadow_rays_per_pixel() const {
-  std::vector<std::pair<std::string, double>> rays{{"restir.shade", 1.0}};
+  std::vector<std::pair<std::string, double>> rays{
+      {host_ != nullptr ? "visibility.host" : "restir.shade", 1.0}};
   if (settings_.initial_visibility) rays.emplace_back("restir.initial", 1.0);
   return rays;
 }
@@ -235,12 +242,34 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
         // where visibility reuse trusts the history's verdict): emission + BRDF x Le x G x W (or
         // a debug view) into hdr. It writes each verdict back into the final reservoirs (the
         // next frame's history).
-        const std::vector<BufferHandle> out =
-            shade_.add(graph, inputs, push,
-                       {{"restir_surfaces", surfaces},
-                        {"reservoirs_in", handle(step.read), RestirPass::Buffer::ReadWrite},
-                        {"temporal_status", status},
-                        {"hdr", hdr, RestirPass::Buffer::Write}});
+        if (host_ == nullptr) {
+          const std::vector<BufferHandle> out =
+              shade_.add(graph, inputs, push,
+                         {{"restir_surfaces", surfaces},
+                          {"reservoirs_in", handle(step.read), RestirPass::Buffer::ReadWrite},
+                          {"temporal_status", status},
+                          {"hdr", hdr, RestirPass::Buffer::Write}});
+          handle(step.read) = out[0];
+          hdr = out[1];
+          break;
+        }
+        // Host visibility: restir.shadow_rays writes each pixel's ray, visibility.host traces
+        // them, restir.shade reads the answers (lighting/visibility/host_visibility.h).
+        const BufferHandle rays = host_->add_shadow_rays(
+            graph, static_cast<std::uint32_t>(pixels), [&](BufferHandle empty) {
+              return shadow_rays_->add(graph, inputs, push,
+                                       {{"restir_surfaces", surfaces},
+                                        {"reservoirs_in", handle(step.read)},
+                                        {"temporal_status", status},
+                                        {"host_rays", empty, RestirPass::Buffer::Write}})[0];
+            });
+        const std::vector<BufferHandle> out = shade_resolve_->add(
+            graph, inputs, push,
+            {{"restir_surfaces", surfaces},
+             {"reservoirs_in", handle(step.read), RestirPass::Buffer::ReadWrite},
+             {"temporal_status", status},
+             {"host_rays", rays},
+             {"hdr", hdr, RestirPass::Buffer::Write}});
         handle(step.read) = out[0];
         hdr = out[1];
         break;
@@ -253,6 +282,13 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
 }
 
 void RestirIntegrator::prepare(const GpuScene& scene) {
+  host_ = scene.host_visibility();
+  if (host_ != nullptr && !shadow_rays_) {
+    shadow_rays_ = std::make_unique<RestirPass>(device_, shaders_, "restir.shadow_rays", "shade",
+                                                "hostemit");
+    shade_resolve_ =
+        std::make_unique<RestirPass>(device_, shaders_, "restir.shade", "shade", "hostresolve");
+  }
   if (scene.volume_count() > 0 && !volume_) {
     volume_ = std::make_unique<VolumeRestir>(device_, shaders_, visibility_);
   }

@@ -21,6 +21,8 @@
 
 namespace lantern::lighting {
 
+class HostVisibility;
+
 class RestirIntegrator final : public Integrator {
  public:
   static constexpr const char* kName = "restir";
@@ -31,7 +33,8 @@ class RestirIntegrator final : public Integrator {
 
   const char* name() const override { return kName; }
   void warm_up() override;
-  // restir.shade traces one shadow ray per pixel; restir.initial one more with initial_visibility.
+  // restir.shade traces one shadow ray per pixel (visibility.host does with host visibility);
+  // restir.initial one more with initial_visibility.
   std::vector<std::pair<std::string, double>> shadow_rays_per_pixel() const override;
   VisibilityBackend visibility() const override { return visibility_; }
   // Creates the media reservoirs' passes when the scene has volumes.
@@ -65,6 +68,11 @@ class RestirIntegrator final : public Integrator {
   RestirPass temporal_;
   RestirPass spatial_;
   RestirPass shade_;
+  // Host visibility (a scene with HostVisibility, prepare): restir.shade split in two around the
+  // host pass visibility.host — restir.shadow_rays writes the rays, restir.shade shades.
+  HostVisibility* host_ = nullptr;
+  std::unique_ptr<RestirPass> shadow_rays_;
+  std::unique_ptr<RestirPass> shade_resolve_;
   ReservoirBuffers buffers_;
   std::unique_ptr<VolumeRestir> volume_;  // levels with volumes only (prepare)
 };

@@ -10,6 +10,11 @@ RestirPass::RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
     : pass_(device, shaders, "restir." + stage, "restir/restir_" + stage + ".comp",
             visibility_variant(visibility)) {}
 
+RestirPass::RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
+                       const std::string& name, const std::string& stage,
+                       std::string_view variant)
+    : pass_(device, shaders, name, "restir/restir_" + stage + ".comp", variant) {}
+
 std::vector<runtime::graph::BufferHandle> RestirPass::add(runtime::graph::RenderGraph& graph,
                                                           const FrameInputs& inputs,
                                                           const gpu::RestirPush& push,

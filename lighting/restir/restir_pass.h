@@ -27,6 +27,10 @@ class RestirPass {
   // shader variant of the passes that trace (initial, shade).
   RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& stage,
              VisibilityBackend visibility = VisibilityBackend::Bvh);
+  // Pass `name` running restir_<stage>.comp's shader variant `variant` (the host visibility
+  // backend's split restir.shade: "hostemit" as restir.shadow_rays, "hostresolve").
+  RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& name,
+             const std::string& stage, std::string_view variant);
 
   // Adds the pass; returns the new version of each Write / ReadWrite buffer, in `buffers` order.
   // A handle may be read under two names (a stand-in). `workgroups`: 0 for one per shuffled tile

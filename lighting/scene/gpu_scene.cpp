@@ -11,6 +11,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/log.h"
+#include "lighting/visibility/host_visibility.h"
 #include "lighting/visibility/ray_query_scene.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/transfer.h"
@@ -121,6 +122,20 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
   // BLASes and the TLAS of the level's placement (blocking, setup time).
   if (visibility == VisibilityBackend::RayQuery)
     ray_query_ = std::make_unique<RayQueryScene>(device_, data_.bvh);
+  // Embree's scene for the host backend (setup time); levels it cannot answer keep the BVH.
+  if (visibility == VisibilityBackend::Host) {
+    if (HostVisibility::supports(bvh_descs_)) {
+      host_ = std::make_unique<HostVisibility>(device_, data_.bvh, bvh_descs_);
+      log::debug("scene: host visibility ({}, {} threads), {} instances merged, built in {:.1f} ms",
+                 host_->version(), host_->threads(), host_->merged_instances(),
+                 host_->build_ms());
+    } else {
+      log::info(
+          "visibility=host: level '{}' has alpha-tested materials, whose cutout only the shaders "
+          "evaluate; its shadow rays stay on the compute BVH",
+          level_->name);
+    }
+  }
 }
 
 GpuScene::~GpuScene() = default;
@@ -226,6 +241,7 @@ void GpuScene::update_instances(const FrameSnapshot& snapshot) {
   if (moved) {
     const std::uint64_t blas_generation = data_.bvh.blas_generation();
     data_.bvh.set_instances(bvh_descs_);
+    if (host_) host_->update(bvh_descs_);
     stats_.tlas_rebuilt = true;
     tlas_dirty_ = ray_query_ != nullptr;
     ensure_capacity(gpu::kSceneBvhNodes);

@@ -19,6 +19,9 @@
 // `scene.tlas_build` (a graph pass after scene.upload: host-written instance records of this
 // upload's ring slot -> TLAS), and the handles it returns carry the TLAS at kSceneTlas.
 //
+// Host visibility (VisibilityBackend::Host): a HostVisibility builds Embree's scene at load and
+// moves its instances in update(); the BVH is built as for the BVH backend (every other ray).
+//
 // Environment: the level's map (if any) is loaded once (EnvironmentDistribution) and its tables
 // uploaded with the static data; without one a black 1-texel stand-in (size.z = 0, params.z = 0)
 // is bound. The probability that a light sample picks the environment (env header params.x,
@@ -48,6 +51,7 @@
 namespace lantern::lighting {
 
 class RayQueryScene;
+class HostVisibility;
 
 // What the last update() did and cost (CPU).
 struct SceneUpdateStats {
@@ -112,8 +116,12 @@ class GpuScene {
   std::uint64_t bytes() const;
 
   VisibilityBackend visibility() const {
+    if (host_) return VisibilityBackend::Host;
     return ray_query_ ? VisibilityBackend::RayQuery : VisibilityBackend::Bvh;
   }
+  // Embree's scene of the host backend (built with VisibilityBackend::Host for a level it
+  // supports; nullptr otherwise: the frame's shadow rays then stay on the compute BVH).
+  HostVisibility* host_visibility() const { return host_.get(); }
   const Level& level() const { return *level_; }
   const SceneData& data() const { return data_; }
   const std::vector<std::uint32_t>& light_previous_to_current() const { return remap_; }
@@ -191,6 +199,7 @@ class GpuScene {
   std::vector<gpu::AliasEntry> env_dummy_alias_;
   std::uint64_t uploads_ = 0;  // scene.upload passes added so far
   std::unique_ptr<RayQueryScene> ray_query_;  // RayQuery only
+  std::unique_ptr<HostVisibility> host_;      // Host only
   bool tlas_dirty_ = false;                   // an instance moved since the last TLAS build
   SceneUpdateStats stats_;
 };

@@ -8,6 +8,7 @@
 #include "lighting/lights/environment_map.h"
 #include "lighting/scene/scene_data.h"
 #include "lighting/scene/volume_requirements.h"
+#include "lighting/visibility/host_visibility.h"
 #include "runtime/volume/volume_set.h"
 #include "shared/alias_table.h"
 #include "shared/bvh.h"
@@ -77,6 +78,22 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
   // Visibility: the scene BVH (compute traversal), and with ray query also a BLAS per mesh and
   // a TLAS over the instances (the driver's; its size is known only on the device).
   const SceneBvh& bvh = scene.bvh;
+  const bool host = visibility.backend == VisibilityBackend::Host &&
+                    HostVisibility::supports(bvh_instance_descs(level));
+  std::string traversal = "compute-shader BVH, nodes in texel buffers";
+  if (visibility.backend == VisibilityBackend::RayQuery) {
+    traversal =
+        "VK_KHR_ray_query against a BLAS per mesh and a TLAS rebuilt by scene.tlas_build when "
+        "instances move (the BVH stays uploaded)";
+  } else if (host) {
+    traversal =
+        "Embree on the host for the one shadow ray per pixel of restir.shade and "
+        "integrators.baseline (visibility.host between two submissions: the fixed instances' "
+        "world-space triangles in one scene, the others instanced); the compute-shader BVH for "
+        "every other ray";
+  } else if (visibility.backend == VisibilityBackend::Host) {
+    traversal += " (host visibility declined: alpha-tested materials need the shaders' cutout)";
+  }
   const std::uint64_t bvh_bytes = array_bytes<gpu::BvhNode>(bvh.nodes().size()) +
                                   array_bytes<gpu::BvhTriangle>(bvh.triangles().size()) +
                                   array_bytes<gpu::BvhInstance>(bvh.instances().size()) +
@@ -89,10 +106,7 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
       {"merged_triangles", bvh.merged_triangle_count()},
       {"backend", std::string(visibility_backend_name(visibility.backend))},
       {"backend_why", visibility.why.empty() ? "default" : visibility.why},
-      {"traversal", visibility.backend == VisibilityBackend::RayQuery
-                        ? "VK_KHR_ray_query against a BLAS per mesh and a TLAS rebuilt by "
-                          "scene.tlas_build when instances move (the BVH stays uploaded)"
-                        : "compute-shader BVH, nodes in texel buffers"},
+      {"traversal", traversal},
       {"nodes", bvh.nodes().size()},
       {"triangles", bvh.triangles().size()},
       {"bytes", bvh_bytes},
@@ -168,9 +182,16 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
   describe_volumes(level, grids, summary);
 
   nlohmann::json variants = nlohmann::json::array();
-  variants.push_back(visibility.backend == VisibilityBackend::RayQuery
-                         ? "visibility: rayquery (LANTERN_VISIBILITY_RAY_QUERY)"
-                         : "visibility: bvh (texel nodes)");
+  if (visibility.backend == VisibilityBackend::RayQuery) {
+    variants.push_back("visibility: rayquery (LANTERN_VISIBILITY_RAY_QUERY)");
+  } else {
+    variants.push_back("visibility: bvh (texel nodes)");
+  }
+  if (host) {
+    variants.push_back(
+        "visibility: hostemit / hostresolve for the shading passes "
+        "(LANTERN_VISIBILITY_HOST_EMIT / _RESOLVE)");
+  }
   if (level.environment) variants.push_back("environment sampling: on");
   if (!textures.empty()) variants.push_back("gbuffer: textured (kTextured)");
   summary.enabled["shader_variants"] = variants;

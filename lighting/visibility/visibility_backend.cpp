@@ -9,14 +9,24 @@
 namespace lantern::lighting {
 
 std::string_view visibility_backend_name(VisibilityBackend backend) {
-  return backend == VisibilityBackend::RayQuery ? "rayquery" : "bvh";
+  switch (backend) {
+    case VisibilityBackend::RayQuery:
+      return "rayquery";
+    case VisibilityBackend::Host:
+      return "host";
+    case VisibilityBackend::Bvh:
+      break;
+  }
+  return "bvh";
 }
 
 VisibilitySetting parse_visibility_setting(std::string_view value) {
   if (value == "auto") return VisibilitySetting::Auto;
   if (value == "bvh") return VisibilitySetting::Bvh;
   if (value == "rayquery") return VisibilitySetting::RayQuery;
-  throw InputError(fmt::format("--set visibility={}: expected auto, bvh or rayquery", value));
+  if (value == "host") return VisibilitySetting::Host;
+  throw InputError(
+      fmt::format("--set visibility={}: expected auto, bvh, rayquery or host", value));
 }
 
 std::string_view visibility_setting_name(VisibilitySetting setting) {
@@ -27,6 +37,8 @@ std::string_view visibility_setting_name(VisibilitySetting setting) {
       return "bvh";
     case VisibilitySetting::RayQuery:
       return "rayquery";
+    case VisibilitySetting::Host:
+      return "host";
   }
   return "?";
 }
@@ -43,6 +55,8 @@ VisibilityChoice choose_visibility(const runtime::DeviceInfo& device, Visibility
                         device.name));
       }
       return {VisibilityBackend::RayQuery, "visibility=rayquery"};
+    case VisibilitySetting::Host:
+      return {VisibilityBackend::Host, "visibility=host"};
     case VisibilitySetting::Auto:
       break;
   }
@@ -53,6 +67,11 @@ VisibilityChoice choose_visibility(const runtime::DeviceInfo& device, Visibility
   }
   if (hardware) {
     return {VisibilityBackend::Bvh, fmt::format("auto: {} GPU without ray query", device.type)};
+  }
+  if (device.type == "cpu") {
+    return {VisibilityBackend::Host,
+            "auto: cpu device, where Embree on the host answers the shadow rays (a level with "
+            "alpha-tested materials keeps the compute BVH)"};
   }
   return {VisibilityBackend::Bvh,
           fmt::format("auto: {} device, where the compute BVH outruns ray query", device.type)};

@@ -16,21 +16,27 @@ struct DeviceInfo;
 
 namespace lantern::lighting {
 
-enum class VisibilityBackend { Bvh, RayQuery };
+// Host: on a CPU device (lavapipe) the one shadow ray per pixel of restir.shade and
+// integrators.baseline is traced by Embree on the host in the graph pass visibility.host
+// (lighting/visibility/host_visibility.h); every other ray stays on the compute BVH.
+enum class VisibilityBackend { Bvh, RayQuery, Host };
 
 // The `visibility` setting: a backend, or auto (pick by device).
-enum class VisibilitySetting { Auto, Bvh, RayQuery };
+enum class VisibilitySetting { Auto, Bvh, RayQuery, Host };
 
 // The shader variant compiled for the backend (shaders/variants.cmake): "" for the BVH (the
-// default build of every shader), "rayquery" with LANTERN_VISIBILITY_RAY_QUERY defined.
+// default build of every shader, and what the host backend's other passes run), "rayquery" with
+// LANTERN_VISIBILITY_RAY_QUERY defined. The host backend's split passes load "hostemit" and
+// "hostresolve" themselves.
 constexpr std::string_view visibility_variant(VisibilityBackend backend) {
   return backend == VisibilityBackend::RayQuery ? "rayquery" : "";
 }
 
-// "bvh" / "rayquery" (for logs, `lantern info`, benchmark output and the setting's values).
+// "bvh" / "rayquery" / "host" (for logs, `lantern info`, benchmark output and the setting's
+// values).
 std::string_view visibility_backend_name(VisibilityBackend backend);
 
-// "auto" | "bvh" | "rayquery"; lantern::InputError naming the value otherwise (checked before any
+// "auto" | "bvh" | "rayquery" | "host"; lantern::InputError naming the value otherwise (checked before any
 // device work).
 VisibilitySetting parse_visibility_setting(std::string_view value);
 std::string_view visibility_setting_name(VisibilitySetting setting);
@@ -41,8 +47,10 @@ struct VisibilityChoice {
 };
 
 // The backend for `setting` on `device` (pure: tests pass a hand-made DeviceInfo). auto: ray query
-// on a discrete or integrated GPU that has it (hardware traversal), else the BVH (lavapipe is a
-// CPU device: its ray query runs 0.5x the BVH's speed). rayquery on a device without
+// on a discrete or integrated GPU that has it (hardware traversal), host on a CPU device
+// (lavapipe: Embree on the same cores traces the shadow rays many times faster than the compute
+// BVH, whose traversal lavapipe runs one lane per ray; its ray query is 0.5x the BVH), else the
+// BVH. rayquery on a device without
 // VK_KHR_ray_query: lantern::InputError naming the device.
 VisibilityChoice choose_visibility(const runtime::DeviceInfo& device, VisibilitySetting setting);
 

@@ -29,8 +29,14 @@ class GpuTimer {
   GpuTimer& operator=(const GpuTimer&) = delete;
 
   void reset(VkCommandBuffer cmd);  // outside any render pass; forgets the previous frame's scopes
+  // The same from the host (vkResetQueryPool): for a frame recorded into several submissions
+  // (render-graph host passes), whose first submission is not the one a reset(cmd) would be in.
+  // Call only when no submitted work still writes this timer's queries.
+  void reset_on_host();
   void begin(VkCommandBuffer cmd, std::string_view name);
   void end(VkCommandBuffer cmd);
+  // A scope timed on the host (a render-graph host pass), reported among the GPU scopes in order.
+  void add_host(std::string_view name, double ms);
   // Results in begin() order; call after the command buffer completed (waits for the queries).
   std::vector<Result> resolve() const;
 
@@ -56,6 +62,7 @@ class GpuTimer {
     std::string name;
     std::uint32_t depth = 0;
     bool closed = false;
+    double host_ms = -1.0;  // >= 0: a host scope (no queries)
   };
   Device& device_;
   VkQueryPool pool_ = VK_NULL_HANDLE;

@@ -43,6 +43,15 @@ void validate_uses(const GraphDecl& d, Errors& errors) {
           use.access != Access::TransferDst)
         errors.push_back(fmt::format("{} is a transfer pass but uses '{}' as {}", pass_label(d, p),
                                      r.name, access_name(use.access)));
+      if ((pass.kind == PassKind::Host) != (use.access == Access::HostReadWrite))
+        errors.push_back(fmt::format("{} is a {} pass but uses '{}' as {} (host passes, and only "
+                                     "they, use host-read-write)",
+                                     pass_label(d, p), pass_kind_name(pass.kind), r.name,
+                                     access_name(use.access)));
+      if (use.access == Access::HostReadWrite && r.origin != Origin::Imported)
+        errors.push_back(fmt::format("{} uses '{}' on the host, which only an imported "
+                                     "(host-visible, mapped) buffer allows",
+                                     pass_label(d, p), r.name));
       if (is_read(use.access) && use.version == 0 && !r.has_initial_contents())
         errors.push_back(fmt::format("{} reads '{}' ({}) before any pass wrote it",
                                      pass_label(d, p), r.name, access_name(use.access)));

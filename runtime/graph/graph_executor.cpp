@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 
 #include "runtime/core/device.h"
 #include "runtime/core/vk_check.h"
@@ -202,22 +203,49 @@ void GraphExecutor::record(RenderGraph& graph, VkCommandBuffer cmd, GpuTimer* ti
 
   // Each pass: label and timestamps, its barriers, its commands. (An exception from a pass
   // leaves `cmd` unusable anyway, so the open scope is not closed on that path.)
-  for (const CompiledPass& compiled_pass : compiled.passes) {
+  const auto record_pass = [&](VkCommandBuffer target, const CompiledPass& compiled_pass) {
     const PassDecl& pass = decl.passes[compiled_pass.pass];
     if (timer != nullptr)
-      timer->begin(cmd, pass.name);  // timestamps + debug label
+      timer->begin(target, pass.name);  // timestamps + debug label
     else
-      device_.begin_label(cmd, pass.name);
-    record_barriers(cmd, barrier2_, compiled_pass.before, decl, physical);
+      device_.begin_label(target, pass.name);
+    record_barriers(target, barrier2_, compiled_pass.before, decl, physical);
     if (pass.execute) {
-      PassContext context(cmd, decl, compiled_pass.pass, physical);
+      PassContext context(target, decl, compiled_pass.pass, physical);
       pass.execute(context);
     }
     if (timer != nullptr)
-      timer->end(cmd);
+      timer->end(target);
     else
-      device_.end_label(cmd);
+      device_.end_label(target);
+  };
+
+  // A host pass splits the frame: the passes before it (and the barriers that make their writes
+  // visible to the host) are submitted on their own and waited for, the host pass runs on this
+  // thread (timed as a host scope), and recording goes on. What follows the last host pass is
+  // recorded into `cmd`, which the caller submits.
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < compiled.passes.size(); ++i) {
+    const CompiledPass& host_pass = compiled.passes[i];
+    const PassDecl& pass = decl.passes[host_pass.pass];
+    if (pass.kind != PassKind::Host) continue;
+    device_.submit_and_wait([&](VkCommandBuffer segment) {
+      for (; next < i; ++next) record_pass(segment, compiled.passes[next]);
+      record_barriers(segment, barrier2_, host_pass.before, decl, physical);
+    });
+    const auto start = std::chrono::steady_clock::now();
+    if (pass.execute) {
+      PassContext context(VK_NULL_HANDLE, decl, host_pass.pass, physical);
+      pass.execute(context);
+    }
+    if (timer != nullptr) {
+      timer->add_host(pass.name, std::chrono::duration<double, std::milli>(
+                                     std::chrono::steady_clock::now() - start)
+                                     .count());
+    }
+    next = i + 1;
   }
+  for (; next < compiled.passes.size(); ++next) record_pass(cmd, compiled.passes[next]);
   record_barriers(cmd, barrier2_, compiled.after, decl, physical);
 }
 

@@ -13,6 +13,7 @@ bool is_write(Access a) {
     case Access::DepthAttachment:
     case Access::TransferDst:
     case Access::AccelerationStructureBuild:
+    case Access::HostReadWrite:
       return true;
     default:
       return false;
@@ -20,7 +21,7 @@ bool is_write(Access a) {
 }
 
 bool is_read(Access a) {
-  return a == Access::StorageReadWrite || !is_write(a);
+  return a == Access::StorageReadWrite || a == Access::HostReadWrite || !is_write(a);
 }
 
 bool allowed_on_buffer(Access a) {
@@ -45,6 +46,7 @@ bool allowed_on_image(Access a) {
     case Access::AccelerationStructureBuildInput:
     case Access::AccelerationStructureBuild:
     case Access::AccelerationStructureRead:
+    case Access::HostReadWrite:
       return false;
     default:
       return true;
@@ -87,6 +89,8 @@ const char* access_name(Access a) {
       return "acceleration-structure-build";
     case Access::AccelerationStructureRead:
       return "acceleration-structure-read";
+    case Access::HostReadWrite:
+      return "host-read-write";
   }
   return "?";
 }
@@ -99,6 +103,8 @@ const char* pass_kind_name(PassKind k) {
       return "graphics";
     case PassKind::Transfer:
       return "transfer";
+    case PassKind::Host:
+      return "host";
   }
   return "?";
 }
@@ -112,6 +118,7 @@ VkPipelineStageFlags2 shader_stages(PassKind kind) {
     case PassKind::Graphics:
       return VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
     case PassKind::Transfer:
+    case PassKind::Host:
       return VK_PIPELINE_STAGE_2_NONE;  // rejected by validation
   }
   return VK_PIPELINE_STAGE_2_NONE;
@@ -183,6 +190,9 @@ AccessState access_state(Access a, PassKind kind, bool is_image) {
               VK_IMAGE_LAYOUT_UNDEFINED};
     case Access::AccelerationStructureRead:
       return {shaders, VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR, VK_IMAGE_LAYOUT_UNDEFINED};
+    case Access::HostReadWrite:
+      return {VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_HOST_WRITE_BIT,
+              VK_IMAGE_LAYOUT_UNDEFINED};
   }
   return {};
 }

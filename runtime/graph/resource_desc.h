@@ -48,10 +48,14 @@ enum class Access : uint8_t {
   AccelerationStructureBuild,       // buffer written by a build: the structure's storage or the
                                     // scratch (previous contents discarded)
   AccelerationStructureRead,        // buffer of a structure traced in shaders (ray query)
+  // A Host pass's use of a host-visible (mapped) buffer: read and updated in place on the CPU.
+  HostReadWrite,
 };
 
 // Where a pass runs; decides the shader stages its shader accesses happen in.
-enum class PassKind : uint8_t { Compute, Graphics, Transfer };
+// Host: work the CPU does between two submissions (e.g. visibility answered by Embree on a CPU
+// device): the executor submits the passes before it and waits, runs it, then records the rest.
+enum class PassKind : uint8_t { Compute, Graphics, Transfer, Host };
 
 [[nodiscard]] bool is_write(Access access);
 [[nodiscard]] bool is_read(Access access);  // StorageReadWrite is both

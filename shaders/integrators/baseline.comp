@@ -9,6 +9,8 @@
 // lights, alias table, environment, BVH through lib/visibility.glsl, frame constants).
 // Writes: radiance (rgba32f per pixel, row-major from the top-left; the host averages
 // frames). History: none.
+// Host visibility: the "hostemit" variant (integrators.baseline_rays) only writes each pixel's
+// shadow ray, the "hostresolve" variant shades with the host's answers (shared/host_visibility.h).
 // Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride): lavapipe hands each CPU
 // thread a contiguous range of workgroups, so without the shuffle the thread that gets the sky
 // idles while the other traces the geometry (shared/PLATFORM.md, 1.45-1.6x on ray casting).
@@ -118,9 +120,13 @@ void main() {
   uint tile = (gl_WorkGroupID.x * push.tile_stride) % (tiles_x * tiles_y);
   uvec2 pixel = uvec2(tile % tiles_x, tile / tiles_x) * kBaselineTileSize + gl_LocalInvocationID.xy;
   if (pixel.x >= size.x || pixel.y >= size.y) return;
+  vis_host_begin(pixel.y * size.x + pixel.x);
   vec3 value = shade_pixel(pixel);
   // Never write NaN/Inf: a non-finite sample counts as black.
   if (!(is_finite(value.x) && is_finite(value.y) && is_finite(value.z))) value = vec3(0.0);
   value = max(value, vec3(0.0));
+  // The emit variant writes only the pixel's shadow ray (lib/visibility.glsl).
+#ifndef LANTERN_VISIBILITY_HOST_EMIT
   radiance.pixels[pixel.y * size.x + pixel.x] = vec4(value, 1.0);
+#endif
 }

@@ -18,6 +18,11 @@
 //                                  in rgba32ui texel buffers (storage buffers with
 //                                  VIS_BVH_STORAGE_BUFFERS, for A/B measurements).
 //   LANTERN_VISIBILITY_RAY_QUERY   GL_EXT_ray_query against the TLAS bound as "scene_tlas".
+//   LANTERN_VISIBILITY_HOST_EMIT / _RESOLVE   the BVH for closest hits; shadow rays written to /
+//                                  answered from the host's ray buffer (shared/host_visibility.h;
+//                                  the "hostemit" / "hostresolve" variants of restir.shade and
+//                                  integrators.baseline). vis_host_begin(slot) names the pixel's
+//                                  slot (a no-op in the other backends).
 // Bindings: set VIS_DESCRIPTOR_SET (default 0), bindings VIS_BINDING_BASE .. + 3 (default 0..3):
 // the BVH uses four (header, nodes, triangles, instances), ray query one (scene_tlas at
 // VIS_TLAS_BINDING, default the base; the scene's at kSceneTlas, shared/scene_bindings.h).
@@ -110,6 +115,8 @@ bool vis_visible(vec3 origin, vec3 target) {
   return rayQueryGetIntersectionTypeEXT(query, true) == gl_RayQueryCommittedIntersectionNoneEXT;
 }
 
+void vis_host_begin(uint slot) {}
+
 #else  // compute-shader BVH
 
 #define BVH_DESCRIPTOR_SET VIS_DESCRIPTOR_SET
@@ -130,9 +137,47 @@ bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {
   return found;
 }
 
+#if defined(LANTERN_VISIBILITY_HOST_EMIT) || defined(LANTERN_VISIBILITY_HOST_RESOLVE)
+
+// Host visibility (shared/host_visibility.h): closest-hit rays stay on the BVH above; shadow
+// rays go through the frame's ray buffer. A pass calls vis_host_begin(slot) once per invocation
+// before any vis_visible, and then asks at most one shadow ray (restir.shade, baseline).
+#include "shared/host_visibility.h"
+
+layout(std430, binding = kHostRaysBinding) buffer HostRays {
+  HostShadowRay r[];
+} host_rays;
+
+uint vis_host_slot = 0u;
+
+#ifdef LANTERN_VISIBILITY_HOST_EMIT
+// Emit: the slot starts without a ray; vis_visible records the segment and answers "blocked",
+// so the pass skips the shading work the resolve variant does.
+void vis_host_begin(uint slot) {
+  vis_host_slot = slot;
+  host_rays.r[slot] = host_ray_none(slot);
+}
+
+bool vis_visible(vec3 origin, vec3 target) {
+  host_rays.r[vis_host_slot] = host_ray_segment(origin, target, vis_host_slot);
+  return false;
+}
+#else
+// Resolve: the host's answer for this invocation's slot.
+void vis_host_begin(uint slot) { vis_host_slot = slot; }
+
+bool vis_visible(vec3 origin, vec3 target) {
+  return host_ray_visible(host_rays.r[vis_host_slot].tfar);
+}
+#endif
+
+#else
+void vis_host_begin(uint slot) {}
+
 bool vis_visible(vec3 origin, vec3 target) {
   return bvh_visible(origin, target);
 }
+#endif
 
 #endif
 

@@ -6,6 +6,8 @@
 // motion, temporal_status, frame constants, lights, environment (env_*), BVH.
 // Writes: hdr (vec4 per pixel).
 // History: none. Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
+// Host visibility: the "hostemit" variant (restir.shadow_rays) only writes each pixel's shadow
+// ray, the "hostresolve" variant shades with the host's answers (shared/host_visibility.h).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -72,6 +74,7 @@ void main() {
   uint index = restir_index(pixel);
   RestirSurface surface = restir_surfaces.s[index];
   Reservoir r = reservoir_unpack(reservoirs_in.r[index]);
+  vis_host_begin(index);
   vec3 value;
   bool valid = restir_surface_valid(surface);
   if (push.debug_view != kRestirDebugNone) {
@@ -91,11 +94,13 @@ void main() {
           visible = reservoir_known_visible(r);
         } else {
           visible = vis_visible(p.x, y);
+#ifndef LANTERN_VISIBILITY_HOST_EMIT
           if (push.visibility_reuse > 0u) {
             // The verdict travels with the sample into the next frame's history.
             reservoir_set_visibility(r, true, visible);
             reservoirs_in.r[index] = reservoir_pack(r);
           }
+#endif
         }
         if (visible) {
           // The media's transmittance along the shadow ray, unbiased and independent of the
@@ -106,7 +111,10 @@ void main() {
       }
     }
   }
+  // The emit variant writes only the pixel's shadow ray (lib/visibility.glsl).
+#ifndef LANTERN_VISIBILITY_HOST_EMIT
   // Never write NaN/Inf: a non-finite value counts as black.
   if (!(is_finite(value.x) && is_finite(value.y) && is_finite(value.z))) value = vec3(0.0);
   hdr.pixels[index] = vec4(max(value, vec3(0.0)), 1.0);
+#endif
 }

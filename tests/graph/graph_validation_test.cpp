@@ -182,5 +182,49 @@ TEST(GraphValidation, ExecuteMayResolveOnlyDeclaredResources) {
   EXPECT_THROW((void)ctx.buffer(other), RenderGraphError);
 }
 
+// Host passes use mapped buffers on the host, and only they do: a compute pass declaring a host
+// access, a host pass declaring a shader access, and a host pass on a transient (device-local,
+// unmapped) buffer are refused.
+TEST(GraphValidation, HostAccessOnlyInHostPassesOnImportedBuffers) {
+  {
+    RenderGraph g;
+    const BufferHandle rays =
+        g.import_buffer("visibility.host_rays", VK_NULL_HANDLE, {64});
+    g.add_pass<Empty>(
+        "restir.shade", PassKind::Compute,
+        [&](PassBuilder& b, Empty&) {
+          (void)b.write(rays, Access::HostReadWrite);
+          b.side_effect();
+        },
+        kNoExecute);
+    expect_bake_error(g, {"restir.shade", "visibility.host_rays", "host-read-write"});
+  }
+  {
+    RenderGraph g;
+    const BufferHandle rays =
+        g.import_buffer("visibility.host_rays", VK_NULL_HANDLE, {64});
+    g.add_pass<Empty>(
+        "visibility.host", PassKind::Host,
+        [&](PassBuilder& b, Empty&) {
+          b.read(rays, Access::StorageRead);
+          b.side_effect();
+        },
+        kNoExecute);
+    expect_bake_error(g, {"visibility.host", "host pass", "storage-read"});
+  }
+  {
+    RenderGraph g;
+    const BufferHandle rays = g.create_buffer("visibility.host_rays", {64});
+    g.add_pass<Empty>(
+        "visibility.host", PassKind::Host,
+        [&](PassBuilder& b, Empty&) {
+          (void)b.write(rays, Access::HostReadWrite);
+          b.side_effect();
+        },
+        kNoExecute);
+    expect_bake_error(g, {"visibility.host", "visibility.host_rays", "imported"});
+  }
+}
+
 }  // namespace
 }  // namespace lantern::runtime::graph

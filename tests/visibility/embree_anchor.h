@@ -1,5 +1,5 @@
-// The physical-limit anchor of visibility_bench: Intel Embree 3 (a benchmark-only dependency,
-// found optionally by CMake; LANTERN_HAVE_EMBREE) tracing the bench's own rays with single-ray
+// The physical-limit anchor of visibility_bench: Intel Embree 3 (libembree-dev, which the host
+// visibility backend links too) tracing the bench's own rays with single-ray
 // queries (rtcIntersect1 / rtcOccluded1) on a fixed number of host threads, over the level's
 // triangles in one of two layouts:
 //   flat:      one scene over every instance's world-space triangles (Embree builds one BVH);

@@ -6,8 +6,9 @@
 // ms (all BLASes, the per-frame TLAS rebuild) and lavapipe BLAS/TLAS build ms (GPU timestamps).
 // The anchor: Intel Embree 3 on the same rays (tests/visibility/embree_anchor.h; flat and
 // two-level, single rays, --threads host threads), each project path's throughput as a ratio of
-// Embree flat, and Embree's hit/miss agreement with the CPU traversal. Without Embree at build
-// time the bench says so and runs the rest.
+// Embree flat, and Embree's hit/miss agreement with the CPU traversal. "host": the renderer's host
+// visibility backend (lighting/visibility/host_visibility.h: its own Embree scenes, streams of
+// 256 rays through rtcOccluded1M) on the shadow-ray sets, with its agreement.
 // "texel" and "cpu" trace the renderer's layout (lighting/bvh/scene_bvh.h: the fixed instances
 // merged into one world-space tree, movers instanced); "texel two-level" and "cpu two-level" the
 // same scene with every instance under the TLAS (the layout before the merge).
@@ -34,9 +35,8 @@
 #include "tests/visibility/shading_ray_sets.h"
 #include "tests/visibility/traversal_counter.h"
 #include "tests/visibility/visibility_harness.h"
-#ifdef LANTERN_HAVE_EMBREE
+#include "lighting/visibility/host_visibility.h"
 #include "tests/visibility/embree_anchor.h"
-#endif
 
 namespace lantern::lighting {
 namespace {
@@ -46,11 +46,9 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
-#ifdef LANTERN_HAVE_EMBREE
 std::string anchor_name(const test::EmbreeAnchor& anchor) {
   return std::string(test::embree_layout_name(anchor.layout()));
 }
-#endif
 
 template <class F>
 double wall_ms(F&& f) {
@@ -160,17 +158,25 @@ int run(int argc, char** argv) {
         rq.blas_count(), median(rq_blas), median(rq_tlas), median(rq_tlas_write), create_ms);
   }
 
-#ifdef LANTERN_HAVE_EMBREE
   std::vector<std::unique_ptr<test::EmbreeAnchor>> anchors;
   for (const test::EmbreeLayout layout : {test::EmbreeLayout::Flat, test::EmbreeLayout::TwoLevel})
     anchors.push_back(std::make_unique<test::EmbreeAnchor>(level, layout, threads));
   fmt::print("embree {} ({} threads): build flat {:.1f} ms, two-level {:.1f} ms\n",
              anchors[0]->version(), threads, anchors[0]->build_ms(), anchors[1]->build_ms());
-#else
-  fmt::print(
-      "embree: NOT BUILT IN (Embree 3 was not found at configure time; install libembree-dev and "
-      "reconfigure): no anchor, no ratios\n");
-#endif
+  // The renderer's host backend (shadow rays only): its own scenes, streams of 256 rays.
+  const HostVisibility host(device, data.bvh, bvh_instance_descs(level));
+  fmt::print("host backend ({}, {} threads): {} of {} instances merged, built in {:.1f} ms\n",
+             host.version(), host.threads(), host.merged_instances(), data.bvh.instance_count(),
+             host.build_ms());
+  const auto host_records = [](std::span<const gpu::BvhRay> rays) {
+    std::vector<gpu::HostShadowRay> records;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      const glm::vec3 origin(rays[i].origin);
+      records.push_back(gpu::host_ray_segment(origin, origin + glm::vec3(rays[i].direction),
+                                              static_cast<std::uint32_t>(i)));
+    }
+    return records;
+  };
 
   std::vector<std::string> variants = {"texel", "storage"};
   if (rq_scene) variants.push_back("rayquery");
@@ -230,13 +236,16 @@ int run(int argc, char** argv) {
         double two_level_t = 0.0;
         probes["texel"]->run(two_level_scene, set.rays, set.mode, &two_level_t);
         if (r >= 0) ms[set.name]["texel two-level"].push_back(two_level_t);
-#ifdef LANTERN_HAVE_EMBREE
         for (const auto& anchor : anchors) {
           double t = 0.0;
           (void)anchor->run(set.rays, set.mode, &t);
           if (r >= 0) ms[set.name][fmt::format("embree {}", anchor_name(*anchor))].push_back(t);
         }
-#endif
+        if (set.mode == 1) {
+          std::vector<gpu::HostShadowRay> records = host_records(set.rays);
+          const double t = wall_ms([&] { host.trace(records); });
+          if (r >= 0) ms[set.name]["host"].push_back(t);
+        }
       }
     }
     fmt::print("{}x{} (medians of {} interleaved runs; cpu: 1 thread, one run)\n", w, h, runs);
@@ -296,12 +305,12 @@ int run(int argc, char** argv) {
       for (const auto& [path, runs_ms] : ms[set.name])
         line += fmt::format(" {} {:.2f} |", path, n / median(runs_ms) / 1e3);
       fmt::print("{}\n", line.substr(0, line.size() - 2));
-#ifdef LANTERN_HAVE_EMBREE
       const double flat = median(ms[set.name]["embree flat"]);
       std::string ratios = fmt::format("  {:8s} vs embree flat:", "");
       for (const std::string& path :
            {std::string("texel"), std::string("texel two-level"), std::string("rayquery"),
-            std::string("cpu"), std::string("cpu two-level"), std::string("embree two-level")})
+            std::string("cpu"), std::string("cpu two-level"), std::string("embree two-level"),
+            std::string("host")})
         if (ms[set.name].count(path))
           ratios += fmt::format(" {} {:.3f}x |", path, flat / median(ms[set.name][path]));
       std::string agree = " agreement with cpu:";
@@ -309,8 +318,16 @@ int run(int argc, char** argv) {
         agree += fmt::format(
             " {} {:.4f}%", anchor_name(*anchor),
             100.0 * test::probe_agreement(anchor->run(set.rays, set.mode), cpu, set.mode));
+      if (set.mode == 1) {
+        std::vector<gpu::HostShadowRay> records = host_records(set.rays);
+        host.trace(records);
+        std::size_t same = 0;
+        for (std::size_t i = 0; i < cpu.size(); ++i)
+          same += (cpu[i].w != 0u) == gpu::host_ray_visible(records[i].tfar) ? 1u : 0u;
+        agree += fmt::format(" host {:.4f}%", 100.0 * static_cast<double>(same) /
+                                                  std::max<std::size_t>(cpu.size(), 1));
+      }
       fmt::print("{}{}\n", ratios.substr(0, ratios.size() - 2), agree);
-#endif
     }
     fmt::print("  texel vs storage speed-up: primary {:.2f}x, probe shadow {:.2f}x\n",
                median(ms["primary"]["storage"]) / median(ms["primary"]["texel"]),

@@ -23,10 +23,11 @@ runtime::DeviceInfo device(const std::string& name, const std::string& type, boo
 
 const runtime::DeviceInfo kLavapipe = device("llvmpipe (LLVM 15.0.6, 256 bits)", "cpu", true);
 
-TEST(VisibilityChoice, AutoIsTheBvhOnLavapipe) {
+TEST(VisibilityChoice, AutoIsTheHostOnLavapipe) {
   const VisibilityChoice c = choose_visibility(kLavapipe, VisibilitySetting::Auto);
-  EXPECT_EQ(c.backend, VisibilityBackend::Bvh);
+  EXPECT_EQ(c.backend, VisibilityBackend::Host);
   EXPECT_NE(c.why.find("cpu"), std::string::npos) << c.why;
+  EXPECT_NE(c.why.find("Embree"), std::string::npos) << c.why;
 }
 
 TEST(VisibilityChoice, AutoIsRayQueryOnGpusWithHardwareTraversal) {
@@ -48,6 +49,9 @@ TEST(VisibilityChoice, ExplicitSettingsWinOverTheDevice) {
             VisibilityBackend::RayQuery);
   EXPECT_EQ(choose_visibility(device("gpu", "discrete", true), VisibilitySetting::Bvh).backend,
             VisibilityBackend::Bvh);
+  EXPECT_EQ(choose_visibility(kLavapipe, VisibilitySetting::Bvh).backend, VisibilityBackend::Bvh);
+  EXPECT_EQ(choose_visibility(device("gpu", "discrete", true), VisibilitySetting::Host).backend,
+            VisibilityBackend::Host);
 }
 
 TEST(VisibilityChoice, RayQueryOnADeviceWithoutItNamesTheDevice) {
@@ -61,12 +65,13 @@ TEST(VisibilityChoice, RayQueryOnADeviceWithoutItNamesTheDevice) {
   }
 }
 
-TEST(VisibilityChoice, ParsesTheThreeValuesAndRefusesOthers) {
+TEST(VisibilityChoice, ParsesTheFourValuesAndRefusesOthers) {
   EXPECT_EQ(parse_visibility_setting("auto"), VisibilitySetting::Auto);
   EXPECT_EQ(parse_visibility_setting("bvh"), VisibilitySetting::Bvh);
   EXPECT_EQ(parse_visibility_setting("rayquery"), VisibilitySetting::RayQuery);
-  for (VisibilitySetting s :
-       {VisibilitySetting::Auto, VisibilitySetting::Bvh, VisibilitySetting::RayQuery})
+  EXPECT_EQ(parse_visibility_setting("host"), VisibilitySetting::Host);
+  for (VisibilitySetting s : {VisibilitySetting::Auto, VisibilitySetting::Bvh,
+                              VisibilitySetting::RayQuery, VisibilitySetting::Host})
     EXPECT_EQ(parse_visibility_setting(visibility_setting_name(s)), s);
   EXPECT_THROW((void)parse_visibility_setting("embree"), InputError);
   EXPECT_THROW((void)parse_visibility_setting("RayQuery"), InputError);
@@ -76,6 +81,9 @@ TEST(VisibilityChoice, ParsesTheThreeValuesAndRefusesOthers) {
 TEST(VisibilityChoice, VariantsMatchTheCompiledShaders) {
   EXPECT_EQ(visibility_variant(VisibilityBackend::Bvh), "");
   EXPECT_EQ(visibility_variant(VisibilityBackend::RayQuery), "rayquery");
+  // The host backend's other passes run the BVH build; its split passes load their own variants.
+  EXPECT_EQ(visibility_variant(VisibilityBackend::Host), "");
+  EXPECT_EQ(visibility_backend_name(VisibilityBackend::Host), "host");
 }
 
 }  // namespace

@@ -2,7 +2,9 @@
 // its fixed seed) renders cornell_lights (an orbiting box: the TLAS is rebuilt by
 // scene.tlas_build every frame) at 64x36 with --set visibility=bvh and =rayquery, and the
 // frames agree: each channel's mean within 0.1%, and >= 99.9% of the pixels equal to float noise
-// (relative 1e-4). Synchronization validation is on and must stay clean.
+// (relative 1e-4). The same for --set visibility=host (Embree answers restir.shade's and the
+// baseline's shadow rays in the host pass visibility.host). Synchronization validation is on and
+// must stay clean.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -39,6 +41,7 @@ runtime::DeviceOptions sync_validated() {
 struct Frames {
   std::vector<runtime::ImageRGBA32F> images;
   std::uint32_t tlas_builds = 0;  // frames whose passes included scene.tlas_build
+  std::uint32_t host_passes = 0;  // frames whose passes included visibility.host
   VisibilityBackend backend = VisibilityBackend::Bvh;
 };
 
@@ -76,6 +79,8 @@ class VisibilityFrameTest : public runtime::test::GpuTest,
       const lighting::FrameTiming t = session.render(snapshot, &image);
       out.tlas_builds += std::any_of(t.passes.begin(), t.passes.end(),
                                      [](const auto& p) { return p.first == "scene.tlas_build"; });
+      out.host_passes += std::any_of(t.passes.begin(), t.passes.end(),
+                                     [](const auto& p) { return p.first == "visibility.host"; });
       out.images.push_back(std::move(image));
     }
     return out;
@@ -147,6 +152,26 @@ TEST_P(VisibilityFrameTest, FixedInstanceMovedOutOfTheMergedTreeRendersTheRayQue
   }
   // The lifted box changes the image (its shadow moves), so stale triangles would be seen.
   EXPECT_LT(compare(bvh.images.front(), bvh.images.back()).equal_fraction, 0.99);
+}
+
+TEST_P(VisibilityFrameTest, HostRendersTheBvhImage) {
+  for (const bool move_fixed : {false, true}) {
+    const Frames bvh = render(VisibilitySetting::Bvh, move_fixed);
+    const Frames host = render(VisibilitySetting::Host, move_fixed);
+    ASSERT_EQ(host.backend, VisibilityBackend::Host);
+    // The reference traces its own rays on the BVH; the real-time integrators ask the host.
+    EXPECT_EQ(host.host_passes, GetParam() == "reference" ? 0u : kFrames);
+    EXPECT_EQ(bvh.host_passes, 0u);
+    for (std::uint32_t f = 0; f < kFrames; ++f) {
+      const Agreement g = compare(bvh.images[f], host.images[f]);
+      EXPECT_GT(g.mean_luminance, 0.0) << "frame " << f << " is black: nothing compared";
+      EXPECT_LE(g.max_mean_rel, 1e-3) << "frame " << f << " move_fixed " << move_fixed;
+      EXPECT_GE(g.equal_fraction, 0.999) << "frame " << f << " move_fixed " << move_fixed;
+      EXPECT_EQ(host.images[f].count_non_finite(), 0u) << "frame " << f;
+    }
+    // The scene moves between the first and last frame, so stale answers would show.
+    EXPECT_LT(compare(host.images.front(), host.images.back()).equal_fraction, 0.999);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, VisibilityFrameTest,

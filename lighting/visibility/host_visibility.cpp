@@ -1,0 +1,303 @@
+// Embree's scene, the host pass and the ray buffer of the host visibility backend
+// (host_visibility.h).
+#include "lighting/visibility/host_visibility.h"
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <glm/gtc/type_ptr.hpp>
+#include <thread>
+
+#include "engine/core/error.h"
+#include "runtime/core/device.h"
+
+namespace lantern::lighting {
+namespace {
+
+static_assert(sizeof(gpu::HostShadowRay) == sizeof(RTCRay), "HostShadowRay must be an RTCRay");
+static_assert(offsetof(RTCRay, tfar) == offsetof(gpu::HostShadowRay, tfar));
+static_assert(offsetof(RTCRay, mask) == offsetof(gpu::HostShadowRay, mask));
+
+// Rays handed to one rtcOccluded1M call: big enough for Embree's stream path to sort them into
+// packets, small enough that two threads share the frame's rays evenly.
+constexpr std::uint32_t kRaysPerChunk = 256;
+
+bool alpha_tested(const BvhInstanceDesc& d) {
+  return (d.flags & gpu::kBvhInstanceAlphaTested) != 0u;
+}
+
+}  // namespace
+
+struct HostVisibility::Embree {
+  RTCDevice device = nullptr;
+  // Two scenes, each ray asked of both (an occluded ray is inactive for the second): the fixed
+  // instances' world-space triangles, never committed again while they stay put, and the other
+  // instances (instance i has id i), committed when one moves. One scene holding both rebuilt
+  // the merged triangles' tree at every commit (25 ms per frame on night_market); instancing the
+  // merged scene beside the movers instead would put an instance level on every ray.
+  RTCScene merged_scene = nullptr;
+  RTCScene scene = nullptr;
+  bool instanced = false;             // `scene` holds an instance
+  std::vector<RTCScene> mesh_scenes;  // per mesh id, made when an instance needs it
+  std::vector<bool> merged;           // per instance: in the merged world-space geometry
+  std::vector<bool> moved_fixed;      // per instance: declared fixed, then moved (never merged)
+  std::vector<glm::mat4> placed;      // per instance: the transform Embree has
+
+  ~Embree() {
+    release_scenes();
+    if (device != nullptr) rtcReleaseDevice(device);
+  }
+
+  void release_scenes() {
+    if (scene != nullptr) rtcReleaseScene(scene);
+    scene = nullptr;
+    if (merged_scene != nullptr) rtcReleaseScene(merged_scene);
+    merged_scene = nullptr;
+    for (RTCScene& s : mesh_scenes)
+      if (s != nullptr) rtcReleaseScene(s), s = nullptr;
+  }
+
+  void check(const char* what) const {
+    const RTCError error = rtcGetDeviceError(device);
+    if (error != RTC_ERROR_NONE)
+      throw RuntimeError(fmt::format("host visibility: Embree {} failed (RTCError {})", what,
+                                     static_cast<int>(error)));
+  }
+
+  // A triangle geometry of `triangles` triangles and `vertices` vertices; fills its buffers.
+  RTCGeometry new_triangles(std::size_t vertices, std::size_t triangles, float** positions,
+                            unsigned** indices) const {
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    *positions = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices));
+    *indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
+    check("geometry buffers");
+    return geometry;
+  }
+
+  RTCScene mesh_scene(const MeshBvh& mesh, std::uint32_t id) {
+    if (mesh_scenes.at(id) != nullptr) return mesh_scenes[id];
+    float* positions = nullptr;
+    unsigned* indices = nullptr;
+    RTCGeometry geometry =
+        new_triangles(mesh.positions().size(), mesh.indices().size() / 3, &positions, &indices);
+    std::memcpy(positions, mesh.positions().data(), mesh.positions().size() * sizeof(glm::vec3));
+    std::memcpy(indices, mesh.indices().data(), mesh.indices().size() * sizeof(unsigned));
+    rtcCommitGeometry(geometry);
+    RTCScene s = rtcNewScene(device);
+    rtcAttachGeometry(s, geometry);
+    rtcReleaseGeometry(geometry);
+    rtcCommitScene(s);
+    check("mesh scene");
+    mesh_scenes[id] = s;
+    return s;
+  }
+};
+
+bool HostVisibility::supports(std::span<const BvhInstanceDesc> instances) {
+  return std::none_of(instances.begin(), instances.end(), alpha_tested);
+}
+
+HostVisibility::HostVisibility(runtime::Device& device, const SceneBvh& bvh,
+                               std::span<const BvhInstanceDesc> instances)
+    : device_(device), bvh_(bvh), embree_(std::make_unique<Embree>()) {
+  if (!supports(instances)) {
+    throw InputError(
+        "host visibility: the level has alpha-tested materials, whose cutout only the shaders "
+        "evaluate; use visibility=bvh");
+  }
+  threads_ = std::max(1u, std::thread::hardware_concurrency());
+  const std::string config = fmt::format("threads={}", threads_);
+  embree_->device = rtcNewDevice(config.c_str());
+  if (embree_->device == nullptr) throw RuntimeError("host visibility: rtcNewDevice failed");
+  embree_->moved_fixed.assign(instances.size(), false);
+  build(bvh, instances);
+}
+
+HostVisibility::~HostVisibility() = default;
+
+std::string HostVisibility::version() const {
+  const auto v = rtcGetDeviceProperty(embree_->device, RTC_DEVICE_PROPERTY_VERSION);
+  return fmt::format("Embree {}.{}.{}", v / 10000, (v / 100) % 100, v % 100);
+}
+
+std::size_t HostVisibility::merged_instances() const {
+  return static_cast<std::size_t>(std::count(embree_->merged.begin(), embree_->merged.end(), true));
+}
+
+void HostVisibility::build(const SceneBvh& bvh, std::span<const BvhInstanceDesc> instances) {
+  const auto start = std::chrono::steady_clock::now();
+  Embree& e = *embree_;
+  e.release_scenes();
+  e.mesh_scenes.assign(bvh.mesh_count(), nullptr);
+  e.merged.assign(instances.size(), false);
+  e.placed.assign(instances.size(), glm::mat4(1.0f));
+  e.scene = rtcNewScene(e.device);
+  e.instanced = false;
+
+  // The merged geometry: every fixed instance's triangles in world space.
+  std::size_t vertex_count = 0;
+  std::size_t triangle_count = 0;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const BvhInstanceDesc& d = instances[i];
+    if (!d.fixed || e.moved_fixed[i] || bvh.mesh(d.mesh).empty()) continue;
+    e.merged[i] = true;
+    vertex_count += bvh.mesh(d.mesh).positions().size();
+    triangle_count += bvh.mesh(d.mesh).triangle_count();
+  }
+  if (triangle_count > 0) {
+    float* positions = nullptr;
+    unsigned* indices = nullptr;
+    RTCGeometry geometry = e.new_triangles(vertex_count, triangle_count, &positions, &indices);
+    std::size_t first_vertex = 0;
+    for (std::size_t i = 0; i < instances.size(); ++i) {
+      if (!e.merged[i]) continue;
+      const MeshBvh& mesh = bvh.mesh(instances[i].mesh);
+      for (const glm::vec3& p : mesh.positions()) {
+        const glm::vec3 w = glm::vec3(instances[i].object_to_world * glm::vec4(p, 1.0f));
+        std::memcpy(positions, &w, sizeof(w));
+        positions += 3;
+      }
+      for (const std::uint32_t index : mesh.indices())
+        *indices++ = static_cast<unsigned>(first_vertex + index);
+      first_vertex += mesh.positions().size();
+      e.placed[i] = instances[i].object_to_world;
+    }
+    rtcCommitGeometry(geometry);
+    e.merged_scene = rtcNewScene(e.device);
+    rtcAttachGeometry(e.merged_scene, geometry);
+    rtcReleaseGeometry(geometry);
+    rtcCommitScene(e.merged_scene);
+    e.check("merged geometry");
+  }
+  // Everything else is an instance of its mesh's scene.
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const BvhInstanceDesc& d = instances[i];
+    if (e.merged[i] || bvh.mesh(d.mesh).empty()) continue;
+    RTCGeometry instance = rtcNewGeometry(e.device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(instance, e.mesh_scene(bvh.mesh(d.mesh), d.mesh));
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                            glm::value_ptr(d.object_to_world));
+    rtcCommitGeometry(instance);
+    rtcAttachGeometryByID(e.scene, instance, static_cast<unsigned>(i));
+    rtcReleaseGeometry(instance);
+    e.placed[i] = d.object_to_world;
+    e.instanced = true;
+  }
+  e.check("instance geometry");
+  rtcCommitScene(e.scene);
+  e.check("scene build");
+  build_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void HostVisibility::update(std::span<const BvhInstanceDesc> instances) {
+  Embree& e = *embree_;
+  if (instances.size() != e.placed.size()) {
+    throw InputError(fmt::format("host visibility: {} instances, the scene was built with {}",
+                                 instances.size(), e.placed.size()));
+  }
+  bool rebuild = false;
+  bool moved = false;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const BvhInstanceDesc& d = instances[i];
+    if (d.object_to_world == e.placed[i] || bvh_.mesh(d.mesh).empty()) continue;
+    if (e.merged[i]) {
+      e.moved_fixed[i] = true;  // leaves the merged geometry, for good
+      rebuild = true;
+      continue;
+    }
+    RTCGeometry instance = rtcGetGeometry(e.scene, static_cast<unsigned>(i));
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                            glm::value_ptr(d.object_to_world));
+    rtcCommitGeometry(instance);
+    e.placed[i] = d.object_to_world;
+    moved = true;
+  }
+  if (rebuild) {
+    build(bvh_, instances);
+  } else if (moved) {
+    rtcCommitScene(e.scene);
+    e.check("scene update");
+  }
+}
+
+void HostVisibility::trace(std::span<gpu::HostShadowRay> rays) const {
+  RTCScene merged = embree_->merged_scene;
+  RTCScene instances = embree_->instanced ? embree_->scene : nullptr;
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (std::size_t begin = next.fetch_add(kRaysPerChunk); begin < rays.size();
+         begin = next.fetch_add(kRaysPerChunk)) {
+      const auto count =
+          static_cast<unsigned>(std::min<std::size_t>(kRaysPerChunk, rays.size() - begin));
+      auto* chunk = reinterpret_cast<RTCRay*>(&rays[begin]);
+      if (merged != nullptr) rtcOccluded1M(merged, &context, chunk, count, sizeof(RTCRay));
+      if (instances != nullptr) rtcOccluded1M(instances, &context, chunk, count, sizeof(RTCRay));
+    }
+  };
+  std::vector<std::thread> pool;
+  const std::size_t chunks = (rays.size() + kRaysPerChunk - 1) / kRaysPerChunk;
+  for (unsigned t = 1; t < std::min<std::size_t>(threads_, chunks); ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+runtime::graph::BufferHandle HostVisibility::import_rays(runtime::graph::RenderGraph& graph,
+                                                         std::uint32_t slots) {
+  slots = std::max(slots, 1u);
+  if (slots > capacity_) {
+    if (capacity_ > 0) device_.wait_idle();  // the old buffer may still be read
+    rays_ = runtime::Buffer(device_, {.size = VkDeviceSize{slots} * sizeof(gpu::HostShadowRay),
+                                      .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                      .memory = runtime::MemoryUsage::Readback,
+                                      .name = "visibility.host_rays"});
+    if (rays_.mapped() == nullptr ||
+        reinterpret_cast<std::uintptr_t>(rays_.mapped()) % alignof(RTCRay) != 0) {
+      throw RuntimeError("host visibility: the ray buffer is not mapped 16-byte aligned");
+    }
+    capacity_ = slots;
+  }
+  // Last frame's passes may still use it (a window keeps frames in flight): order after them.
+  const runtime::graph::AccessState any_prior_use{
+      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT |
+          VK_ACCESS_2_HOST_WRITE_BIT,
+      VK_IMAGE_LAYOUT_UNDEFINED};
+  return graph.import_buffer("visibility.host_rays", rays_.handle(), {rays_.size()},
+                             {.read_only = false, .initial = any_prior_use});
+}
+
+runtime::graph::BufferHandle HostVisibility::add_trace_pass(runtime::graph::RenderGraph& graph,
+                                                            runtime::graph::BufferHandle rays,
+                                                            std::uint32_t slots) {
+  struct Data {
+    runtime::graph::BufferHandle rays;
+  };
+  return graph
+      .add_pass<Data>(
+          "visibility.host", runtime::graph::PassKind::Host,
+          [&](runtime::graph::PassBuilder& b, Data& d) {
+            d.rays = b.write(rays, runtime::graph::Access::HostReadWrite);
+          },
+          [this, slots](runtime::graph::PassContext&, const Data&) {
+            auto* records = reinterpret_cast<gpu::HostShadowRay*>(rays_.mapped());
+            trace(std::span(records, std::min(slots, capacity_)));
+          })
+      .rays;
+}
+
+runtime::graph::BufferHandle HostVisibility::add_shadow_rays(
+    runtime::graph::RenderGraph& graph, std::uint32_t slots,
+    const std::function<runtime::graph::BufferHandle(runtime::graph::BufferHandle)>& emit) {
+  return add_trace_pass(graph, emit(import_rays(graph, slots)), slots);
+}
+
+}  // namespace lantern::lighting

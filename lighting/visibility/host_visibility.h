@@ -1,0 +1,96 @@
+// The host visibility backend (VisibilityBackend::Host): on a CPU Vulkan device, Intel Embree on
+// the host answers the frame's one shadow ray per pixel. Embree traces a CPU's rays 10-16x faster
+// than lavapipe runs the compute BVH on the same cores (README, "Embree anchor"), because it is
+// built for the CPU's SIMD units, while lavapipe runs one shader invocation per SIMD lane and
+// pays for every lane's divergent traversal.
+//
+// In the frame (render graph):
+//   restir.shadow_rays / integrators.baseline_rays   the "hostemit" shader variant writes each
+//       pixel's HostShadowRay (shared/host_visibility.h) into the mapped ray buffer
+//   visibility.host   a PassKind::Host pass: the executor submits what came before, waits, and
+//       this traces the records in place (rtcOccluded1M over Embree's RTCRay layout: zero copy)
+//   restir.shade / integrators.baseline   the "hostresolve" variant shades with the answers
+// Every other ray (closest hits, media, the reference) stays on the compute BVH, which the scene
+// keeps building.
+//
+// The scene: the instances SceneBvh merges (fixed, opaque) form one world-space triangle
+// geometry, so a ray pays for no overlapping instance boxes (README: two levels cost even Embree
+// 5-7x on night_market); each other instance is an Embree instance of its mesh's scene, moved per
+// frame. A fixed instance that moves anyway leaves the merged geometry (one rebuild).
+// Alpha-tested materials need the texture cutout at each hit, which only the shaders evaluate:
+// supports() is false for such levels and the scene then keeps the compute BVH.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "lighting/bvh/scene_bvh.h"
+#include "runtime/gpu/buffer.h"
+#include "runtime/graph/render_graph.h"
+#include "runtime/runtime_fwd.h"
+#include "shared/host_visibility.h"
+
+namespace lantern::lighting {
+
+class HostVisibility {
+ public:
+  // Whether the host can answer every shadow ray of these instances (none alpha-tested).
+  static bool supports(std::span<const BvhInstanceDesc> instances);
+
+  // Builds Embree's scene over `bvh`'s meshes placed by `instances` (as given to
+  // bvh.set_instances). lantern::RuntimeError naming Embree's error when it fails;
+  // lantern::InputError when an instance is alpha-tested (see supports()).
+  HostVisibility(runtime::Device& device, const SceneBvh& bvh,
+                 std::span<const BvhInstanceDesc> instances);
+  ~HostVisibility();
+  HostVisibility(const HostVisibility&) = delete;
+  HostVisibility& operator=(const HostVisibility&) = delete;
+
+  // Per frame, after the instances moved: moves their Embree instances (and takes a fixed
+  // instance that moved out of the merged geometry).
+  void update(std::span<const BvhInstanceDesc> instances);
+
+  // Traces every record in place on all host threads: tfar = -infinity where something blocks
+  // the segment; records with tnear > tfar (no ray) are left as they are.
+  void trace(std::span<gpu::HostShadowRay> rays) const;
+
+  // The frame's ray buffer (at least `slots` records; host-visible, mapped), imported into
+  // `graph` as "visibility.host_rays". Grows (after the device is idle) when a frame needs more.
+  [[nodiscard]] runtime::graph::BufferHandle import_rays(runtime::graph::RenderGraph& graph,
+                                                         std::uint32_t slots);
+  // visibility.host: traces the first `slots` records of `rays` (import_rays' buffer, written by
+  // an emit pass) in place; returns its new version for the resolve pass.
+  [[nodiscard]] runtime::graph::BufferHandle add_trace_pass(runtime::graph::RenderGraph& graph,
+                                                            runtime::graph::BufferHandle rays,
+                                                            std::uint32_t slots);
+
+  // The whole sequence for a pass that asks one shadow ray per slot: imports the ray buffer,
+  // lets `emit` add the pass writing it (it returns the buffer's new version), adds
+  // visibility.host; returns the traced buffer for the resolve pass to read.
+  [[nodiscard]] runtime::graph::BufferHandle add_shadow_rays(
+      runtime::graph::RenderGraph& graph, std::uint32_t slots,
+      const std::function<runtime::graph::BufferHandle(runtime::graph::BufferHandle)>& emit);
+
+  unsigned threads() const { return threads_; }
+  std::size_t merged_instances() const;
+  double build_ms() const { return build_ms_; }
+  std::string version() const;
+
+ private:
+  struct Embree;
+  void build(const SceneBvh& bvh, std::span<const BvhInstanceDesc> instances);
+
+  runtime::Device& device_;
+  const SceneBvh& bvh_;
+  std::unique_ptr<Embree> embree_;
+  unsigned threads_ = 1;
+  double build_ms_ = 0.0;
+  runtime::Buffer rays_;
+  std::uint32_t capacity_ = 0;
+};
+
+}  // namespace lantern::lighting
