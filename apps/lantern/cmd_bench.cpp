@@ -31,6 +31,7 @@
 #include "lighting/integrators/integrator_registry.h"
 #include "lighting/scene/gpu_scene.h"
 #include "lighting/scene/scene_data.h"
+#include "lighting/visibility/host_visibility.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/perf/calibration_workload.h"
@@ -212,6 +213,10 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
   // Per frame, the sum of the denoise.* and of the upscale.* passes (à-trous runs several
   // passes of one name; `passes` summarises each instance).
   std::vector<double> denoise_ms, upscale_ms;
+  // Host visibility: the shadow rays visibility.host traced per frame (pixels without a ray —
+  // sky, no sample, a pick that lights nothing — trace none).
+  std::vector<double> host_rays;
+  const lighting::HostVisibility* host = session.renderer().scene().host_visibility();
   std::map<std::string, std::vector<double>> pass_ms, system_ms;
   std::vector<std::string> pass_order;
   perf::ChromeTrace trace;
@@ -236,6 +241,7 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
     }
     denoise_ms.push_back(denoise);
     upscale_ms.push_back(upscale);
+    if (host != nullptr) host_rays.push_back(static_cast<double>(host->last_traced()));
     for (const auto& [name, ms] : t.systems) system_ms[name].push_back(ms);
 
     // Trace: systems laid out in run order inside the step (exact with one worker thread), the
@@ -306,6 +312,17 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
   std::printf("rays/s: primary %.3g (raster), shadow %.3g (visibility %s)\n", primary_rps,
               shadow_rps,
               std::string(lighting::visibility_backend_name(visibility.backend)).c_str());
+  // The host's real throughput: rays it traced over visibility.host's time (the line above
+  // counts one ray per pixel, as for the GPU backends).
+  double host_rays_median = 0.0, host_rps = 0.0;
+  if (host != nullptr && m.passes.contains("visibility.host")) {
+    host_rays_median = perf::summarize(host_rays).median;
+    const double host_ms = m.passes["visibility.host"].median;
+    if (host_ms > 0.0) host_rps = host_rays_median / (host_ms * 1e-3);
+    std::printf("host visibility: %.0f shadow rays traced per frame (%.0f%% of pixels), %.3g rays/s "
+                "in visibility.host\n",
+                host_rays_median, 100.0 * host_rays_median / pixels, host_rps);
+  }
 
   if (o.startup) {
     measure_session_parts(device, shaders, level, config, session_options, startup);
@@ -343,6 +360,7 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"cpu_systems_ms", systems},
         {"calibration_ms", m.calibration_ms},
         {"rays_per_second", {{"primary", primary_rps}, {"shadow", shadow_rps}}},
+        {"host_visibility", {{"rays_per_frame", host_rays_median}, {"rays_per_second", host_rps}}},
     };
     nlohmann::json out = j;
     if (o.startup) {

@@ -27,17 +27,17 @@ void BaselineIntegrator::warm_up() {
   pipeline_.warm_up();
   if (host_) {
     emit_->pipeline().warm_up();
-    resolve_->pipeline().warm_up();
+    occluded_->pipeline().warm_up();
   }
 }
 
 void BaselineIntegrator::prepare(const GpuScene& scene) {
   host_ = scene.host_visibility();
   if (host_ != nullptr && !emit_) {
-    emit_ = std::make_unique<ShaderPass>(device_, shaders_, "integrators.baseline_rays",
+    emit_ = std::make_unique<ShaderPass>(device_, shaders_, "integrators.baseline",
                                          "integrators/baseline.comp", "hostemit");
-    resolve_ = std::make_unique<ShaderPass>(device_, shaders_, "integrators.baseline",
-                                            "integrators/baseline.comp", "hostresolve");
+    occluded_ = std::make_unique<ShaderPass>(device_, shaders_, "integrators.baseline_occluded",
+                                             "integrators/baseline.comp", "hostresolve");
   }
 }
 
@@ -60,15 +60,21 @@ BufferHandle BaselineIntegrator::add_passes(runtime::graph::RenderGraph& graph,
     return add_gbuffer_shading_pass(graph, "integrators.baseline", pipeline_, inputs, push, tiles,
                                     hdr);
   }
-  // Host visibility: the rays, visibility.host, then the shading with the answers.
+  // Host visibility: the shading as if every ray got through (and the rays), visibility.host,
+  // then the blocked pixels rewritten.
   const BufferHandle rays =
       host_->add_shadow_rays(graph, width * height, [&](BufferHandle empty) {
-        return emit_->add(graph, inputs, push, {{"host_rays", empty, ShaderPassBuffer::Write}},
-                          {.x = tiles})[0];
+        const std::vector<BufferHandle> shaded =
+            emit_->add(graph, inputs, push,
+                       {{"host_rays", empty, ShaderPassBuffer::Write},
+                        {"radiance", hdr, ShaderPassBuffer::Write}},
+                       {.x = tiles});
+        hdr = shaded[1];
+        return shaded[0];
       });
-  return resolve_->add(graph, inputs, push,
-                       {{"host_rays", rays}, {"radiance", hdr, ShaderPassBuffer::Write}},
-                       {.x = tiles})[0];
+  return occluded_->add(graph, inputs, push,
+                        {{"host_rays", rays}, {"radiance", hdr, ShaderPassBuffer::ReadWrite}},
+                        {.x = tiles})[0];
 }
 
 }  // namespace lantern::lighting

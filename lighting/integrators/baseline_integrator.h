@@ -55,11 +55,12 @@ class BaselineIntegrator final : public Integrator {
   runtime::ShaderLibrary& shaders_;
   VisibilityBackend visibility_;
   runtime::ComputePipeline pipeline_;
-  // Host visibility: integrators.baseline_rays writes the rays, visibility.host traces them,
-  // integrators.baseline (the "hostresolve" variant) shades.
+  // Host visibility: integrators.baseline (its "hostemit" variant) shades as if every ray got
+  // through and writes the rays, visibility.host traces them, integrators.baseline_occluded
+  // rewrites the pixels whose ray was blocked.
   HostVisibility* host_ = nullptr;
   std::unique_ptr<ShaderPass> emit_;
-  std::unique_ptr<ShaderPass> resolve_;
+  std::unique_ptr<ShaderPass> occluded_;
 };
 
 }  // namespace lantern::lighting

@@ -37,7 +37,7 @@ void RestirIntegrator::warm_up() {
   runtime::warm_up(device_, pipelines);
   if (host_) {
     const std::array<const runtime::ComputePipeline*, 2> host_pipelines{
-        &shadow_rays_->pipeline(), &shade_resolve_->pipeline()};
+        &shade_emit_->pipeline(), &shade_occluded_->pipeline()};
     runtime::warm_up(device_, host_pipelines);
   }
   if (volume_) runtime::warm_up(device_, volume_->pipelines());
@@ -253,23 +253,26 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
           hdr = out[1];
           break;
         }
-        // Host visibility: restir.shadow_rays writes each pixel's ray, visibility.host traces
-        // them, restir.shade reads the answers (lighting/visibility/host_visibility.h).
+        // Host visibility: restir.shade shades as if every ray got through and writes the rays,
+        // visibility.host traces them, restir.shade_occluded rewrites the blocked pixels
+        // (lighting/visibility/host_visibility.h).
         const BufferHandle rays = host_->add_shadow_rays(
             graph, static_cast<std::uint32_t>(pixels), [&](BufferHandle empty) {
-              return shadow_rays_->add(graph, inputs, push,
-                                       {{"restir_surfaces", surfaces},
-                                        {"reservoirs_in", handle(step.read)},
-                                        {"temporal_status", status},
-                                        {"host_rays", empty, RestirPass::Buffer::Write}})[0];
+              const std::vector<BufferHandle> shaded =
+                  shade_emit_->add(graph, inputs, push,
+                                   {{"restir_surfaces", surfaces},
+                                    {"reservoirs_in", handle(step.read)},
+                                    {"temporal_status", status},
+                                    {"host_rays", empty, RestirPass::Buffer::Write},
+                                    {"hdr", hdr, RestirPass::Buffer::Write}});
+              hdr = shaded[1];
+              return shaded[0];
             });
-        const std::vector<BufferHandle> out = shade_resolve_->add(
+        const std::vector<BufferHandle> out = shade_occluded_->add(
             graph, inputs, push,
-            {{"restir_surfaces", surfaces},
-             {"reservoirs_in", handle(step.read), RestirPass::Buffer::ReadWrite},
-             {"temporal_status", status},
+            {{"reservoirs_in", handle(step.read), RestirPass::Buffer::ReadWrite},
              {"host_rays", rays},
-             {"hdr", hdr, RestirPass::Buffer::Write}});
+             {"hdr", hdr, RestirPass::Buffer::ReadWrite}});
         handle(step.read) = out[0];
         hdr = out[1];
         break;
@@ -283,11 +286,11 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
 
 void RestirIntegrator::prepare(const GpuScene& scene) {
   host_ = scene.host_visibility();
-  if (host_ != nullptr && !shadow_rays_) {
-    shadow_rays_ = std::make_unique<RestirPass>(device_, shaders_, "restir.shadow_rays", "shade",
-                                                "hostemit");
-    shade_resolve_ =
-        std::make_unique<RestirPass>(device_, shaders_, "restir.shade", "shade", "hostresolve");
+  if (host_ != nullptr && !shade_emit_) {
+    shade_emit_ =
+        std::make_unique<RestirPass>(device_, shaders_, "restir.shade", "shade", "hostemit");
+    shade_occluded_ = std::make_unique<RestirPass>(device_, shaders_, "restir.shade_occluded",
+                                                   "shade", "hostresolve");
   }
   if (scene.volume_count() > 0 && !volume_) {
     volume_ = std::make_unique<VolumeRestir>(device_, shaders_, visibility_);

@@ -68,11 +68,12 @@ class RestirIntegrator final : public Integrator {
   RestirPass temporal_;
   RestirPass spatial_;
   RestirPass shade_;
-  // Host visibility (a scene with HostVisibility, prepare): restir.shade split in two around the
-  // host pass visibility.host — restir.shadow_rays writes the rays, restir.shade shades.
+  // Host visibility (a scene with HostVisibility, prepare): restir.shade (its "hostemit"
+  // variant) writes the rays, visibility.host traces them, restir.shade_occluded rewrites the
+  // pixels whose ray was blocked.
   HostVisibility* host_ = nullptr;
-  std::unique_ptr<RestirPass> shadow_rays_;
-  std::unique_ptr<RestirPass> shade_resolve_;
+  std::unique_ptr<RestirPass> shade_emit_;
+  std::unique_ptr<RestirPass> shade_occluded_;
   ReservoirBuffers buffers_;
   std::unique_ptr<VolumeRestir> volume_;  // levels with volumes only (prepare)
 };

@@ -28,7 +28,7 @@ class RestirPass {
   RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& stage,
              VisibilityBackend visibility = VisibilityBackend::Bvh);
   // Pass `name` running restir_<stage>.comp's shader variant `variant` (the host visibility
-  // backend's split restir.shade: "hostemit" as restir.shadow_rays, "hostresolve").
+  // backend's restir.shade: "hostemit", and "hostresolve" as restir.shade_occluded).
   RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& name,
              const std::string& stage, std::string_view variant);
 

@@ -227,27 +227,33 @@ void HostVisibility::update(std::span<const BvhInstanceDesc> instances) {
   }
 }
 
-void HostVisibility::trace(std::span<gpu::HostShadowRay> rays) const {
+std::size_t HostVisibility::trace(std::span<gpu::HostShadowRay> rays) const {
   RTCScene merged = embree_->merged_scene;
   RTCScene instances = embree_->instanced ? embree_->scene : nullptr;
   std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> traced{0};
   auto worker = [&] {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    std::size_t mine = 0;
     for (std::size_t begin = next.fetch_add(kRaysPerChunk); begin < rays.size();
          begin = next.fetch_add(kRaysPerChunk)) {
       const auto count =
           static_cast<unsigned>(std::min<std::size_t>(kRaysPerChunk, rays.size() - begin));
+      for (std::size_t i = begin; i < begin + count; ++i)
+        mine += gpu::host_ray_traced(rays[i]) ? 1u : 0u;
       auto* chunk = reinterpret_cast<RTCRay*>(&rays[begin]);
       if (merged != nullptr) rtcOccluded1M(merged, &context, chunk, count, sizeof(RTCRay));
       if (instances != nullptr) rtcOccluded1M(instances, &context, chunk, count, sizeof(RTCRay));
     }
+    traced += mine;
   };
   std::vector<std::thread> pool;
   const std::size_t chunks = (rays.size() + kRaysPerChunk - 1) / kRaysPerChunk;
   for (unsigned t = 1; t < std::min<std::size_t>(threads_, chunks); ++t) pool.emplace_back(worker);
   worker();
   for (std::thread& t : pool) t.join();
+  return traced;
 }
 
 runtime::graph::BufferHandle HostVisibility::import_rays(runtime::graph::RenderGraph& graph,
@@ -289,7 +295,7 @@ runtime::graph::BufferHandle HostVisibility::add_trace_pass(runtime::graph::Rend
           },
           [this, slots](runtime::graph::PassContext&, const Data&) {
             auto* records = reinterpret_cast<gpu::HostShadowRay*>(rays_.mapped());
-            trace(std::span(records, std::min(slots, capacity_)));
+            last_traced_ = trace(std::span(records, std::min(slots, capacity_)));
           })
       .rays;
 }

@@ -1,15 +1,17 @@
 // The host visibility backend (VisibilityBackend::Host): on a CPU Vulkan device, Intel Embree on
-// the host answers the frame's one shadow ray per pixel. Embree traces a CPU's rays 10-16x faster
-// than lavapipe runs the compute BVH on the same cores (README, "Embree anchor"), because it is
-// built for the CPU's SIMD units, while lavapipe runs one shader invocation per SIMD lane and
-// pays for every lane's divergent traversal.
+// the host answers the frame's one shadow ray per pixel. On night_market's shadow rays it traces
+// 5-7x faster than lavapipe runs the compute BVH on the same two cores (visibility_bench: "host"
+// against "texel"), because Embree is built for the CPU's SIMD units, while lavapipe runs one
+// shader invocation per SIMD lane and pays for every lane's divergent traversal.
 //
 // In the frame (render graph):
-//   restir.shadow_rays / integrators.baseline_rays   the "hostemit" shader variant writes each
-//       pixel's HostShadowRay (shared/host_visibility.h) into the mapped ray buffer
+//   restir.shade / integrators.baseline   the "hostemit" shader variant shades every pixel as if
+//       its shadow ray got through and writes the ray (shared/host_visibility.h) into the
+//       mapped ray buffer
 //   visibility.host   a PassKind::Host pass: the executor submits what came before, waits, and
 //       this traces the records in place (rtcOccluded1M over Embree's RTCRay layout: zero copy)
-//   restir.shade / integrators.baseline   the "hostresolve" variant shades with the answers
+//   restir.shade_occluded / integrators.baseline_occluded   the "hostresolve" variant rewrites
+//       the pixels whose ray was blocked
 // Every other ray (closest hits, media, the reference) stays on the compute BVH, which the scene
 // keeps building.
 //
@@ -55,8 +57,12 @@ class HostVisibility {
   void update(std::span<const BvhInstanceDesc> instances);
 
   // Traces every record in place on all host threads: tfar = -infinity where something blocks
-  // the segment; records with tnear > tfar (no ray) are left as they are.
-  void trace(std::span<gpu::HostShadowRay> rays) const;
+  // the segment; records without a ray (gpu::host_ray_none) are left as they are. Returns how
+  // many records held a ray.
+  std::size_t trace(std::span<gpu::HostShadowRay> rays) const;
+  // Records that held a ray in the last visibility.host pass (what `lantern bench` divides by
+  // the pass's time for the host's rays per second).
+  std::size_t last_traced() const { return last_traced_; }
 
   // The frame's ray buffer (at least `slots` records; host-visible, mapped), imported into
   // `graph` as "visibility.host_rays". Grows (after the device is idle) when a frame needs more.
@@ -91,6 +97,7 @@ class HostVisibility {
   double build_ms_ = 0.0;
   runtime::Buffer rays_;
   std::uint32_t capacity_ = 0;
+  std::size_t last_traced_ = 0;
 };
 
 }  // namespace lantern::lighting

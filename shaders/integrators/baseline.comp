@@ -9,8 +9,9 @@
 // lights, alias table, environment, BVH through lib/visibility.glsl, frame constants).
 // Writes: radiance (rgba32f per pixel, row-major from the top-left; the host averages
 // frames). History: none.
-// Host visibility: the "hostemit" variant (integrators.baseline_rays) only writes each pixel's
-// shadow ray, the "hostresolve" variant shades with the host's answers (shared/host_visibility.h).
+// Host visibility (shared/host_visibility.h): the "hostemit" variant (integrators.baseline) shades
+// as if every ray got through and writes the rays; after visibility.host, the "hostresolve"
+// variant (integrators.baseline_occluded) rewrites the pixels whose ray was blocked.
 // Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride): lavapipe hands each CPU
 // thread a contiguous range of workgroups, so without the shuffle the thread that gets the sky
 // idles while the other traces the geometry (shared/PLATFORM.md, 1.45-1.6x on ray casting).
@@ -113,6 +114,12 @@ vec3 shade_pixel(uvec2 pixel) {
   return result;
 }
 
+// Never write NaN/Inf: a non-finite sample counts as black.
+void write_radiance(uint index, vec3 value) {
+  if (!(is_finite(value.x) && is_finite(value.y) && is_finite(value.z))) value = vec3(0.0);
+  radiance.pixels[index] = vec4(max(value, vec3(0.0)), 1.0);
+}
+
 void main() {
   uvec2 size = frame_constants.frame.frame.xy;
   uint tiles_x = (size.x + kBaselineTileSize - 1u) / kBaselineTileSize;
@@ -120,13 +127,16 @@ void main() {
   uint tile = (gl_WorkGroupID.x * push.tile_stride) % (tiles_x * tiles_y);
   uvec2 pixel = uvec2(tile % tiles_x, tile / tiles_x) * kBaselineTileSize + gl_LocalInvocationID.xy;
   if (pixel.x >= size.x || pixel.y >= size.y) return;
-  vis_host_begin(pixel.y * size.x + pixel.x);
-  vec3 value = shade_pixel(pixel);
-  // Never write NaN/Inf: a non-finite sample counts as black.
-  if (!(is_finite(value.x) && is_finite(value.y) && is_finite(value.z))) value = vec3(0.0);
-  value = max(value, vec3(0.0));
-  // The emit variant writes only the pixel's shadow ray (lib/visibility.glsl).
-#ifndef LANTERN_VISIBILITY_HOST_EMIT
-  radiance.pixels[pixel.y * size.x + pixel.x] = vec4(value, 1.0);
+  uint index = pixel.y * size.x + pixel.x;
+#ifdef LANTERN_VISIBILITY_HOST_RESOLVE
+  // After visibility.host: a pixel whose ray was blocked shows its emission only (what the light
+  // sample adds is zero); the others keep the emit variant's value.
+  HostShadowRay ray = host_rays.r[index];
+  if (host_ray_traced(ray) && !host_ray_visible(ray)) {
+    write_radiance(index, imageLoad(gbuffer_emission_metallic, ivec2(pixel)).rgb);
+  }
+#else
+  vis_host_begin(index);
+  write_radiance(index, shade_pixel(pixel));
 #endif
 }

@@ -151,23 +151,24 @@ layout(std430, binding = kHostRaysBinding) buffer HostRays {
 uint vis_host_slot = 0u;
 
 #ifdef LANTERN_VISIBILITY_HOST_EMIT
-// Emit: the slot starts without a ray; vis_visible records the segment and answers "blocked",
-// so the pass skips the shading work the resolve variant does.
+// Emit: the slot starts without a ray; vis_visible records the segment and answers "visible",
+// so the pass writes what it shows where the ray gets through (the resolve variant rewrites the
+// pixels whose ray was blocked).
 void vis_host_begin(uint slot) {
   vis_host_slot = slot;
-  host_rays.r[slot] = host_ray_none(slot);
+  host_rays.r[slot] = host_ray_none();
 }
 
 bool vis_visible(vec3 origin, vec3 target) {
   host_rays.r[vis_host_slot] = host_ray_segment(origin, target, vis_host_slot);
-  return false;
+  return true;
 }
 #else
 // Resolve: the host's answer for this invocation's slot.
 void vis_host_begin(uint slot) { vis_host_slot = slot; }
 
 bool vis_visible(vec3 origin, vec3 target) {
-  return host_ray_visible(host_rays.r[vis_host_slot].tfar);
+  return host_ray_visible(host_rays.r[vis_host_slot]);
 }
 #endif
 

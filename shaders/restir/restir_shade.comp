@@ -6,8 +6,9 @@
 // motion, temporal_status, frame constants, lights, environment (env_*), BVH.
 // Writes: hdr (vec4 per pixel).
 // History: none. Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
-// Host visibility: the "hostemit" variant (restir.shadow_rays) only writes each pixel's shadow
-// ray, the "hostresolve" variant shades with the host's answers (shared/host_visibility.h).
+// Host visibility (shared/host_visibility.h): the "hostemit" variant (restir.shade) shades as if
+// every ray got through and writes the rays; after visibility.host, the "hostresolve" variant
+// (restir.shade_occluded) rewrites the pixels whose ray was blocked.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -68,7 +69,7 @@ bool reuse_visibility(Reservoir r) {
   return (frame_constants.frame.frame.z + phase) % push.visibility_reuse != 0u;
 }
 
-void main() {
+void shade_main() {
   uvec2 pixel;
   if (!restir_pixel(pixel)) return;
   uint index = restir_index(pixel);
@@ -94,7 +95,7 @@ void main() {
           visible = reservoir_known_visible(r);
         } else {
           visible = vis_visible(p.x, y);
-#ifndef LANTERN_VISIBILITY_HOST_EMIT
+#ifndef LANTERN_VISIBILITY_HOST_EMIT  // the resolve variant writes the host's verdict
           if (push.visibility_reuse > 0u) {
             // The verdict travels with the sample into the next frame's history.
             reservoir_set_visibility(r, true, visible);
@@ -111,10 +112,40 @@ void main() {
       }
     }
   }
-  // The emit variant writes only the pixel's shadow ray (lib/visibility.glsl).
-#ifndef LANTERN_VISIBILITY_HOST_EMIT
   // Never write NaN/Inf: a non-finite value counts as black.
   if (!(is_finite(value.x) && is_finite(value.y) && is_finite(value.z))) value = vec3(0.0);
   hdr.pixels[index] = vec4(max(value, vec3(0.0)), 1.0);
+}
+
+#ifdef LANTERN_VISIBILITY_HOST_RESOLVE
+// Host visibility, after visibility.host: where the emit variant's ray was blocked, the pixel is
+// what main() writes for a blocked sample (the G-buffer emission), and with visibility reuse the
+// verdict goes into the reservoir as main() stores it. Pixels without a ray keep the emit
+// variant's value.
+void resolve_main() {
+  uvec2 pixel;
+  if (!restir_pixel(pixel)) return;
+  uint index = restir_index(pixel);
+  HostShadowRay ray = host_rays.r[index];
+  if (!host_ray_traced(ray)) return;
+  bool visible = host_ray_visible(ray);
+  if (push.visibility_reuse > 0u) {
+    Reservoir r = reservoir_unpack(reservoirs_in.r[index]);
+    reservoir_set_visibility(r, true, visible);
+    reservoirs_in.r[index] = reservoir_pack(r);
+  }
+  if (!visible) {
+    vec3 value = imageLoad(gbuffer_emission_metallic, ivec2(pixel)).rgb;
+    if (!(is_finite(value.x) && is_finite(value.y) && is_finite(value.z))) value = vec3(0.0);
+    hdr.pixels[index] = vec4(max(value, vec3(0.0)), 1.0);
+  }
+}
+#endif
+
+void main() {
+#ifdef LANTERN_VISIBILITY_HOST_RESOLVE
+  resolve_main();
+#else
+  shade_main();
 #endif
 }

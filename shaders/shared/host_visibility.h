@@ -1,11 +1,13 @@
 // Host visibility (VisibilityBackend::Host, lighting/visibility/host_visibility.h): on a CPU
 // Vulkan device the shadow rays of restir.shade and integrators.baseline are answered by Embree
-// on the host between two submissions. The pass runs twice: its "hostemit" variant writes one
-// HostShadowRay per pixel into the frame's ray buffer, the graph's host pass `visibility.host`
-// traces them in place (the buffer is mapped: zero copy on lavapipe), and the "hostresolve"
-// variant reads each pixel's answer where the pass asks vis_visible (shaders/lib/visibility.glsl).
-// HostShadowRay has Embree's RTCRay layout (rtcore_ray.h), so the host hands the mapped records
-// to rtcOccluded1M as they are; Embree marks a blocked ray by setting tfar to -infinity.
+// on the host between two submissions. The pass runs in two variants of its shader: "hostemit"
+// shades every pixel as if its shadow ray got through and writes the ray (one HostShadowRay per
+// pixel) into the frame's ray buffer; the graph's host pass `visibility.host` traces the records
+// in place (the buffer is mapped: zero copy on lavapipe); "hostresolve" then rewrites only the
+// pixels whose ray was blocked with what the pass writes for a blocked ray (the surface's own
+// emission). HostShadowRay has Embree's RTCRay layout (rtcore_ray.h), so the host hands the
+// mapped records to rtcOccluded1M as they are; Embree marks a blocked ray by setting tfar to
+// -infinity and leaves `id` alone, which tells traced slots from empty ones.
 #ifndef LANTERN_SHARED_HOST_VISIBILITY_H
 #define LANTERN_SHARED_HOST_VISIBILITY_H
 
@@ -24,7 +26,7 @@ struct HostShadowRay {
   vec4 direction;  // xyz, w = time (0)
   float tfar;      // set to -infinity by the host when something blocks the segment
   uint mask;       // ~0u: every geometry
-  uint id;         // the slot (unused by Embree's occlusion query)
+  uint id;         // the slot, or kHostRayNone (Embree leaves it alone)
   uint flags;      // 0
 };
 LANTERN_STATIC_SIZE(HostShadowRay, 48);
@@ -32,14 +34,17 @@ LANTERN_STATIC_SIZE(HostShadowRay, 48);
 // Bindings of the ray buffer in the two variants: after any pass's own resources.
 LANTERN_CONST uint kHostRaysBinding = kPassBindingBase + 16u;
 
+// HostShadowRay.id of a slot that holds no ray.
+LANTERN_CONST uint kHostRayNone = 0xffffffffu;
+
 // The record of a slot that traces nothing (visible).
-LANTERN_FUNC HostShadowRay host_ray_none(uint slot) {
+LANTERN_FUNC HostShadowRay host_ray_none() {
   HostShadowRay r;
   r.origin = vec4(0.0f, 0.0f, 0.0f, 1.0f);
   r.direction = vec4(0.0f, 0.0f, 1.0f, 0.0f);
   r.tfar = 0.0f;
   r.mask = 0xffffffffu;
-  r.id = slot;
+  r.id = kHostRayNone;
   r.flags = 0u;
   return r;
 }
@@ -48,7 +53,7 @@ LANTERN_FUNC HostShadowRay host_ray_none(uint slot) {
 // (what vis_visible writes in the emit variant), or none (visible) where the ends see each other
 // or the segment is not finite, as the other backends answer.
 LANTERN_FUNC HostShadowRay host_ray_segment(vec3 origin, vec3 target, uint slot) {
-  HostShadowRay r = host_ray_none(slot);
+  HostShadowRay r = host_ray_none();
   float t_epsilon = bvh_shadow_t_epsilon(origin, target);
   vec3 direction = target - origin;
   float finite_check = dot(origin, origin) + dot(direction, direction);
@@ -57,12 +62,19 @@ LANTERN_FUNC HostShadowRay host_ray_segment(vec3 origin, vec3 target, uint slot)
   r.origin = vec4(origin, t_epsilon);
   r.direction = vec4(direction, 0.0f);
   r.tfar = 1.0f - t_epsilon;
+  r.id = slot;
   return r;
 }
 
-// The answer the host left in a record: false only where a blocker was found.
-LANTERN_FUNC bool host_ray_visible(float tfar) {
-  return !(tfar < 0.0f);
+// Whether the record holds a ray (traced or not yet).
+LANTERN_FUNC bool host_ray_traced(HostShadowRay r) {
+  return r.id != kHostRayNone;
+}
+
+// The answer the host left in a record: false only where a blocker was found (a record without a
+// ray is visible).
+LANTERN_FUNC bool host_ray_visible(HostShadowRay r) {
+  return !(r.tfar < 0.0f);
 }
 
 LANTERN_END_SHARED

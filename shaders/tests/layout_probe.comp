@@ -11,6 +11,7 @@
 #include "shared/common_math.h"
 #include "shared/denoise.h"
 #include "shared/environment.h"
+#include "shared/host_visibility.h"
 #include "shared/lang.h"
 #include "shared/lights.h"
 #include "shared/reservoir.h"
@@ -63,6 +64,7 @@ layout(std430, binding = 25) buffer VolumeDdaProbe { VolumeDda volume_ddas[]; };
 layout(std430, binding = 26) buffer VolumePushProbe { VolumePush volume_pushes[]; };
 layout(std430, binding = 27) buffer VolumeReservoirProbe { VolumeReservoir volume_reservoirs[]; };
 layout(std430, binding = 28) buffer VolumeRestirPushProbe { VolumeRestirPush volume_restir_pushes[]; };
+layout(std430, binding = 29) buffer HostShadowRayProbe { HostShadowRay host_shadow_rays[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -95,4 +97,5 @@ void main() {
   volume_pushes[0] = volume_pushes[1];
   volume_reservoirs[0] = volume_reservoirs[1];
   volume_restir_pushes[0] = volume_restir_pushes[1];
+  host_shadow_rays[0] = host_shadow_rays[1];
 }

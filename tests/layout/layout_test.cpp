@@ -17,6 +17,7 @@
 #include "shared/bvh.h"
 #include "shared/denoise.h"
 #include "shared/environment.h"
+#include "shared/host_visibility.h"
 #include "shared/lights.h"
 #include "shared/reservoir.h"
 #include "shared/reservoir_pack.h"
@@ -191,6 +192,11 @@ const std::vector<StructLayout>& cpp_layouts() {
         LANTERN_MEMBER(BvhSceneHeader, tlas_node_count),
         LANTERN_MEMBER(BvhSceneHeader, instance_count),
         LANTERN_MEMBER(BvhSceneHeader, triangle_count)}},
+      {"HostShadowRay",
+       sizeof(gpu::HostShadowRay),
+       {LANTERN_MEMBER(HostShadowRay, origin), LANTERN_MEMBER(HostShadowRay, direction),
+        LANTERN_MEMBER(HostShadowRay, tfar), LANTERN_MEMBER(HostShadowRay, mask),
+        LANTERN_MEMBER(HostShadowRay, id), LANTERN_MEMBER(HostShadowRay, flags)}},
       {"BvhRay",
        sizeof(gpu::BvhRay),
        {LANTERN_MEMBER(BvhRay, origin), LANTERN_MEMBER(BvhRay, direction)}},

@@ -44,7 +44,7 @@ Answers compare_with_cpu(const HostVisibility& host, const SceneBvh& bvh,
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const glm::vec3 origin(rays[i].origin);
     const bool cpu = bvh.visible(origin, origin + glm::vec3(rays[i].direction));
-    const bool embree = gpu::host_ray_visible(records[i].tfar);
+    const bool embree = gpu::host_ray_visible(records[i]);
     same += cpu == embree ? 1 : 0;
     (embree ? a.visible : a.blocked) += 1;
   }
@@ -108,20 +108,22 @@ TEST_F(HostVisibilityTest, RecordsWithoutARayStayVisible) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   const glm::vec3 p(0.1f, 0.2f, 0.3f);
-  std::vector<gpu::HostShadowRay> records(300, gpu::host_ray_none(0));
+  std::vector<gpu::HostShadowRay> records(300, gpu::host_ray_none());
   records.push_back(gpu::host_ray_segment(p, p + glm::vec3(1e-7f), 1));
   records.push_back(gpu::host_ray_segment(glm::vec3(nan), p, 2));
   records.push_back(gpu::host_ray_segment(p, glm::vec3(inf, 0.0f, 0.0f), 3));
   records.push_back(gpu::host_ray_segment(p, glm::vec3(3e19f, 0.0f, 0.0f), 4));
   for (std::size_t i = 300; i < records.size(); ++i)
-    EXPECT_GT(records[i].origin.w, records[i].tfar) << "record " << i << " holds a ray";
+    EXPECT_FALSE(gpu::host_ray_traced(records[i])) << "record " << i << " holds a ray";
   host.trace(records);
-  for (const gpu::HostShadowRay& r : records) EXPECT_TRUE(gpu::host_ray_visible(r.tfar));
+  for (const gpu::HostShadowRay& r : records) EXPECT_TRUE(gpu::host_ray_visible(r));
   // A real segment through the box: the floor's centre seen from far below is blocked.
   std::vector<gpu::HostShadowRay> through{
       gpu::host_ray_segment(glm::vec3(0.0f, -100.0f, 0.0f), glm::vec3(0.0f, 100.0f, 0.0f), 0)};
+  ASSERT_TRUE(gpu::host_ray_traced(through[0]));
   host.trace(through);
-  EXPECT_FALSE(gpu::host_ray_visible(through[0].tfar));
+  EXPECT_TRUE(gpu::host_ray_traced(through[0])) << "Embree keeps the record's id";
+  EXPECT_FALSE(gpu::host_ray_visible(through[0]));
 }
 
 TEST_F(HostVisibilityTest, RefusesAlphaTestedLevelsByName) {

@@ -323,7 +323,7 @@ int run(int argc, char** argv) {
         host.trace(records);
         std::size_t same = 0;
         for (std::size_t i = 0; i < cpu.size(); ++i)
-          same += (cpu[i].w != 0u) == gpu::host_ray_visible(records[i].tfar) ? 1u : 0u;
+          same += (cpu[i].w != 0u) == gpu::host_ray_visible(records[i]) ? 1u : 0u;
         agree += fmt::format(" host {:.4f}%", 100.0 * static_cast<double>(same) /
                                                   std::max<std::size_t>(cpu.size(), 1));
       }
