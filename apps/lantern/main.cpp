@@ -17,8 +17,9 @@ void add_common_flags(CLI::App& cmd, CommonOptions& o) {
       ->capture_default_str();
   cmd.add_option(
       "--set", o.settings,
-      "Override a setting KEY=VALUE (repeatable); visibility=auto|bvh|rayquery picks "
-      "the ray tracing backend (auto: ray query on GPUs, the compute BVH on CPU devices)");
+      "Override a setting KEY=VALUE (repeatable); visibility=auto|bvh|rayquery|host picks "
+      "the ray tracing backend (auto: ray query on GPUs, Embree on the host answering the "
+      "shading passes' shadow rays on CPU devices)");
   cmd.add_option("--device", o.device, "Vulkan device: auto|cpu|gpu|INDEX")->capture_default_str();
   cmd.add_option("--frames", o.frames, "Number of frames")->check(CLI::Range(1, 1000000));
   cmd.add_flag("--quiet", o.quiet, "Only print warnings and errors");

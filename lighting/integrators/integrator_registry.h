@@ -25,7 +25,7 @@ struct IntegratorConfig {
   std::string preset = "balanced";
   std::vector<std::pair<std::string, std::string>> settings;  // --set KEY=VALUE, in order
   std::uint32_t spp = 0;  // reference: samples per pixel per frame, 0 = its default
-  // --set visibility=auto|bvh|rayquery (lighting/visibility/visibility_backend.h): resolved
+  // --set visibility=auto|bvh|rayquery|host (lighting/visibility/visibility_backend.h): resolved
   // against the device by make_integrator.
   VisibilitySetting visibility = VisibilitySetting::Auto;
   // --set denoise.KEY=VALUE (prefix stripped; lighting/denoise/denoise_settings.h), applied over

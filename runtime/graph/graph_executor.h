@@ -37,11 +37,12 @@ class GraphExecutor {
   [[nodiscard]] CompileOptions compile_options() const;
 
   // Records the baked frame of `graph` into `cmd`. Call between bake() and end_frame(). With a
-  // timer (reset by the caller at the start of `cmd`), each pass is a timed scope that also
-  // carries the debug label; without one, passes still get labels. When the frame's transient
-  // layout changes, waits for the device before freeing the old one. Host passes (PassKind::Host)
-  // split the frame: what precedes each is submitted and waited for first (so reset a timer with
-  // GpuTimer::reset_on_host, not into `cmd`), and only what follows the last lands in `cmd`.
+  // timer (reset by the caller before the frame's first submission), each pass is a timed scope
+  // that also carries the debug label; without one, passes still get labels. When the frame's
+  // transient layout changes, waits for the device before freeing the old one. Host passes
+  // (PassKind::Host) split the frame: what precedes each is submitted and waited for first (so
+  // reset a timer with GpuTimer::reset_on_host, not into `cmd`), and only what follows the last
+  // lands in `cmd`.
   void record(RenderGraph& graph, VkCommandBuffer cmd, GpuTimer* timer = nullptr);
 
   // Test switch: record Vulkan 1.0 barriers even when synchronization2 is available.

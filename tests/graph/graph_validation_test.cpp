@@ -185,45 +185,33 @@ TEST(GraphValidation, ExecuteMayResolveOnlyDeclaredResources) {
 // Host passes use mapped buffers on the host, and only they do: a compute pass declaring a host
 // access, a host pass declaring a shader access, and a host pass on a transient (device-local,
 // unmapped) buffer are refused.
+void expect_host_use_refused(PassKind kind, Access access, bool imported,
+                             std::initializer_list<const char*> needles) {
+  RenderGraph g;
+  const BufferHandle rays = imported
+                                ? g.import_buffer("visibility.host_rays", VK_NULL_HANDLE, {64})
+                                : g.create_buffer("visibility.host_rays", {64});
+  g.add_pass<Empty>(
+      kind == PassKind::Host ? "visibility.host" : "restir.shade", kind,
+      [&](PassBuilder& b, Empty&) {
+        if (is_write(access)) {
+          (void)b.write(rays, access);
+        } else {
+          b.read(rays, access);
+        }
+        b.side_effect();
+      },
+      kNoExecute);
+  expect_bake_error(g, needles);
+}
+
 TEST(GraphValidation, HostAccessOnlyInHostPassesOnImportedBuffers) {
-  {
-    RenderGraph g;
-    const BufferHandle rays =
-        g.import_buffer("visibility.host_rays", VK_NULL_HANDLE, {64});
-    g.add_pass<Empty>(
-        "restir.shade", PassKind::Compute,
-        [&](PassBuilder& b, Empty&) {
-          (void)b.write(rays, Access::HostReadWrite);
-          b.side_effect();
-        },
-        kNoExecute);
-    expect_bake_error(g, {"restir.shade", "visibility.host_rays", "host-read-write"});
-  }
-  {
-    RenderGraph g;
-    const BufferHandle rays =
-        g.import_buffer("visibility.host_rays", VK_NULL_HANDLE, {64});
-    g.add_pass<Empty>(
-        "visibility.host", PassKind::Host,
-        [&](PassBuilder& b, Empty&) {
-          b.read(rays, Access::StorageRead);
-          b.side_effect();
-        },
-        kNoExecute);
-    expect_bake_error(g, {"visibility.host", "host pass", "storage-read"});
-  }
-  {
-    RenderGraph g;
-    const BufferHandle rays = g.create_buffer("visibility.host_rays", {64});
-    g.add_pass<Empty>(
-        "visibility.host", PassKind::Host,
-        [&](PassBuilder& b, Empty&) {
-          (void)b.write(rays, Access::HostReadWrite);
-          b.side_effect();
-        },
-        kNoExecute);
-    expect_bake_error(g, {"visibility.host", "visibility.host_rays", "imported"});
-  }
+  expect_host_use_refused(PassKind::Compute, Access::HostReadWrite, true,
+                          {"restir.shade", "visibility.host_rays", "host-read-write"});
+  expect_host_use_refused(PassKind::Host, Access::StorageRead, true,
+                          {"visibility.host", "host pass", "storage-read"});
+  expect_host_use_refused(PassKind::Host, Access::HostReadWrite, false,
+                          {"visibility.host", "visibility.host_rays", "imported"});
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/level/level_loader.h"
@@ -53,9 +54,11 @@ class VisibilityFrameTest : public runtime::test::GpuTest,
   // `move_fixed`: the snapshot lifts the tall box (a fixed instance, merged into the BVH's
   // world-space tree) a little more every frame, so the BVH takes it out of the merged tree
   // (rebuild and re-upload of the BLAS part) on the first frame it moves.
-  Frames render(VisibilitySetting visibility, bool move_fixed = false) {
+  Frames render(VisibilitySetting visibility, bool move_fixed = false,
+                std::vector<std::pair<std::string, std::string>> settings = {}) {
     lighting::SessionOptions o;
     o.integrator.name = GetParam();
+    o.integrator.settings = std::move(settings);
     o.integrator.visibility = visibility;
     if (GetParam() == "reference") o.integrator.spp = 4;
     o.width = kWidth;
@@ -171,6 +174,19 @@ TEST_P(VisibilityFrameTest, HostRendersTheBvhImage) {
     }
     // The scene moves between the first and last frame, so stale answers would show.
     EXPECT_LT(compare(host.images.front(), host.images.back()).equal_fraction, 0.999);
+  }
+  // ReSTIR's visibility reuse: restir.shade_occluded writes the host's verdicts into the
+  // reservoirs as restir.shade does with its own rays, so the frames that reuse them match too.
+  if (GetParam() == "restir") {
+    const std::vector<std::pair<std::string, std::string>> reuse{{"visibility_reuse", "2"}};
+    const Frames bvh = render(VisibilitySetting::Bvh, false, reuse);
+    const Frames host = render(VisibilitySetting::Host, false, reuse);
+    for (std::uint32_t f = 0; f < kFrames; ++f) {
+      const Agreement g = compare(bvh.images[f], host.images[f]);
+      EXPECT_GT(g.mean_luminance, 0.0) << "reuse frame " << f << " is black";
+      EXPECT_LE(g.max_mean_rel, 1e-3) << "reuse frame " << f;
+      EXPECT_GE(g.equal_fraction, 0.999) << "reuse frame " << f;
+    }
   }
 }
 
