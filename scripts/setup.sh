@@ -13,7 +13,7 @@ packages=(
   libnanovdb-dev  # PNanoVDB.h: volume_lookup_bench (the bricks against NanoVDB)
   libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev spirv-headers
   libgtest-dev libgmock-dev libbenchmark-dev
-  libembree-dev  # visibility_bench only: the Embree anchor (optional at configure time)
+  libembree-dev  # Intel Embree 3: the host visibility backend (lighting/visibility/host_visibility.h)
   xvfb xauth ffmpeg fonts-dejavu-core
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer
 )
