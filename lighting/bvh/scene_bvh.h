@@ -67,6 +67,9 @@ class SceneBvh {
   // Mesh id of instance i (as given to set_instances): for other backends building their own
   // structures from the same scene (lighting/visibility/ray_query_scene.h).
   std::uint32_t instance_mesh(std::size_t i) const { return instance_meshes_.at(i); }
+  // Whether instance i (as given to the last set_instances) is in the merged tree: for other
+  // backends that mirror the layout (lighting/visibility/host_visibility.h).
+  bool merged(std::size_t i) const { return i < is_merged_.size() && is_merged_[i]; }
   // Instances merged into the fixed tree, and its triangle count.
   std::size_t merged_instance_count() const { return merged_.size(); }
   std::size_t merged_triangle_count() const { return merged_triangles_.size(); }

@@ -44,7 +44,6 @@ struct HostVisibility::Embree {
   bool instanced = false;             // `scene` holds an instance
   std::vector<RTCScene> mesh_scenes;  // per mesh id, made when an instance needs it
   std::vector<bool> merged;           // per instance: in the merged world-space geometry
-  std::vector<bool> moved_fixed;      // per instance: declared fixed, then moved (never merged)
   std::vector<glm::mat4> placed;      // per instance: the transform Embree has
 
   ~Embree() {
@@ -115,7 +114,6 @@ HostVisibility::HostVisibility(runtime::Device& device, const SceneBvh& bvh,
   const std::string config = fmt::format("threads={}", threads_);
   embree_->device = rtcNewDevice(config.c_str());
   if (embree_->device == nullptr) throw RuntimeError("host visibility: rtcNewDevice failed");
-  embree_->moved_fixed.assign(instances.size(), false);
   build(bvh, instances);
 }
 
@@ -145,7 +143,8 @@ void HostVisibility::build(const SceneBvh& bvh, std::span<const BvhInstanceDesc>
   std::size_t triangle_count = 0;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const BvhInstanceDesc& d = instances[i];
-    if (!d.fixed || e.moved_fixed[i] || bvh.mesh(d.mesh).empty()) continue;
+    // Exactly the BVH's merged set (its triangle cap, never a fixed instance that moved).
+    if (!bvh.merged(i) || bvh.mesh(d.mesh).empty()) continue;
     e.merged[i] = true;
     vertex_count += bvh.mesh(d.mesh).positions().size();
     triangle_count += bvh.mesh(d.mesh).triangle_count();
@@ -202,16 +201,20 @@ void HostVisibility::update(std::span<const BvhInstanceDesc> instances) {
     throw InputError(fmt::format("host visibility: {} instances, the scene was built with {}",
                                  instances.size(), e.placed.size()));
   }
+  // The BVH's set_instances ran first: a fixed instance that moved has left its merged tree.
   bool rebuild = false;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const bool merged_now = bvh_.merged(i) && !bvh_.mesh(instances[i].mesh).empty();
+    rebuild = rebuild || e.merged[i] != merged_now;
+  }
+  if (rebuild) {
+    build(bvh_, instances);
+    return;
+  }
   bool moved = false;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const BvhInstanceDesc& d = instances[i];
-    if (d.object_to_world == e.placed[i] || bvh_.mesh(d.mesh).empty()) continue;
-    if (e.merged[i]) {
-      e.moved_fixed[i] = true;  // leaves the merged geometry, for good
-      rebuild = true;
-      continue;
-    }
+    if (e.merged[i] || d.object_to_world == e.placed[i] || bvh_.mesh(d.mesh).empty()) continue;
     RTCGeometry instance = rtcGetGeometry(e.scene, static_cast<unsigned>(i));
     rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
                             glm::value_ptr(d.object_to_world));
@@ -219,9 +222,7 @@ void HostVisibility::update(std::span<const BvhInstanceDesc> instances) {
     e.placed[i] = d.object_to_world;
     moved = true;
   }
-  if (rebuild) {
-    build(bvh_, instances);
-  } else if (moved) {
+  if (moved) {
     rtcCommitScene(e.scene);
     e.check("scene update");
   }
@@ -241,7 +242,7 @@ std::size_t HostVisibility::trace(std::span<gpu::HostShadowRay> rays) const {
       const auto count =
           static_cast<unsigned>(std::min<std::size_t>(kRaysPerChunk, rays.size() - begin));
       for (std::size_t i = begin; i < begin + count; ++i)
-        mine += gpu::host_ray_traced(rays[i]) ? 1u : 0u;
+        mine += gpu::host_ray_traced(rays[i]) && rays[i].origin.w <= rays[i].tfar ? 1u : 0u;
       auto* chunk = reinterpret_cast<RTCRay*>(&rays[begin]);
       if (merged != nullptr) rtcOccluded1M(merged, &context, chunk, count, sizeof(RTCRay));
       if (instances != nullptr) rtcOccluded1M(instances, &context, chunk, count, sizeof(RTCRay));

@@ -15,10 +15,16 @@
 // Every other ray (closest hits, media, the reference) stays on the compute BVH, which the scene
 // keeps building.
 //
-// The scene: the instances SceneBvh merges (fixed, opaque) form one world-space triangle
-// geometry, so a ray pays for no overlapping instance boxes (README: two levels cost even Embree
-// 5-7x on night_market); each other instance is an Embree instance of its mesh's scene, moved per
-// frame. A fixed instance that moves anyway leaves the merged geometry (one rebuild).
+// The scene: exactly the instances SceneBvh merges (fixed, opaque, within its triangle cap) form
+// one world-space triangle geometry, so a ray pays for no overlapping instance boxes (README: two
+// levels cost even Embree 5-7x on night_market); each other instance is an Embree instance of its
+// mesh's scene, moved per frame. When the BVH takes a fixed instance that moved out of its merged
+// tree, the merged geometry follows (one rebuild).
+//
+// The frame's ray buffer is single: the host pass waits for everything submitted before it
+// (Device::submit_and_wait), which with a window's frames in flight means the previous frame
+// has finished. That orders its reads of the buffer before this frame's host writes, and it
+// leaves one frame in flight while host visibility is on.
 // Alpha-tested materials need the texture cutout at each hit, which only the shaders evaluate:
 // supports() is false for such levels and the scene then keeps the compute BVH.
 #pragma once
@@ -57,10 +63,10 @@ class HostVisibility {
   void update(std::span<const BvhInstanceDesc> instances);
 
   // Traces every record in place on all host threads: tfar = -infinity where something blocks
-  // the segment; records without a ray (gpu::host_ray_none) are left as they are. Returns how
-  // many records held a ray.
+  // the segment; records without an active ray (tnear > tfar) are left as they are. Returns how
+  // many records held an active ray.
   std::size_t trace(std::span<gpu::HostShadowRay> rays) const;
-  // Records that held a ray in the last visibility.host pass (what `lantern bench` divides by
+  // Records that held an active ray in the last visibility.host pass (what `lantern bench` divides by
   // the pass's time for the host's rays per second).
   std::size_t last_traced() const { return last_traced_; }
 

@@ -20,7 +20,7 @@ LANTERN_BEGIN_SHARED
 // One shadow-ray segment origin + t * direction, t in [tnear, tfar] (the one epsilon policy of
 // shared/bvh.h: direction = target - origin, tnear = t_eps, tfar = 1 - t_eps). A slot without a
 // ray (the pixel traced nothing, or its points see each other) has tnear > tfar, which Embree
-// skips: it reads as visible.
+// skips: it reads as visible. `id` tells the two apart (host_ray_traced).
 struct HostShadowRay {
   vec4 origin;     // xyz, w = tnear
   vec4 direction;  // xyz, w = time (0)
@@ -50,10 +50,13 @@ LANTERN_FUNC HostShadowRay host_ray_none() {
 }
 
 // The record of the shadow segment origin -> target under the one epsilon policy of shared/bvh.h
-// (what vis_visible writes in the emit variant), or none (visible) where the ends see each other
-// or the segment is not finite, as the other backends answer.
+// (what vis_visible writes in the emit variant). Where the ends see each other or the segment is
+// not finite, the record still names its slot (the pass asked, and the resolve variant stores
+// the verdict as the other backends do) but stays inactive (tnear > tfar): Embree skips it and it
+// reads as visible, as the other backends answer.
 LANTERN_FUNC HostShadowRay host_ray_segment(vec3 origin, vec3 target, uint slot) {
   HostShadowRay r = host_ray_none();
+  r.id = slot;
   float t_epsilon = bvh_shadow_t_epsilon(origin, target);
   vec3 direction = target - origin;
   float finite_check = dot(origin, origin) + dot(direction, direction);
@@ -62,11 +65,11 @@ LANTERN_FUNC HostShadowRay host_ray_segment(vec3 origin, vec3 target, uint slot)
   r.origin = vec4(origin, t_epsilon);
   r.direction = vec4(direction, 0.0f);
   r.tfar = 1.0f - t_epsilon;
-  r.id = slot;
   return r;
 }
 
-// Whether the record holds a ray (traced or not yet).
+// Whether the pass asked this slot's shadow ray (traced, or inactive because its ends see each
+// other).
 LANTERN_FUNC bool host_ray_traced(HostShadowRay r) {
   return r.id != kHostRayNone;
 }
