@@ -24,11 +24,13 @@ BaselineIntegrator::BaselineIntegrator(runtime::Device& device, runtime::ShaderL
                 runtime::ComputePipelineDesc{.name = "integrators.baseline", .constants = {}}) {}
 
 void BaselineIntegrator::warm_up() {
-  pipeline_.warm_up();
-  if (host_) {
-    emit_->pipeline().warm_up();
-    occluded_->pipeline().warm_up();
+  // With host visibility the BVH's pass never runs: its two variants are JIT-compiled instead.
+  if (!host_) {
+    pipeline_.warm_up();
+    return;
   }
+  emit_->pipeline().warm_up();
+  occluded_->pipeline().warm_up();
 }
 
 void BaselineIntegrator::prepare(const GpuScene& scene) {

@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <array>
 
 #include "engine/core/error.h"
 #include "lighting/frame/tile_order.h"
@@ -31,15 +30,17 @@ RestirIntegrator::RestirIntegrator(runtime::Device& device, runtime::ShaderLibra
       shade_(device, shaders, "shade", visibility) {}
 
 void RestirIntegrator::warm_up() {
-  const std::array<const runtime::ComputePipeline*, 5> pipelines{
-      &presample_.pipeline(), &initial_.pipeline(), &temporal_.pipeline(), &spatial_.pipeline(),
-      &shade_.pipeline()};
-  runtime::warm_up(device_, pipelines);
+  // With host visibility the BVH's restir.shade never runs: its two variants are JIT-compiled
+  // instead.
+  std::vector<const runtime::ComputePipeline*> pipelines{
+      &presample_.pipeline(), &initial_.pipeline(), &temporal_.pipeline(), &spatial_.pipeline()};
   if (host_) {
-    const std::array<const runtime::ComputePipeline*, 2> host_pipelines{
-        &shade_emit_->pipeline(), &shade_occluded_->pipeline()};
-    runtime::warm_up(device_, host_pipelines);
+    pipelines.push_back(&shade_emit_->pipeline());
+    pipelines.push_back(&shade_occluded_->pipeline());
+  } else {
+    pipelines.push_back(&shade_.pipeline());
   }
+  runtime::warm_up(device_, pipelines);
   if (volume_) runtime::warm_up(device_, volume_->pipelines());
 }
 

@@ -44,20 +44,21 @@ struct HostVisibility::Embree {
   bool instanced = false;             // `scene` holds an instance
   std::vector<RTCScene> mesh_scenes;  // per mesh id, made when an instance needs it
   std::vector<bool> merged;           // per instance: in the merged world-space geometry
-  std::vector<glm::mat4> placed;      // per instance: the transform Embree has
+  std::vector<glm::mat4> placed;      // per instanced instance: the transform Embree has
 
   ~Embree() {
-    release_scenes();
+    release_placed_scenes();
+    for (RTCScene m : mesh_scenes)
+      if (m != nullptr) rtcReleaseScene(m);
     if (device != nullptr) rtcReleaseDevice(device);
   }
 
-  void release_scenes() {
+  // The scenes that depend on the placement (the mesh scenes are object space: kept).
+  void release_placed_scenes() {
     if (scene != nullptr) rtcReleaseScene(scene);
     scene = nullptr;
     if (merged_scene != nullptr) rtcReleaseScene(merged_scene);
     merged_scene = nullptr;
-    for (RTCScene& s : mesh_scenes)
-      if (s != nullptr) rtcReleaseScene(s), s = nullptr;
   }
 
   void check(const char* what) const {
@@ -131,14 +132,14 @@ std::size_t HostVisibility::merged_instances() const {
 void HostVisibility::build(const SceneBvh& bvh, std::span<const BvhInstanceDesc> instances) {
   const auto start = std::chrono::steady_clock::now();
   Embree& e = *embree_;
-  e.release_scenes();
-  e.mesh_scenes.assign(bvh.mesh_count(), nullptr);
+  e.release_placed_scenes();
+  e.mesh_scenes.resize(bvh.mesh_count(), nullptr);
   e.merged.assign(instances.size(), false);
   e.placed.assign(instances.size(), glm::mat4(1.0f));
   e.scene = rtcNewScene(e.device);
   e.instanced = false;
 
-  // The merged geometry: every fixed instance's triangles in world space.
+  // The merged geometry: the triangles of the instances the BVH merged, in world space.
   std::size_t vertex_count = 0;
   std::size_t triangle_count = 0;
   for (std::size_t i = 0; i < instances.size(); ++i) {
@@ -165,7 +166,6 @@ void HostVisibility::build(const SceneBvh& bvh, std::span<const BvhInstanceDesc>
       for (const std::uint32_t index : mesh.indices())
         *indices++ = static_cast<unsigned>(first_vertex + index);
       first_vertex += mesh.positions().size();
-      e.placed[i] = instances[i].object_to_world;
     }
     rtcCommitGeometry(geometry);
     e.merged_scene = rtcNewScene(e.device);

@@ -21,12 +21,6 @@
 namespace lantern::lighting::test {
 namespace {
 
-// The record the emit variant writes for the segment origin -> origin + direction.
-gpu::HostShadowRay host_ray(const gpu::BvhRay& ray, std::uint32_t slot) {
-  const glm::vec3 origin(ray.origin);
-  return gpu::host_ray_segment(origin, origin + glm::vec3(ray.direction), slot);
-}
-
 struct Answers {
   double agreement = 0.0;
   std::size_t blocked = 0;
@@ -35,9 +29,7 @@ struct Answers {
 
 Answers compare_with_cpu(const HostVisibility& host, const SceneBvh& bvh,
                          std::span<const gpu::BvhRay> rays) {
-  std::vector<gpu::HostShadowRay> records;
-  for (std::size_t i = 0; i < rays.size(); ++i)
-    records.push_back(host_ray(rays[i], static_cast<std::uint32_t>(i)));
+  std::vector<gpu::HostShadowRay> records = host_records(rays);
   host.trace(records);
   Answers a;
   std::size_t same = 0;

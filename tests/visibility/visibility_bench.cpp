@@ -168,15 +168,6 @@ int run(int argc, char** argv) {
   fmt::print("host backend ({}, {} threads): {} of {} instances merged, built in {:.1f} ms\n",
              host.version(), host.threads(), host.merged_instances(), data.bvh.instance_count(),
              host.build_ms());
-  const auto host_records = [](std::span<const gpu::BvhRay> rays) {
-    std::vector<gpu::HostShadowRay> records;
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-      const glm::vec3 origin(rays[i].origin);
-      records.push_back(gpu::host_ray_segment(origin, origin + glm::vec3(rays[i].direction),
-                                              static_cast<std::uint32_t>(i)));
-    }
-    return records;
-  };
 
   std::vector<std::string> variants = {"texel", "storage"};
   if (rq_scene) variants.push_back("rayquery");
@@ -242,7 +233,7 @@ int run(int argc, char** argv) {
           if (r >= 0) ms[set.name][fmt::format("embree {}", anchor_name(*anchor))].push_back(t);
         }
         if (set.mode == 1) {
-          std::vector<gpu::HostShadowRay> records = host_records(set.rays);
+          std::vector<gpu::HostShadowRay> records = test::host_records(set.rays);
           const double t = wall_ms([&] { host.trace(records); });
           if (r >= 0) ms[set.name]["host"].push_back(t);
         }
@@ -319,7 +310,7 @@ int run(int argc, char** argv) {
             " {} {:.4f}%", anchor_name(*anchor),
             100.0 * test::probe_agreement(anchor->run(set.rays, set.mode), cpu, set.mode));
       if (set.mode == 1) {
-        std::vector<gpu::HostShadowRay> records = host_records(set.rays);
+        std::vector<gpu::HostShadowRay> records = test::host_records(set.rays);
         host.trace(records);
         std::size_t same = 0;
         for (std::size_t i = 0; i < cpu.size(); ++i)

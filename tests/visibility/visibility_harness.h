@@ -25,6 +25,7 @@
 #include "runtime/gpu/gpu_timer.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/gpu/transfer.h"
+#include "shared/host_visibility.h"
 #include "shared/lights.h"
 
 namespace lantern::lighting::test {
@@ -90,6 +91,19 @@ inline std::vector<gpu::BvhRay> shadow_rays(const SceneBvh& bvh,
     rays.push_back(gpu::bvh_make_ray(p, target - p, 0.0f, 1.0f));
   }
   return rays;
+}
+
+// The host backend's records of probe-format shadow rays (segment origin -> origin + direction),
+// as the emit variant writes them, slot = ray index.
+inline std::vector<gpu::HostShadowRay> host_records(std::span<const gpu::BvhRay> rays) {
+  std::vector<gpu::HostShadowRay> records;
+  records.reserve(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const glm::vec3 origin(rays[i].origin);
+    records.push_back(gpu::host_ray_segment(origin, origin + glm::vec3(rays[i].direction),
+                                            static_cast<std::uint32_t>(i)));
+  }
+  return records;
 }
 
 // The CPU answers in the probe's format (x = instance or ~0u, w = visible for mode 1).
