@@ -29,6 +29,7 @@
 #include "lighting/integrators/reference_cache.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/shader_library.h"
+#include "runtime/image/image_io.h"
 #include "runtime/image/image_metrics.h"
 #include "runtime/image/log_log_plot.h"
 
@@ -46,6 +47,7 @@ struct TradeOptions {
   std::uint32_t reference_spp = 64;
   std::uint32_t reference_frames = 16;
   bool no_baseline = false;
+  bool images = false;  // write the last evaluated frame's images beside trade.json
 };
 
 struct Config {
@@ -72,6 +74,8 @@ struct Row {
   // Mean squared change between the last two frames relative to the reference's mean square.
   double flicker_raw = 0.0;
   double flicker_denoised = 0.0;
+  // --images: the last evaluated frame.
+  runtime::ImageRGBA32F last_raw, last_denoised;
   double mean_relmse() const { return mean_of(relmse); }
 };
 
@@ -230,6 +234,10 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
         row.mean_ratio_denoised.push_back(ref_mean > 0.0 ? runtime::mean_rgb(image) / ref_mean
                                                          : 0.0);
         row.mean_ratio_raw.push_back(ref_mean > 0.0 ? runtime::mean_rgb(raw) / ref_mean : 0.0);
+        if (o.images && next == ks.size()) {
+          row.last_raw = raw;
+          row.last_denoised = image;
+        }
       }
       if (keep) {
         previous_raw = std::move(raw);
@@ -343,6 +351,13 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   };
   std::ofstream(out / "trade.json") << j.dump(2) << '\n';
   std::ofstream(out / "trade.csv") << csv;
+  if (o.images) {
+    runtime::write_exr(out / "reference.exr", references.back());
+    for (const Row& r : rows) {
+      runtime::write_exr(out / fmt::format("{}_raw.exr", r.config.name), r.last_raw);
+      runtime::write_exr(out / fmt::format("{}_denoised.exr", r.config.name), r.last_denoised);
+    }
+  }
 
   runtime::LogLogPlot plot;
   plot.title = fmt::format("{} {}x{}: error vs frame time ({} frames)", level->name, width,
@@ -400,6 +415,8 @@ void add_trade_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("--reference-frames", opts->reference_frames,
                   "Reference frames averaged (total spp = spp x frames)")
       ->capture_default_str();
+  cmd->add_flag("--images", opts->images,
+                "Also write the last evaluated frame: reference.exr, NAME_raw.exr, NAME_denoised.exr");
   cmd->add_option("--out", opts->out, "Output directory")->required();
   cmd->callback([opts, &options] { run_trade(*opts, options); });
 }

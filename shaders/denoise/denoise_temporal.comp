@@ -116,7 +116,11 @@ void main() {
     history_moments /= weight_sum;
     float history_length = history_moments.z;
     // Anti-firefly: a new sample far above what this pixel has seen is clamped (biased, bounded).
-    if (push.firefly > 0.0 && history_length >= kDenoiseShortHistory && l > 0.0) {
+    // A history that has seen nothing but black (mean 0, so limit 0) is no evidence: clamping
+    // there would keep the pixel black for as long as its history lasts (a light switched on in
+    // a dark room, a penumbra pixel whose first samples were all shadowed).
+    if (push.firefly > 0.0 && history_length >= kDenoiseShortHistory && l > 0.0 &&
+        history_moments.x > 0.0) {
       float sigma = sqrt(max(history_moments.y - history_moments.x * history_moments.x, 0.0));
       float limit = history_moments.x + push.firefly * sigma;
       if (l > limit) {

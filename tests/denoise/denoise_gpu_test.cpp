@@ -321,6 +321,89 @@ TEST_F(DenoiseGpuTest, DisocclusionRejectsHistory) {
   EXPECT_EQ(stayed_exact, stayed) << "pixels whose surface stayed must blend their history";
 }
 
+// The box moves away after 8 frames of a noisy image of known mean (static camera): the wall it
+// uncovers starts without history, and within 4 frames it must be as clean as the wall that never
+// lost its history would be after as many frames (RMS error within 2x of the stayed wall's at
+// frame 4, whose history is 12 frames: so within 2x of a longer-settled estimate) and keep the
+// mean (within 3%; 4 frames of spatially boosted filtering average few samples).
+TEST_F(DenoiseGpuTest, DisocclusionRecoversWithinFourFrames) {
+  const std::size_t box = instance_index(*level, "box");
+  Run run = make_run();
+  FrameSnapshot s = test::first_snapshot(level, kW, kH);
+  const float c = 0.37f;
+  test::GBufferReadback before, after;
+  std::uint32_t f = 0;
+  for (; f < 8; ++f) {
+    if (f > 0) s = frozen(s);
+    (void)render(run, noisy(c, f), s, &before);
+  }
+  s = frozen(s);
+  s.instances[box].object_to_world =
+      glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 50.0f)) * s.instances[box].object_to_world;
+  for (int k = 1; k <= 4; ++k, ++f) {
+    if (k > 1) s = frozen(s);
+    const ImageRGBA32F out = render(run, noisy(c, f), s, &after);
+    double uncovered_se = 0.0, stayed_se = 0.0, uncovered_sum = 0.0;
+    std::size_t uncovered = 0, stayed = 0;
+    for (std::size_t p = 0; p < after.ids.size(); ++p) {
+      const std::uint32_t was = before.ids[p].x, is = after.ids[p].x;
+      if (is == gpu::kNoInstance || is == box) continue;
+      double se = 0.0;
+      for (int ch = 0; ch < 3; ++ch) se += std::pow(out.pixels[4 * p + ch] - c, 2.0) / 3.0;
+      if (was == box) {
+        uncovered_se += se;
+        uncovered_sum += (out.pixels[4 * p] + out.pixels[4 * p + 1] + out.pixels[4 * p + 2]) / 3.0;
+        ++uncovered;
+      } else if (was == is) {
+        stayed_se += se;
+        ++stayed;
+      }
+    }
+    ASSERT_GT(uncovered, 100u);
+    ASSERT_GT(stayed, 1000u);
+    const double uncovered_rms = std::sqrt(uncovered_se / uncovered) / c;
+    const double stayed_rms = std::sqrt(stayed_se / stayed) / c;
+    const double mean = uncovered_sum / uncovered / c;
+    std::printf("[denoise disocclusion recovery] frame %d after: uncovered RMS %.4f mean %.4f, "
+                "stayed RMS %.4f (%.2fx)\n", k, uncovered_rms, mean, stayed_rms,
+                uncovered_rms / stayed_rms);
+    if (k == 4) {
+      EXPECT_LT(uncovered_rms, 2.0 * stayed_rms) << "the uncovered wall has not recovered";
+      EXPECT_NEAR(mean, 1.0, 0.03);
+    }
+  }
+}
+
+// A light switched on after frames of darkness shows at once (static camera, firefly clamp on):
+// a history that has seen only black is no evidence against a new sample, so the first lit frame
+// blends it in (alpha 1/7 after 6 dark frames: c/7 on every surface pixel) and 30 frames later
+// the image is within 5% of c (0.9^23 of the dark history left).
+TEST_F(DenoiseGpuTest, LightAfterDarknessIsNotHeldBlack) {
+  Run run = make_run();
+  FrameSnapshot s = test::first_snapshot(level, kW, kH);
+  test::GBufferReadback g;
+  for (int f = 0; f < 6; ++f) {
+    if (f > 0) s = frozen(s);
+    (void)render(run, constant(0.0f), s, &g);
+  }
+  const std::vector<std::uint8_t> mask = surfaces(g);
+  ASSERT_GT(test::count(mask), kW * kH / 2);
+  const float c = 0.4f;
+  ImageRGBA32F out = render(run, constant(c), s = frozen(s));
+  float lo = c, hi = 0.0f;
+  for (std::size_t p = 0; p < mask.size(); ++p) {
+    if (!mask[p]) continue;
+    lo = std::min(lo, out.pixels[4 * p]);
+    hi = std::max(hi, out.pixels[4 * p]);
+  }
+  std::printf("[denoise light on] first lit frame: surfaces %.5f..%.5f (c/7 = %.5f)\n", lo, hi,
+              c / 7.0f);
+  EXPECT_NEAR(lo, c / 7.0f, 1e-4f) << "a pixel was held black by its dark history";
+  EXPECT_NEAR(hi, c / 7.0f, 1e-4f);
+  for (int f = 0; f < 30; ++f) out = render(run, constant(c), s = frozen(s));
+  EXPECT_NEAR(test::masked_mean(out, mask) / c, 1.0, 0.05);
+}
+
 // NaN and Inf in the input (a broken integrator) never reach the output, nor the history.
 TEST_F(DenoiseGpuTest, NonFiniteInputNeverReachesOutput) {
   Run run = make_run();
