@@ -130,6 +130,11 @@ std::vector<Config> configs(const TradeOptions& o, const CommonOptions& common,
     if (colon == std::string::npos || colon == 0) {
       throw InputError(fmt::format("--variant {}: expected NAME:KEY=VALUE;KEY=VALUE", v));
     }
+    const std::string name = v.substr(0, colon);
+    if (name.find_first_of("/\\") != std::string::npos || name == "." || name == "..") {
+      throw InputError(fmt::format("--variant {}: the name '{}' must not be a path (it names "
+                                   "the row and --images' files)", v, name));
+    }
     CommonOptions c = common;
     for (const std::string& kv : split(v.substr(colon + 1), ';')) c.settings.push_back(kv);
     out.push_back({v.substr(0, colon), integrator_config("restir", c, level)});

@@ -389,7 +389,8 @@ TEST_F(DenoiseGpuTest, LightAfterDarknessIsNotHeldBlack) {
   const std::vector<std::uint8_t> mask = surfaces(g);
   ASSERT_GT(test::count(mask), kW * kH / 2);
   const float c = 0.4f;
-  ImageRGBA32F out = render(run, constant(c), s = frozen(s));
+  s = frozen(s);
+  ImageRGBA32F out = render(run, constant(c), s);
   float lo = c, hi = 0.0f;
   for (std::size_t p = 0; p < mask.size(); ++p) {
     if (!mask[p]) continue;
@@ -400,7 +401,10 @@ TEST_F(DenoiseGpuTest, LightAfterDarknessIsNotHeldBlack) {
               c / 7.0f);
   EXPECT_NEAR(lo, c / 7.0f, 1e-4f) << "a pixel was held black by its dark history";
   EXPECT_NEAR(hi, c / 7.0f, 1e-4f);
-  for (int f = 0; f < 30; ++f) out = render(run, constant(c), s = frozen(s));
+  for (int f = 0; f < 30; ++f) {
+    s = frozen(s);
+    out = render(run, constant(c), s);
+  }
   EXPECT_NEAR(test::masked_mean(out, mask) / c, 1.0, 0.05);
 }
 
