@@ -57,6 +57,11 @@ const Row kRows[] = {
     {{"max_history", "history length cap in frames: lower when stale light lingers", 1, 256,
       false},
      DENOISE_FIELD(max_history), 32, 32, 32},
+    {{"confidence", "weigh each frame in the temporal accumulation by the integrator's "
+                    "confidence (ReSTIR's M: its warm-up frames count little); off: every frame "
+                    "the same",
+      0, 1, true},
+     DENOISE_FIELD(confidence), 1, 1, 1},
 };
 #undef DENOISE_FIELD
 

@@ -49,7 +49,8 @@ gpu::DenoisePush Denoiser::make_push(const DenoiseSettings& s, const FrameInputs
 }
 
 BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
-                                  const DenoiseSettings& s, BufferHandle raw) const {
+                                  const DenoiseSettings& s, BufferHandle raw,
+                                  BufferHandle confidence) const {
   if (!s.enabled) return raw;
   gpu::DenoisePush push = make_push(s, inputs);
   const VkDeviceSize pixels = VkDeviceSize{inputs.width} * inputs.height;
@@ -65,6 +66,8 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
   const bool history =
       surfaces_history.valid() && color_history.valid() && moments_history.valid();
   if (history) push.flags |= gpu::kDenoiseFlagHistoryValid;
+  if (!s.confidence) confidence = {};
+  if (confidence.valid()) push.flags |= gpu::kDenoiseFlagConfidence;
 
   // denoise.temporal: its result is next frame's colour history (the unfiltered accumulation:
   // feeding the à-trous output back, as SVGF does, kept light the filter had spread into dark
@@ -81,6 +84,8 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
          {"surfaces_history", history ? surfaces_history : raw},
          {"color_history", history ? color_history : raw},
          {"moments_history", history ? moments_history : raw},
+         // Without a confidence buffer the shader does not read it: raw stands in.
+         {"confidence_in", confidence.valid() ? confidence : raw},
          {"accum_out", accum, DenoisePass::Buffer::Write},
          {"moments_out", moments, DenoisePass::Buffer::Write},
          {"guide_out", guide, DenoisePass::Buffer::Write}});

@@ -28,11 +28,13 @@ class Denoiser {
 
   void warm_up();
   // Adds the chain; `raw` is width*height vec4 linear radiance; returns the denoised buffer (same
-  // layout). With settings.enabled false it adds nothing and returns `raw`.
-  [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
-                                                        const FrameInputs& inputs,
-                                                        const DenoiseSettings& settings,
-                                                        runtime::graph::BufferHandle raw) const;
+  // layout). `confidence` (Integrator::sample_confidence, optional) weighs each frame's pixel in
+  // the temporal accumulation by its M. With settings.enabled false it adds nothing and returns
+  // `raw`.
+  [[nodiscard]] runtime::graph::BufferHandle add_passes(
+      runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
+      const DenoiseSettings& settings, runtime::graph::BufferHandle raw,
+      runtime::graph::BufferHandle confidence = {}) const;
 
   static gpu::DenoisePush make_push(const DenoiseSettings& s, const FrameInputs& inputs);
 

@@ -90,6 +90,11 @@ class Integrator {
   [[nodiscard]] virtual runtime::graph::BufferHandle add_passes(
       runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
       runtime::graph::BufferHandle hdr) = 0;
+  // After add_passes, for this frame's graph: width*height PackedReservoirs
+  // (shared/reservoir_pack.h) whose M is how many candidates stand behind each pixel's sample,
+  // which the denoiser weighs the frame's pixel by in its temporal accumulation; invalid (the
+  // default) when every frame's pixel is worth the same.
+  virtual runtime::graph::BufferHandle sample_confidence() const { return {}; }
 };
 
 }  // namespace lantern::lighting

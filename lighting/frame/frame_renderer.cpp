@@ -162,7 +162,9 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
     hdr = volume_camera_->add_pass(graph, inputs_, hdr, integrator_->volume_sampling());
   }
   raw_ = hdr;
-  if (frame_output_ == FrameOutput::Denoised) hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr);
+  if (frame_output_ == FrameOutput::Denoised) {
+    hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr, integrator_->sample_confidence());
+  }
   if (width_ != output_width_ || height_ != output_height_) {
     hdr = upscaler_->add_pass(graph, inputs_, hdr, output_width_, output_height_, jitter_);
   }

@@ -121,6 +121,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
                                           const FrameInputs& inputs, BufferHandle hdr) {
   const RestirSettings s = settings_;
   gpu::RestirPush push = make_push(s, inputs);
+  confidence_ = {};
   const VkDeviceSize pixels = VkDeviceSize{inputs.width} * inputs.height;
   const runtime::graph::BufferDesc reservoir_desc{pixels * sizeof(gpu::PackedReservoir)};
 
@@ -252,6 +253,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
                           {"hdr", hdr, RestirPass::Buffer::Write}});
           handle(step.read) = out[0];
           hdr = out[1];
+          confidence_ = handle(step.read);
           break;
         }
         // Host visibility: restir.shade shades as if every ray got through and writes the rays,
@@ -276,6 +278,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
              {"hdr", hdr, RestirPass::Buffer::ReadWrite}});
         handle(step.read) = out[0];
         hdr = out[1];
+        confidence_ = handle(step.read);
         break;
       }
     }

@@ -40,6 +40,8 @@ class RestirIntegrator final : public Integrator {
   // Creates the media reservoirs' passes when the scene has volumes.
   void prepare(const GpuScene& scene) override;
   bool renders_media() const override { return volume_ != nullptr; }
+  // The final reservoirs of the frame add_passes built (their M).
+  runtime::graph::BufferHandle sample_confidence() const override { return confidence_; }
   [[nodiscard]] runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                                         const FrameInputs& inputs,
                                                         runtime::graph::BufferHandle hdr) override;
@@ -59,6 +61,7 @@ class RestirIntegrator final : public Integrator {
   static std::uint32_t presample_tiles(const RestirSettings& settings, const FrameInputs& inputs);
 
  private:
+  runtime::graph::BufferHandle confidence_;  // this frame's final reservoirs (add_passes)
   runtime::Device& device_;
   runtime::ShaderLibrary& shaders_;
   RestirSettings settings_;

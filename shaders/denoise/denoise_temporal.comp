@@ -3,14 +3,17 @@
 // motion vector (bilinear over the 2x2 previous pixels, each kept only when it passes ReSTIR's
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
 // history), clamps a firefly against the history's mean + firefly x sigma, and blends
-// (alpha = max(1 / history length, push.color_alpha)). Emitters pass through unfiltered
+// (alpha = max(confidence / accumulated confidence, push.color_alpha): 1 / history length when
+// every frame is worth the same, else each weighs by the integrator's M). Emitters pass through unfiltered
 // (denoise_passthrough), and so does the sky unless push.sky_distance > 0 (levels with volumes):
 // then a sky pixel is a surface that far along its view ray, facing the camera, albedo 1,
 // reprojected as that point.
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
-// surfaces_history, color_history, moments_history, frame constants (prev_view_proj).
+// surfaces_history, color_history, moments_history, frame constants (prev_view_proj),
+// confidence_in (with kDenoiseFlagConfidence: the integrator's PackedReservoirs, their M).
 // Writes: denoise_surfaces (this frame's "denoise.surfaces"), accum_out (rgb illumination, a:
-// temporal variance; "denoise.color", next frame's history), moments_out ("denoise.moments": x, y luminance moments, z history length),
+// temporal variance; "denoise.color", next frame's history), moments_out ("denoise.moments": x, y
+// luminance moments, z history length, w accumulated confidence),
 // guide_out ("denoise.guide", denoise_common.glsl).
 // History: "denoise.surfaces", "denoise.color", "denoise.moments" of last frame; without
 // kDenoiseFlagHistoryValid the history bindings are stand-ins and are not read.
@@ -19,6 +22,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "denoise/denoise_common.glsl"
+#include "shared/reservoir_pack.h"
 #include "shared/restir.h"
 
 #include "lib/scene_buffers.glsl"
@@ -37,6 +41,9 @@ layout(std430, binding = PASS_BINDING(10)) readonly buffer MomentsHistory { vec4
 layout(std430, binding = PASS_BINDING(11)) writeonly buffer AccumOut { vec4 p[]; } accum_out;
 layout(std430, binding = PASS_BINDING(12)) writeonly buffer MomentsOut { vec4 p[]; } moments_out;
 layout(std430, binding = PASS_BINDING(13)) writeonly buffer GuideOut { vec4 p[]; } guide_out;
+layout(std430, binding = PASS_BINDING(14)) readonly buffer ConfidenceIn {
+  PackedReservoir r[];
+} confidence_in;
 
 void main() {
   ivec2 pixel;
@@ -86,7 +93,7 @@ void main() {
 
   // Last frame's history at the reprojected position: bilinear weights of the similar taps.
   vec3 history_color = vec3(0.0);
-  vec3 history_moments = vec3(0.0);  // x, y moments, z length
+  vec4 history_moments = vec4(0.0);  // x, y moments, z length, w accumulated confidence
   float weight_sum = 0.0;
   if ((push.flags & kDenoiseFlagHistoryValid) != 0u && is_finite(motion.x) && is_finite(motion.y)) {
     vec2 p = vec2(pixel) + motion;  // previous pixel centre minus 0.5
@@ -103,14 +110,20 @@ void main() {
         continue;
       }
       history_color += w * color_history.p[qi].rgb;
-      history_moments += w * moments_history.p[qi].xyz;
+      history_moments += w * moments_history.p[qi];
       weight_sum += w;
     }
   }
 
+  // This frame's confidence: the integrator's M (ReSTIR: the candidates behind the pixel's
+  // sample, 8 in a first frame, hundreds once temporal reuse has settled), else 1 per frame.
+  float confidence = (push.flags & kDenoiseFlagConfidence) != 0u
+                         ? max(packed_reservoir_m(confidence_in.r[index]), 1.0)
+                         : 1.0;
   vec3 color = illumination;
   vec2 moments = vec2(l, l * l);
   float frames = 1.0;
+  float accumulated = confidence;
   if (weight_sum > 1e-3) {
     history_color /= weight_sum;
     history_moments /= weight_sum;
@@ -129,12 +142,17 @@ void main() {
       }
     }
     frames = min(history_length + 1.0, push.max_history);
-    float a = max(1.0 / frames, push.color_alpha);
+    // Each frame's pixel weighs by its confidence: a = its share of the confidence accumulated
+    // over (at most max_history of its own worth of) history, floored by color_alpha. With equal
+    // confidences this is 1 / frames; ReSTIR's warm-up frames (few candidates, mostly empty
+    // picks in hard-to-light places) no longer hold the average down for the next 30 frames.
+    accumulated = min(history_moments.w + confidence, confidence * push.max_history);
+    float a = max(confidence / accumulated, push.color_alpha);
     float am = max(1.0 / frames, push.moments_alpha);
     color = mix(history_color, illumination, a);
     moments = mix(history_moments.xy, vec2(l, l * l), am);
   }
   float variance = max(moments.y - moments.x * moments.x, 0.0);
   accum_out.p[index] = vec4(color, variance);
-  moments_out.p[index] = vec4(moments, frames, 0.0);
+  moments_out.p[index] = vec4(moments, frames, accumulated);
 }

@@ -22,6 +22,7 @@ LANTERN_CONST float kDenoiseMinAlbedo = 0.02f;
 // DenoisePush.flags.
 LANTERN_CONST uint kDenoiseFlagHistoryValid = 1u;  // the graph handed last frame's history
 LANTERN_CONST uint kDenoiseFlagSmoothLuminance = 2u;  // denoise.atrous: stop on 3x3 luminance
+LANTERN_CONST uint kDenoiseFlagConfidence = 4u;  // denoise.temporal: weigh pixels by their M
 
 struct DenoisePush {
   uint width;

@@ -54,6 +54,9 @@ LANTERN_FUNC PackedReservoir reservoir_pack(Reservoir r) {
   return p;
 }
 
+// M of a stored reservoir (the confidence: how many candidates stand behind its sample).
+LANTERN_FUNC float packed_reservoir_m(PackedReservoir p) { return float(p.m_target & 0xffffu); }
+
 // The unpacked reservoir is finalized: weight_sum is set to W * p̂ so that merging and
 // re-finalizing give the same W.
 LANTERN_FUNC Reservoir reservoir_unpack(PackedReservoir p) {
@@ -64,7 +67,7 @@ LANTERN_FUNC Reservoir reservoir_unpack(PackedReservoir p) {
   r.selected = light_sample_make(light == kPackedNoLight ? kInvalidLight : light, uv, target_pdf);
   r.W = finite_positive_or_zero(p.W);
   r.weight_sum = reservoir_weight_guard(r.W * r.selected.target_pdf);
-  r.M = float(p.m_target & 0xffffu);
+  r.M = packed_reservoir_m(p);
   r.age = p.light_age >> 24u;
   return r;
 }

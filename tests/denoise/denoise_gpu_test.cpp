@@ -14,6 +14,7 @@
 #include "lighting/denoise/denoise_settings.h"
 #include "lighting/upscale/upscaler.h"
 #include "runtime/graph/pass_context.h"
+#include "shared/reservoir_pack.h"
 #include "shared/scene.h"
 #include "tests/restir/restir_test_support.h"
 #include "tests/runtime/gpu_test_support.h"
@@ -28,14 +29,20 @@ constexpr std::uint32_t kW = 96;
 constexpr std::uint32_t kH = 54;
 
 // An integrator whose "radiance" is whatever image the test set last: a Transfer pass copying it
-// from a host-visible buffer into hdr.
+// from a host-visible buffer into hdr. With set_confidence(M > 0) it also hands the denoiser a
+// host-written confidence buffer (PackedReservoirs whose M is M everywhere), as ReSTIR does.
 class ImageIntegrator final : public lighting::Integrator {
  public:
   ImageIntegrator(runtime::Device& device, std::uint32_t w, std::uint32_t h)
       : upload_(device, {.size = std::uint64_t{w} * h * 16,
                          .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                          .memory = runtime::MemoryUsage::Upload,
-                         .name = "test.image_upload"}) {}
+                         .name = "test.image_upload"}),
+        confidence_buffer_(device, {.size = std::uint64_t{w} * h * sizeof(gpu::PackedReservoir),
+                                    .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                    .memory = runtime::MemoryUsage::Upload,
+                                    .name = "test.confidence"}),
+        pixels_(std::size_t{w} * h) {}
   const char* name() const override { return "test.image"; }
   void warm_up() override {}
   std::vector<std::pair<std::string, std::string>> describe_settings() const override {
@@ -45,6 +52,14 @@ class ImageIntegrator final : public lighting::Integrator {
   void set(const ImageRGBA32F& image) {
     std::memcpy(upload_.mapped(), image.pixels.data(), image.pixels.size() * sizeof(float));
   }
+  // Every pixel's M from the next frame on; 0: no confidence buffer (every frame the same).
+  void set_confidence(std::uint32_t m) {
+    confidence_m_ = m;
+    std::vector<gpu::PackedReservoir> records(pixels_, gpu::PackedReservoir{0u, 0u, 0.0f, m});
+    std::memcpy(confidence_buffer_.mapped(), records.data(),
+                records.size() * sizeof(gpu::PackedReservoir));
+  }
+  runtime::graph::BufferHandle sample_confidence() const override { return confidence_; }
   runtime::graph::BufferHandle add_passes(runtime::graph::RenderGraph& graph,
                                           const lighting::FrameInputs& inputs,
                                           runtime::graph::BufferHandle hdr) override {
@@ -57,6 +72,10 @@ class ImageIntegrator final : public lighting::Integrator {
     host_written.read_only = true;
     host_written.initial = runtime::graph::AccessState{
         VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+    confidence_ = confidence_m_ == 0
+                      ? runtime::graph::BufferHandle{}
+                      : graph.import_buffer(confidence_buffer_.name(), confidence_buffer_.handle(),
+                                            {confidence_buffer_.size()}, host_written);
     const runtime::graph::BufferHandle src =
         graph.import_buffer(upload_.name(), upload_.handle(), {upload_.size()}, host_written);
     return graph
@@ -76,6 +95,10 @@ class ImageIntegrator final : public lighting::Integrator {
 
  private:
   runtime::Buffer upload_;
+  runtime::Buffer confidence_buffer_;
+  std::size_t pixels_;
+  std::uint32_t confidence_m_ = 0;
+  runtime::graph::BufferHandle confidence_;
 };
 
 // A grey room corner (floor and wall, one Lambertian albedo) with a box in front of the wall.
@@ -406,6 +429,48 @@ TEST_F(DenoiseGpuTest, LightAfterDarknessIsNotHeldBlack) {
     out = render(run, constant(c), s);
   }
   EXPECT_NEAR(test::masked_mean(out, mask) / c, 1.0, 0.05);
+}
+
+// The integrator's confidence weighs each frame (static camera, constant images, so every pixel
+// follows the closed form through the à-trous steps): 6 black frames of M = 1, then one of c with
+// M = 100 comes out as 100/106 c, where without the confidence (or with denoise.confidence off)
+// it is c/7. A constant M is the same as none: c/7 again.
+TEST_F(DenoiseGpuTest, ConfidenceWeighsEachFrame) {
+  const float c = 0.4f;
+  struct Case {
+    const char* what;
+    std::uint32_t dark_m, lit_m;
+    bool knob;
+    float expected;
+  };
+  const Case cases[] = {{"M 1 then 100", 1, 100, true, c * 100.0f / 106.0f},
+                        {"knob off", 1, 100, false, c / 7.0f},
+                        {"constant M", 50, 50, true, c / 7.0f},
+                        {"no buffer", 0, 0, true, c / 7.0f}};
+  for (const Case& k : cases) {
+    Run run = make_run({{"confidence", k.knob ? "on" : "off"}});
+    FrameSnapshot s = test::first_snapshot(level, kW, kH);
+    test::GBufferReadback g;
+    run.input->set_confidence(k.dark_m);
+    for (int f = 0; f < 6; ++f) {
+      if (f > 0) s = frozen(s);
+      (void)render(run, constant(0.0f), s, &g);
+    }
+    run.input->set_confidence(k.lit_m);
+    s = frozen(s);
+    const ImageRGBA32F out = render(run, constant(c), s);
+    const std::vector<std::uint8_t> mask = surfaces(g);
+    float lo = c, hi = 0.0f;
+    for (std::size_t p = 0; p < mask.size(); ++p) {
+      if (!mask[p]) continue;
+      lo = std::min(lo, out.pixels[4 * p]);
+      hi = std::max(hi, out.pixels[4 * p]);
+    }
+    std::printf("[denoise confidence] %s: surfaces %.5f..%.5f (expected %.5f)\n", k.what, lo, hi,
+                k.expected);
+    EXPECT_NEAR(lo, k.expected, 1e-4f) << k.what;
+    EXPECT_NEAR(hi, k.expected, 1e-4f) << k.what;
+  }
 }
 
 // NaN and Inf in the input (a broken integrator) never reach the output, nor the history.
