@@ -421,7 +421,8 @@ void add_trade_command(CLI::App& root, CommonOptions& options) {
                   "Reference frames averaged (total spp = spp x frames)")
       ->capture_default_str();
   cmd->add_flag("--images", opts->images,
-                "Also write the last evaluated frame: reference.exr, NAME_raw.exr, NAME_denoised.exr");
+                "Also write the last evaluated frame: reference.exr, NAME_raw.exr, "
+                "NAME_denoised.exr");
   cmd->add_option("--out", opts->out, "Output directory")->required();
   cmd->callback([opts, &options] { run_trade(*opts, options); });
 }

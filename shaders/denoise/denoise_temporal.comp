@@ -4,8 +4,9 @@
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
 // history), clamps a firefly against the history's mean + firefly x sigma, and blends
 // (alpha = max(confidence / accumulated confidence, push.color_alpha): 1 / history length when
-// every frame is worth the same, else each weighs by the integrator's M). Emitters pass through unfiltered
-// (denoise_passthrough), and so does the sky unless push.sky_distance > 0 (levels with volumes):
+// every frame is worth the same, else each weighs by the integrator's M). Emitters pass through
+// unfiltered (denoise_passthrough), and so does the sky unless push.sky_distance > 0 (levels with
+// volumes):
 // then a sky pixel is a surface that far along its view ray, facing the camera, albedo 1,
 // reprojected as that point.
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
