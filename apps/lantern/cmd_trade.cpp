@@ -141,6 +141,16 @@ std::vector<Config> configs(const TradeOptions& o, const CommonOptions& common,
   }
   if (!o.no_baseline)
     out.push_back({"baseline", integrator_config("baseline", common, level), true});
+  // Row names label the tables and --images' files: one row each.
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (out[i].name == out[j].name) {
+        throw InputError(fmt::format("trade: two rows are named '{}' (a preset, a variant or the "
+                                     "baseline): name each variant apart",
+                                     out[i].name));
+      }
+    }
+  }
   if (out.empty()) throw InputError("trade: nothing to compare (no presets, variants or baseline)");
   return out;
 }

@@ -54,7 +54,8 @@ const Row kRows[] = {
                  "more fireflies, and some energy",
       0, 100, false},
      DENOISE_FIELD(firefly), 4, 4, 4},
-    {{"max_history", "history length cap in frames: lower when stale light lingers", 1, 256,
+    {{"max_history", "history length cap in frames (with confidence on, frames of the history's "
+                     "mean confidence): lower when stale light lingers", 1, 256,
       false},
      DENOISE_FIELD(max_history), 32, 32, 32},
     {{"confidence", "weigh each frame in the temporal accumulation by the integrator's "

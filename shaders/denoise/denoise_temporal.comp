@@ -3,8 +3,9 @@
 // motion vector (bilinear over the 2x2 previous pixels, each kept only when it passes ReSTIR's
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
 // history), clamps a firefly against the history's mean + firefly x sigma, and blends
-// (alpha = max(confidence / accumulated confidence, push.color_alpha): 1 / history length when
-// every frame is worth the same, else each weighs by the integrator's M). Emitters pass through
+// (alpha = max(c / (c + (length - 1) x the history's mean confidence), push.color_alpha): 1 /
+// history length when every frame is worth the same, else each weighs by the integrator's M;
+// the luminance moments keep 1 / length). Emitters pass through
 // unfiltered (denoise_passthrough), and so does the sky unless push.sky_distance > 0 (levels with
 // volumes):
 // then a sky pixel is a surface that far along its view ray, facing the camera, albedo 1,
@@ -14,7 +15,7 @@
 // confidence_in (with kDenoiseFlagConfidence: the integrator's PackedReservoirs, their M).
 // Writes: denoise_surfaces (this frame's "denoise.surfaces"), accum_out (rgb illumination, a:
 // temporal variance; "denoise.color", next frame's history), moments_out ("denoise.moments": x, y
-// luminance moments, z history length, w accumulated confidence),
+// luminance moments, z history length, w mean confidence),
 // guide_out ("denoise.guide", denoise_common.glsl).
 // History: "denoise.surfaces", "denoise.color", "denoise.moments" of last frame; without
 // kDenoiseFlagHistoryValid the history bindings are stand-ins and are not read.
@@ -94,7 +95,7 @@ void main() {
 
   // Last frame's history at the reprojected position: bilinear weights of the similar taps.
   vec3 history_color = vec3(0.0);
-  vec4 history_moments = vec4(0.0);  // x, y moments, z length, w accumulated confidence
+  vec4 history_moments = vec4(0.0);  // x, y moments, z length, w mean confidence
   float weight_sum = 0.0;
   if ((push.flags & kDenoiseFlagHistoryValid) != 0u && is_finite(motion.x) && is_finite(motion.y)) {
     vec2 p = vec2(pixel) + motion;  // previous pixel centre minus 0.5
@@ -124,7 +125,7 @@ void main() {
   vec3 color = illumination;
   vec2 moments = vec2(l, l * l);
   float frames = 1.0;
-  float accumulated = confidence;
+  float mean_confidence = confidence;
   if (weight_sum > 1e-3) {
     history_color /= weight_sum;
     history_moments /= weight_sum;
@@ -143,17 +144,20 @@ void main() {
       }
     }
     frames = min(history_length + 1.0, push.max_history);
-    // Each frame's pixel weighs by its confidence: a = its share of the confidence accumulated
-    // over (at most max_history of its own worth of) history, floored by color_alpha. With equal
+    // Each frame's pixel weighs by its confidence: a = c / (c + (frames - 1) x the history's mean
+    // confidence), floored by color_alpha; the mean follows c over the same frames. With equal
     // confidences this is 1 / frames; ReSTIR's warm-up frames (few candidates, mostly empty
-    // picks in hard-to-light places) no longer hold the average down for the next 30 frames.
-    accumulated = min(history_moments.w + confidence, confidence * push.max_history);
-    float a = max(confidence / accumulated, push.color_alpha);
+    // picks in hard-to-light places) no longer hold the average down for the next 30 frames, and
+    // one frame of low confidence weighs little without shrinking the history's worth.
+    float history_confidence = history_moments.w > 0.0 ? history_moments.w : confidence;
+    float a = max(confidence / (confidence + (frames - 1.0) * history_confidence),
+                  push.color_alpha);
+    mean_confidence = mix(history_confidence, confidence, 1.0 / frames);
     float am = max(1.0 / frames, push.moments_alpha);
     color = mix(history_color, illumination, a);
     moments = mix(history_moments.xy, vec2(l, l * l), am);
   }
   float variance = max(moments.y - moments.x * moments.x, 0.0);
   accum_out.p[index] = vec4(color, variance);
-  moments_out.p[index] = vec4(moments, frames, accumulated);
+  moments_out.p[index] = vec4(moments, frames, mean_confidence);
 }
