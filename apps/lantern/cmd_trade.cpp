@@ -137,7 +137,7 @@ std::vector<Config> configs(const TradeOptions& o, const CommonOptions& common,
     }
     CommonOptions c = common;
     for (const std::string& kv : split(v.substr(colon + 1), ';')) c.settings.push_back(kv);
-    out.push_back({v.substr(0, colon), integrator_config("restir", c, level)});
+    out.push_back({name, integrator_config("restir", c, level)});
   }
   if (!o.no_baseline)
     out.push_back({"baseline", integrator_config("baseline", common, level), true});

@@ -30,6 +30,13 @@ bool alpha_tested(const BvhInstanceDesc& d) {
   return (d.flags & gpu::kBvhInstanceAlphaTested) != 0u;
 }
 
+// Whether instance i's triangles belong in the merged world-space geometry: exactly the BVH's
+// merged set (its triangle cap, never a fixed instance that moved), empty meshes left out.
+bool in_merged_geometry(const SceneBvh& bvh, std::span<const BvhInstanceDesc> instances,
+                        std::size_t i) {
+  return bvh.merged(i) && !bvh.mesh(instances[i].mesh).empty();
+}
+
 }  // namespace
 
 struct HostVisibility::Embree {
@@ -144,8 +151,7 @@ void HostVisibility::build(const SceneBvh& bvh, std::span<const BvhInstanceDesc>
   std::size_t triangle_count = 0;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const BvhInstanceDesc& d = instances[i];
-    // Exactly the BVH's merged set (its triangle cap, never a fixed instance that moved).
-    if (!bvh.merged(i) || bvh.mesh(d.mesh).empty()) continue;
+    if (!in_merged_geometry(bvh, instances, i)) continue;
     e.merged[i] = true;
     vertex_count += bvh.mesh(d.mesh).positions().size();
     triangle_count += bvh.mesh(d.mesh).triangle_count();
@@ -204,8 +210,7 @@ void HostVisibility::update(std::span<const BvhInstanceDesc> instances) {
   // The BVH's set_instances ran first: a fixed instance that moved has left its merged tree.
   bool rebuild = false;
   for (std::size_t i = 0; i < instances.size(); ++i) {
-    const bool merged_now = bvh_.merged(i) && !bvh_.mesh(instances[i].mesh).empty();
-    rebuild = rebuild || e.merged[i] != merged_now;
+    rebuild = rebuild || e.merged[i] != in_merged_geometry(bvh_, instances, i);
   }
   if (rebuild) {
     build(bvh_, instances);
@@ -242,7 +247,7 @@ std::size_t HostVisibility::trace(std::span<gpu::HostShadowRay> rays) const {
       const auto count =
           static_cast<unsigned>(std::min<std::size_t>(kRaysPerChunk, rays.size() - begin));
       for (std::size_t i = begin; i < begin + count; ++i)
-        mine += gpu::host_ray_traced(rays[i]) && rays[i].origin.w <= rays[i].tfar ? 1u : 0u;
+        mine += gpu::host_ray_active(rays[i]) ? 1u : 0u;
       auto* chunk = reinterpret_cast<RTCRay*>(&rays[begin]);
       if (merged != nullptr) rtcOccluded1M(merged, &context, chunk, count, sizeof(RTCRay));
       if (instances != nullptr) rtcOccluded1M(instances, &context, chunk, count, sizeof(RTCRay));

@@ -74,6 +74,12 @@ LANTERN_FUNC bool host_ray_traced(HostShadowRay r) {
   return r.id != kHostRayNone;
 }
 
+// Whether the record holds a segment Embree traces (tnear <= tfar): false for a record without a
+// ray and for an asked but degenerate one.
+LANTERN_FUNC bool host_ray_active(HostShadowRay r) {
+  return host_ray_traced(r) && r.origin.w <= r.tfar;
+}
+
 // The answer the host left in a record: false only where a blocker was found (a record without a
 // ray is visible).
 LANTERN_FUNC bool host_ray_visible(HostShadowRay r) {

@@ -138,6 +138,13 @@ ImageRGBA32F noisy(float c, std::uint32_t frame) {
   return image;
 }
 
+// Pixels that show a surface (not sky).
+std::vector<std::uint8_t> surfaces(const test::GBufferReadback& g) {
+  std::vector<std::uint8_t> mask(g.ids.size());
+  for (std::size_t p = 0; p < mask.size(); ++p) mask[p] = g.ids[p].x != gpu::kNoInstance;
+  return mask;
+}
+
 class DenoiseGpuTest : public runtime::test::GpuTest {
  protected:
   runtime::ShaderLibrary shaders;
@@ -161,14 +168,35 @@ class DenoiseGpuTest : public runtime::test::GpuTest {
     run.input->set(input);
     return run.harness->render(s, gbuffer);
   }
+  // `frames` black frames of the still scene from its first snapshot; returns the last snapshot
+  // and the surface pixels.
+  FrameSnapshot black_frames(Run& run, int frames, std::vector<std::uint8_t>& mask) {
+    FrameSnapshot s = test::first_snapshot(level, kW, kH);
+    test::GBufferReadback g;
+    for (int f = 0; f < frames; ++f) {
+      if (f > 0) s = frozen(s);
+      (void)render(run, constant(0.0f), s, &g);
+    }
+    mask = surfaces(g);
+    return s;
+  }
 };
 
-// Pixels that show a surface (not sky).
-std::vector<std::uint8_t> surfaces(const test::GBufferReadback& g) {
-  std::vector<std::uint8_t> mask(g.ids.size());
-  for (std::size_t p = 0; p < mask.size(); ++p) mask[p] = g.ids[p].x != gpu::kNoInstance;
-  return mask;
+// The lowest and highest red value over the masked pixels.
+struct Range {
+  float lo = std::numeric_limits<float>::infinity();
+  float hi = -std::numeric_limits<float>::infinity();
+};
+Range masked_range(const ImageRGBA32F& image, const std::vector<std::uint8_t>& mask) {
+  Range r;
+  for (std::size_t p = 0; p < mask.size(); ++p) {
+    if (!mask[p]) continue;
+    r.lo = std::min(r.lo, image.pixels[4 * p]);
+    r.hi = std::max(r.hi, image.pixels[4 * p]);
+  }
+  return r;
 }
+
 
 // A constant image is a fixed point: every pixel, every frame (first, reprojected, filtered).
 TEST_F(DenoiseGpuTest, ConstantImageStaysConstant) {
@@ -403,27 +431,17 @@ TEST_F(DenoiseGpuTest, DisocclusionRecoversWithinFourFrames) {
 // the image is within 5% of c (0.9^23 of the dark history left).
 TEST_F(DenoiseGpuTest, LightAfterDarknessIsNotHeldBlack) {
   Run run = make_run();
-  FrameSnapshot s = test::first_snapshot(level, kW, kH);
-  test::GBufferReadback g;
-  for (int f = 0; f < 6; ++f) {
-    if (f > 0) s = frozen(s);
-    (void)render(run, constant(0.0f), s, &g);
-  }
-  const std::vector<std::uint8_t> mask = surfaces(g);
+  std::vector<std::uint8_t> mask;
+  FrameSnapshot s = black_frames(run, 6, mask);
   ASSERT_GT(test::count(mask), kW * kH / 2);
   const float c = 0.4f;
   s = frozen(s);
   ImageRGBA32F out = render(run, constant(c), s);
-  float lo = c, hi = 0.0f;
-  for (std::size_t p = 0; p < mask.size(); ++p) {
-    if (!mask[p]) continue;
-    lo = std::min(lo, out.pixels[4 * p]);
-    hi = std::max(hi, out.pixels[4 * p]);
-  }
-  std::printf("[denoise light on] first lit frame: surfaces %.5f..%.5f (c/7 = %.5f)\n", lo, hi,
-              c / 7.0f);
-  EXPECT_NEAR(lo, c / 7.0f, 1e-4f) << "a pixel was held black by its dark history";
-  EXPECT_NEAR(hi, c / 7.0f, 1e-4f);
+  const Range r = masked_range(out, mask);
+  std::printf("[denoise light on] first lit frame: surfaces %.5f..%.5f (c/7 = %.5f)\n", r.lo,
+              r.hi, c / 7.0f);
+  EXPECT_NEAR(r.lo, c / 7.0f, 1e-4f) << "a pixel was held black by its dark history";
+  EXPECT_NEAR(r.hi, c / 7.0f, 1e-4f);
   for (int f = 0; f < 30; ++f) {
     s = frozen(s);
     out = render(run, constant(c), s);
@@ -449,27 +467,15 @@ TEST_F(DenoiseGpuTest, ConfidenceWeighsEachFrame) {
                         {"no buffer", 0, 0, true, c / 7.0f}};
   for (const Case& k : cases) {
     Run run = make_run({{"confidence", k.knob ? "on" : "off"}});
-    FrameSnapshot s = test::first_snapshot(level, kW, kH);
-    test::GBufferReadback g;
     run.input->set_confidence(k.dark_m);
-    for (int f = 0; f < 6; ++f) {
-      if (f > 0) s = frozen(s);
-      (void)render(run, constant(0.0f), s, &g);
-    }
+    std::vector<std::uint8_t> mask;
+    const FrameSnapshot s = frozen(black_frames(run, 6, mask));
     run.input->set_confidence(k.lit_m);
-    s = frozen(s);
-    const ImageRGBA32F out = render(run, constant(c), s);
-    const std::vector<std::uint8_t> mask = surfaces(g);
-    float lo = c, hi = 0.0f;
-    for (std::size_t p = 0; p < mask.size(); ++p) {
-      if (!mask[p]) continue;
-      lo = std::min(lo, out.pixels[4 * p]);
-      hi = std::max(hi, out.pixels[4 * p]);
-    }
-    std::printf("[denoise confidence] %s: surfaces %.5f..%.5f (expected %.5f)\n", k.what, lo, hi,
-                k.expected);
-    EXPECT_NEAR(lo, k.expected, 1e-4f) << k.what;
-    EXPECT_NEAR(hi, k.expected, 1e-4f) << k.what;
+    const Range r = masked_range(render(run, constant(c), s), mask);
+    std::printf("[denoise confidence] %s: surfaces %.5f..%.5f (expected %.5f)\n", k.what, r.lo,
+                r.hi, k.expected);
+    EXPECT_NEAR(r.lo, k.expected, 1e-4f) << k.what;
+    EXPECT_NEAR(r.hi, k.expected, 1e-4f) << k.what;
   }
 }
 
@@ -480,29 +486,18 @@ TEST_F(DenoiseGpuTest, ConfidenceWeighsEachFrame) {
 TEST_F(DenoiseGpuTest, OneLowConfidenceFrameKeepsTheHistory) {
   const float c = 0.4f;
   Run run = make_run();
-  FrameSnapshot s = test::first_snapshot(level, kW, kH);
-  test::GBufferReadback g;
   run.input->set_confidence(100);
-  for (int f = 0; f < 6; ++f) {
-    if (f > 0) s = frozen(s);
-    (void)render(run, constant(0.0f), s, &g);
-  }
-  const std::vector<std::uint8_t> mask = surfaces(g);
+  std::vector<std::uint8_t> mask;
+  FrameSnapshot s = black_frames(run, 6, mask);
   const float expected[2] = {0.1f * c, 0.1f * c + 0.9f * c * 100.0f / 701.0f};
   for (int k = 0; k < 2; ++k) {
     run.input->set_confidence(k == 0 ? 1 : 100);
     s = frozen(s);
-    const ImageRGBA32F out = render(run, constant(c), s);
-    float lo = c, hi = 0.0f;
-    for (std::size_t p = 0; p < mask.size(); ++p) {
-      if (!mask[p]) continue;
-      lo = std::min(lo, out.pixels[4 * p]);
-      hi = std::max(hi, out.pixels[4 * p]);
-    }
-    std::printf("[denoise confidence dip] frame %d: surfaces %.5f..%.5f (expected %.5f)\n", k, lo,
-                hi, expected[k]);
-    EXPECT_NEAR(lo, expected[k], 1e-4f);
-    EXPECT_NEAR(hi, expected[k], 1e-4f);
+    const Range r = masked_range(render(run, constant(c), s), mask);
+    std::printf("[denoise confidence dip] frame %d: surfaces %.5f..%.5f (expected %.5f)\n", k,
+                r.lo, r.hi, expected[k]);
+    EXPECT_NEAR(r.lo, expected[k], 1e-4f);
+    EXPECT_NEAR(r.hi, expected[k], 1e-4f);
   }
 }
 
