@@ -25,3 +25,7 @@ foreach(src IN ITEMS ${CMAKE_CURRENT_SOURCE_DIR}/integrators/baseline.comp
 endforeach()
 lantern_compile_shader(${CMAKE_CURRENT_SOURCE_DIR}/tests/visibility_probe.comp storage
   DEFINES VIS_BVH_STORAGE_BUFFERS)
+# The host G-buffer method (lighting/gbuffer/gbuffer_pass.h): the resolve reads one
+# (instance, triangle) record per pixel that Embree found on the host.
+lantern_compile_shader(${CMAKE_CURRENT_SOURCE_DIR}/gbuffer/gbuffer_resolve.frag hosthits
+  DEFINES LANTERN_GBUFFER_HOST_HITS)

@@ -52,6 +52,10 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
       throw InputError(fmt::format("--set {}: expected KEY=VALUE", s));
     }
     if (s.substr(0, eq) == "visibility") continue;  // the frame's: visibility_setting()
+    if (s.substr(0, eq) == "gbuffer") {  // the frame's G-buffer method
+      config.gbuffer = lighting::parse_gbuffer_method(s.substr(eq + 1));
+      continue;
+    }
     if (s.rfind(denoise, 0) == 0) {  // the frame's denoiser, whichever integrator
       config.denoise.emplace_back(s.substr(denoise.size(), eq - denoise.size()), s.substr(eq + 1));
       continue;

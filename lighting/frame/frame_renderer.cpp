@@ -84,6 +84,8 @@ FrameRenderer::FrameRenderer(runtime::Device& device, runtime::ShaderLibrary& sh
 
 FrameRenderer::~FrameRenderer() = default;
 
+void FrameRenderer::set_gbuffer_method(GBufferMethod method) { gbuffer_->set_method(method); }
+
 void FrameRenderer::warm_up() {
   gbuffer_->warm_up();
   integrator_->warm_up();

@@ -18,6 +18,7 @@
 #include "engine/world/frame_snapshot.h"
 #include "lighting/denoise/denoise_settings.h"
 #include "lighting/frame/frame_inputs.h"
+#include "lighting/gbuffer/gbuffer_method.h"
 #include "lighting/scene/gpu_scene.h"
 #include "runtime/graph/render_graph.h"
 #include "runtime/runtime_fwd.h"
@@ -68,6 +69,9 @@ class FrameRenderer {
   FrameOutput output() const { return frame_output_; }
   // The denoiser's knobs from the next frame on (a change keeps its history).
   void set_denoise_settings(const DenoiseSettings& settings) { denoise_ = settings; }
+  // --set gbuffer=METHOD (lighting/gbuffer/gbuffer_method.h): how later frames make the
+  // G-buffer (InputError for host on a scene without host visibility, at the next frame).
+  void set_gbuffer_method(GBufferMethod method);
   const DenoiseSettings& denoise_settings() const { return denoise_; }
   // The integrator's raw HDR buffer of the last add_frame (valid for that graph frame only): a
   // hook can read back the raw image while the output shows the denoised one.

@@ -41,6 +41,7 @@ struct HeadlessSession::State {
         static_cast<std::uint32_t>(std::lround(o.render_scale * static_cast<float>(o.width))),
         static_cast<std::uint32_t>(std::lround(o.render_scale * static_cast<float>(o.height))));
     renderer.set_denoise_settings(make_denoise_settings(o.integrator.preset, o.integrator.denoise));
+    renderer.set_gbuffer_method(o.integrator.gbuffer);
   }
 
   World world;

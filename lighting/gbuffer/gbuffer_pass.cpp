@@ -19,6 +19,7 @@
 #include "engine/core/error.h"
 #include "gbuffer/gbuffer_push.h"
 #include "lighting/scene/gpu_scene.h"
+#include "lighting/visibility/host_visibility.h"
 #include "runtime/core/device.h"
 #include "runtime/gpu/bindings.h"
 #include "runtime/gpu/buffer.h"
@@ -139,7 +140,7 @@ GBufferPass::GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shader
                          const GBufferPassOptions& options)
     : device_(device), options_(options) {
   const std::vector<VkFormat> colors(kColorFormats.begin(), kColorFormats.end());
-  if (options_.method != GBufferMethod::Visibility) {
+  if (options_.method == GBufferMethod::Auto || options_.method == GBufferMethod::Forward) {
     forward_draws_.emplace(
         device, shaders.load("gbuffer/gbuffer_draws.comp"),
         runtime::ComputePipelineDesc{.name = "gbuffer.draws",
@@ -148,7 +149,7 @@ GBufferPass::GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shader
                             shaders.load("gbuffer/gbuffer.frag"),
                             raster_desc("gbuffer", colors, true, options_.textured));
   }
-  if (options_.method != GBufferMethod::Forward) {
+  if (options_.method == GBufferMethod::Auto || options_.method == GBufferMethod::Visibility) {
     draws_.emplace(
         device, shaders.load("gbuffer/gbuffer_draws.comp"),
         runtime::ComputePipelineDesc{.name = "gbuffer.draws",
@@ -162,14 +163,33 @@ GBufferPass::GBufferPass(runtime::Device& device, runtime::ShaderLibrary& shader
                      shaders.load("gbuffer/gbuffer_resolve.frag"),
                      raster_desc("gbuffer.resolve", colors, false, options_.textured));
   }
+  if (options_.method == GBufferMethod::Auto || options_.method == GBufferMethod::Host) {
+    resolve_hits_.emplace(device, shaders.load("gbuffer/gbuffer_resolve.vert"),
+                          shaders.load("gbuffer/gbuffer_resolve.frag", "hosthits"),
+                          raster_desc("gbuffer.resolve", colors, false, options_.textured));
+  }
+}
+
+void GBufferPass::set_method(GBufferMethod method) {
+  const bool made = method == GBufferMethod::Auto
+                        ? draws_ && forward_draws_ && resolve_hits_
+                        : (method == GBufferMethod::Visibility ? draws_.has_value()
+                           : method == GBufferMethod::Forward  ? forward_draws_.has_value()
+                                                               : resolve_hits_.has_value());
+  if (!made) {
+    throw InputError(fmt::format("gbuffer: made for method {}, cannot switch to {}",
+                                 gbuffer_method_name(options_.method),
+                                 gbuffer_method_name(method)));
+  }
+  options_.method = method;
 }
 
 GBufferMethod GBufferPass::method_for(GBufferMethod method, std::uint64_t triangles,
-                                      std::uint32_t width, std::uint32_t height) {
+                                      std::uint32_t width, std::uint32_t height, bool host) {
   if (method != GBufferMethod::Auto) return method;
   const std::uint64_t pixels = std::uint64_t{width} * height;
-  return triangles * kForwardPixelsPerTriangle <= pixels ? GBufferMethod::Forward
-                                                         : GBufferMethod::Visibility;
+  if (triangles * kForwardPixelsPerTriangle <= pixels) return GBufferMethod::Forward;
+  return host ? GBufferMethod::Host : GBufferMethod::Visibility;
 }
 
 GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& scene,
@@ -180,8 +200,20 @@ GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& sce
     throw RuntimeError(fmt::format("gbuffer: {} instances drawn but the scene holds {} records",
                                    instance_count, instances.size()));
   }
-  return add_pass(graph, scene, width, height,
-                  std::span<const gpu::GpuInstance>(instances.data(), instance_count));
+  HostVisibility* host = gpu_scene.host_visibility();
+  const std::uint64_t triangles =
+      triangle_count(std::span<const gpu::GpuInstance>(instances.data(), instance_count));
+  const GBufferMethod method =
+      method_for(options_.method, triangles, width, height, host != nullptr && resolve_hits_);
+  if (method == GBufferMethod::Host) {
+    if (host == nullptr) {
+      throw InputError(
+          "gbuffer: the host method needs host visibility (a CPU device and visibility=host or "
+          "auto, no alpha-tested material)");
+    }
+    return add_host_pass(graph, scene, width, height, *host, gpu_scene.frame_constants());
+  }
+  return add_method(graph, scene, width, height, instance_count, triangles, method);
 }
 
 std::uint64_t GBufferPass::triangle_count(std::span<const gpu::GpuInstance> instances) {
@@ -217,10 +249,28 @@ GBufferHandles GBufferPass::add_method(RenderGraph& graph, const SceneHandles& s
     throw RuntimeError(fmt::format("gbuffer: {} triangles exceed one draw", triangles));
   }
   if (instance_count == 0) triangles = 0;
+  if (method == GBufferMethod::Host) {
+    throw InputError("gbuffer: the host method needs the scene's host visibility (add_pass with "
+                     "its GpuScene)");
+  }
   return method == GBufferMethod::Forward
              ? add_forward(graph, scene, width, height, instance_count)
              : add_visibility(graph, scene, width, height, instance_count,
                               static_cast<std::uint32_t>(triangles));
+}
+
+GBufferHandles GBufferPass::add_host_pass(RenderGraph& graph, const SceneHandles& scene,
+                                          std::uint32_t width, std::uint32_t height,
+                                          HostVisibility& host, const gpu::FrameConstants& frame) {
+  if (!resolve_hits_) {
+    throw InputError(fmt::format("gbuffer: made for method {}, not host",
+                                 gbuffer_method_name(options_.method)));
+  }
+  if (width == 0 || height == 0) {
+    throw InputError(fmt::format("gbuffer: render size {}x{} must be positive", width, height));
+  }
+  return resolve(graph, scene, width, height, host.add_primary_pass(graph, frame, width, height),
+                 {});
 }
 
 GBufferHandles GBufferPass::add_visibility(RenderGraph& graph, const SceneHandles& scene,
@@ -317,32 +367,46 @@ GBufferHandles GBufferPass::add_visibility(RenderGraph& graph, const SceneHandle
         runtime::end_rendering(device_, cmd);
       });
 
+  return resolve(graph, scene, width, height, c.triangles, v.visibility);
+}
+
+// gbuffer.resolve: from the visibility method's list (`triangles`) and gbuffer.visibility, or,
+// without `visibility`, from the host method's one (instance, triangle) record per pixel.
+GBufferHandles GBufferPass::resolve(RenderGraph& graph, const SceneHandles& scene,
+                                    std::uint32_t width, std::uint32_t height,
+                                    BufferHandle triangles, ImageHandle visibility) {
+  runtime::GraphicsPipeline* pipeline = visibility.valid() ? &*resolve_ : &*resolve_hits_;
   const ResolveData& r = graph.add_pass<ResolveData>(
       "gbuffer.resolve", PassKind::Graphics,
       [&](PassBuilder& b, ResolveData& data) {
         data.scene = scene;
-        scene.declare_reads(b, *resolve_);
-        data.triangles = c.triangles;
-        b.read(c.triangles, Access::StorageRead);
-        data.visibility = v.visibility;
-        b.read(v.visibility, Access::StorageRead);
+        scene.declare_reads(b, *pipeline);
+        data.triangles = triangles;
+        b.read(triangles, Access::StorageRead);
+        if (visibility.valid()) {
+          data.visibility = visibility;
+          b.read(visibility, Access::StorageRead);
+        }
         for (std::size_t i = 0; i < kColorFormats.size(); ++i) {
           data.colors[i] =
               b.write(graph.create_image(kColorNames[i], {{width, height, 1}, kColorFormats[i]}),
                       Access::ColorAttachment);
         }
       },
-      [this, width, height](PassContext& ctx, const ResolveData& data) {
+      [pipeline, this, width, height](PassContext& ctx, const ResolveData& data) {
         const VkCommandBuffer cmd = ctx.cmd();
         // Every pixel is written: nothing to clear or load.
         std::array<runtime::ColorTarget, 6> targets{};
         for (std::size_t i = 0; i < targets.size(); ++i) targets[i].view = ctx.view(data.colors[i]);
         runtime::begin_rendering(device_, cmd, VkExtent2D{width, height}, targets, nullptr);
-        runtime::Bindings bindings(*resolve_);
+        runtime::Bindings bindings(*pipeline);
         data.scene.bind(bindings, ctx);
-        bindings.buffer("gbuffer_triangles", ctx.buffer(data.triangles), 0, VK_WHOLE_SIZE)
-            .image_view("gbuffer_visibility", ctx.view(data.visibility), VK_IMAGE_LAYOUT_GENERAL);
-        resolve_->bind(cmd, bindings);
+        bindings.buffer("gbuffer_triangles", ctx.buffer(data.triangles), 0, VK_WHOLE_SIZE);
+        if (data.visibility.valid()) {
+          bindings.image_view("gbuffer_visibility", ctx.view(data.visibility),
+                              VK_IMAGE_LAYOUT_GENERAL);
+        }
+        pipeline->bind(cmd, bindings);
         vkCmdDraw(cmd, 3, 1, 0, 0);
         runtime::end_rendering(device_, cmd);
       });
@@ -472,7 +536,11 @@ void GBufferPass::warm_up() {
 
   RenderGraph graph;
   runtime::graph::GraphExecutor executor(device_);
-  for (const GBufferMethod method : {GBufferMethod::Visibility, GBufferMethod::Forward}) {
+  // The host method's resolve reads one record per pixel: the triangle, as Embree would name it.
+  const glm::uvec2 hit(0u, 0u);
+  buffers.push_back(make(std::span<const glm::uvec2>(&hit, 1), "warm_up.host_hits"));
+  for (const GBufferMethod method :
+       {GBufferMethod::Visibility, GBufferMethod::Forward, GBufferMethod::Host}) {
     if (options_.method != GBufferMethod::Auto && options_.method != method) continue;
     graph.begin_frame();
     runtime::graph::ImportInfo read_only;
@@ -491,7 +559,9 @@ void GBufferPass::warm_up() {
     scene[gpu::kSceneTexels] = import(6);
     scene[gpu::kSceneVertexTangents] = import(7);
     scene[gpu::kSceneVertexTexcoords1] = import(8);
-    const GBufferHandles out = add_method(graph, scene, 1, 1, 1, 1, method);
+    const GBufferHandles out = method == GBufferMethod::Host
+                                   ? resolve(graph, scene, 1, 1, import(9), {})
+                                   : add_method(graph, scene, 1, 1, 1, 1, method);
     // Keep the passes alive: a consumer of one of their images.
     struct Keep {};
     graph.add_pass<Keep>(

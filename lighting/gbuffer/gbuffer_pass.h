@@ -11,6 +11,11 @@
 // Forward method: `gbuffer.draws` + `gbuffer`, one draw per instance interpolating every
 // attribute; cheaper per pixel, so Auto (the default) picks it for frames with few triangles per
 // pixel (kForwardPixelsPerTriangle).
+// Host method (CPU devices with host visibility): `gbuffer.host`, a host pass, traces each
+// pixel's camera ray with Embree (HostVisibility::trace_primary) into gbuffer.host_hits, and
+// `gbuffer.resolve` (its "hosthits" variant) rebuilds the images from those (instance, triangle)
+// records: no triangle is culled or rasterised, so the cost follows the pixels, not the
+// triangles (log of them). Auto picks it over Visibility where the scene has host visibility.
 // Reads: scene frame_constants, vertices, indices, materials, instances (SceneHandles).
 // Writes: the six colour images (transient, returned) and internal transients.
 // History: none (motion comes from FrameConstants.prev_view_proj and
@@ -22,6 +27,7 @@
 #include <span>
 
 #include "lighting/frame/frame_inputs.h"
+#include "lighting/gbuffer/gbuffer_method.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/graphics_pipeline.h"
 #include "runtime/graph/render_graph.h"
@@ -31,19 +37,7 @@
 namespace lantern::lighting {
 
 class GpuScene;
-
-// How the G-buffer is produced (the images and encodings are the same either way).
-enum class GBufferMethod : std::uint8_t {
-  // Per frame: Forward when the frame has at most one triangle per kForwardPixelsPerTriangle
-  // pixels, else Visibility (the default).
-  Auto,
-  // Cull, raster the kept triangles' ids into gbuffer.visibility, resolve every image per pixel:
-  // cost ~ triangles / cores + pixels. 4-5x faster than Forward on night_market at 320x180.
-  Visibility,
-  // One raster pass interpolating every attribute: cost ~ triangles (single-threaded front end,
-  // every varying) + pixels (cheaper per pixel than the resolve: 1.8x faster on cornell_lights).
-  Forward,
-};
+class HostVisibility;
 
 // Measured crossover (tests/gbuffer/gbuffer_bench.cpp on lavapipe): Forward costs ~0.35 us per
 // triangle and ~40 ns per pixel, Visibility ~0.035 us per triangle (+ ~0.3 us per kept one) and
@@ -87,10 +81,25 @@ class GBufferPass {
                                         std::uint32_t height, std::uint32_t instance_count,
                                         std::uint64_t triangles);
 
+  // The host method's passes with `host` (the scene's Embree) tracing the camera of `frame`
+  // (the constants `scene` holds this frame): what add_pass with a GpuScene adds when the method
+  // is Host; tests and benchmarks call it directly.
+  [[nodiscard]] GBufferHandles add_host_pass(runtime::graph::RenderGraph& graph,
+                                             const SceneHandles& scene, std::uint32_t width,
+                                             std::uint32_t height, HostVisibility& host,
+                                             const gpu::FrameConstants& frame);
+
+  // From now on frames use `method` (Auto: per frame, method_for). InputError when this pass was
+  // made for another fixed method (GBufferPassOptions::method), whose pipelines it lacks.
+  void set_method(GBufferMethod method);
+  GBufferMethod method() const { return options_.method; }
+
   static std::uint64_t triangle_count(std::span<const gpu::GpuInstance> instances);
-  // The method a frame of `triangles` at width x height uses (Auto resolved; others as given).
+  // The method a frame of `triangles` at width x height uses (Auto resolved; others as given):
+  // Forward for few triangles per pixel, else Host where `host` (the scene has host visibility),
+  // else Visibility.
   static GBufferMethod method_for(GBufferMethod method, std::uint64_t triangles,
-                                  std::uint32_t width, std::uint32_t height);
+                                  std::uint32_t width, std::uint32_t height, bool host = false);
 
  private:
   GBufferHandles add_method(runtime::graph::RenderGraph& graph, const SceneHandles& scene,
@@ -99,6 +108,10 @@ class GBufferPass {
   GBufferHandles add_visibility(runtime::graph::RenderGraph& graph, const SceneHandles& scene,
                                 std::uint32_t width, std::uint32_t height,
                                 std::uint32_t instance_count, std::uint32_t triangles);
+  GBufferHandles resolve(runtime::graph::RenderGraph& graph, const SceneHandles& scene,
+                         std::uint32_t width, std::uint32_t height,
+                         runtime::graph::BufferHandle triangles,
+                         runtime::graph::ImageHandle visibility);
   GBufferHandles add_forward(runtime::graph::RenderGraph& graph, const SceneHandles& scene,
                              std::uint32_t width, std::uint32_t height,
                              std::uint32_t instance_count);
@@ -110,6 +123,8 @@ class GBufferPass {
   std::optional<runtime::ComputePipeline> cull_;
   std::optional<runtime::GraphicsPipeline> raster_;
   std::optional<runtime::GraphicsPipeline> resolve_;
+  // Host method: the resolve reading one gbuffer.host_hits record per pixel.
+  std::optional<runtime::GraphicsPipeline> resolve_hits_;
   // Forward method.
   std::optional<runtime::ComputePipeline> forward_draws_;
   std::optional<runtime::GraphicsPipeline> forward_raster_;

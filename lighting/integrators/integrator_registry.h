@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "lighting/frame/frame_inputs.h"
+#include "lighting/gbuffer/gbuffer_method.h"
 #include "runtime/runtime_fwd.h"
 
 namespace lantern::lighting {
@@ -28,6 +29,9 @@ struct IntegratorConfig {
   // --set visibility=auto|bvh|rayquery|host (lighting/visibility/visibility_backend.h): resolved
   // against the device by make_integrator.
   VisibilitySetting visibility = VisibilitySetting::Auto;
+  // --set gbuffer=auto|visibility|forward|host (lighting/gbuffer/gbuffer_method.h): the frame's
+  // G-buffer method.
+  GBufferMethod gbuffer = GBufferMethod::Auto;
   // --set denoise.KEY=VALUE (prefix stripped; lighting/denoise/denoise_settings.h), applied over
   // `preset` to the frame's denoiser, whichever integrator runs.
   std::vector<std::pair<std::string, std::string>> denoise;

@@ -84,6 +84,7 @@ class GpuScene {
   void update(const FrameSnapshot& snapshot);
   // This frame's constants (frame_constants.h builds them); uploaded by the next scene.upload.
   void set_frame_constants(const gpu::FrameConstants& constants);
+  const gpu::FrameConstants& frame_constants() const { return constants_; }
 
   // Imports every scene buffer into `graph` (version 0: the contents before scene.upload; static
   // buffers read-only).

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lighting/gbuffer/gbuffer_pass.h"
 #include "lighting/lights/environment_map.h"
 #include "lighting/scene/scene_data.h"
 #include "lighting/scene/volume_requirements.h"
@@ -172,7 +173,11 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
   const std::uint64_t pixels = std::uint64_t{width} * height;
   const std::uint64_t gbuffer = pixels * (5 * 16 + 8 + 4);
   const std::uint64_t hdr = pixels * 16;
+  // The G-buffer method Auto picks at this size (GBufferPass::method_for).
+  const GBufferMethod gbuffer_method = GBufferPass::method_for(
+      GBufferMethod::Auto, GBufferPass::triangle_count(scene.instances), width, height, host);
   summary.enabled["per_frame"] = {{"size", fmt::format("{}x{}", width, height)},
+                                  {"gbuffer_method", gbuffer_method_name(gbuffer_method)},
                                   {"gbuffer_bytes", gbuffer},
                                   {"hdr_bytes", hdr},
                                   {"memory", mib(gbuffer + hdr)},
@@ -194,6 +199,9 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
   }
   if (level.environment) variants.push_back("environment sampling: on");
   if (!textures.empty()) variants.push_back("gbuffer: textured (kTextured)");
+  if (gbuffer_method == GBufferMethod::Host) {
+    variants.push_back("gbuffer: hosthits resolve (LANTERN_GBUFFER_HOST_HITS)");
+  }
   summary.enabled["shader_variants"] = variants;
 }
 

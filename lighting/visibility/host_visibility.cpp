@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstring>
@@ -14,6 +15,7 @@
 
 #include "engine/core/error.h"
 #include "runtime/core/device.h"
+#include "shared/gbuffer.h"
 
 namespace lantern::lighting {
 namespace {
@@ -25,6 +27,18 @@ static_assert(offsetof(RTCRay, mask) == offsetof(gpu::HostShadowRay, mask));
 // Rays handed to one rtcOccluded1M call: big enough for Embree's stream path to sort them into
 // packets, small enough that two threads share the frame's rays evenly.
 constexpr std::uint32_t kRaysPerChunk = 256;
+
+// A hit slot the merged scene left empty.
+constexpr std::uint32_t kNoHit = 0xffffffffu;
+
+// A host buffer's state when a frame imports it: last frame's passes may still use it (a window
+// keeps frames in flight), so this frame's first use orders after all of them.
+runtime::graph::AccessState any_prior_use() {
+  return {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT |
+              VK_ACCESS_2_HOST_WRITE_BIT,
+          VK_IMAGE_LAYOUT_UNDEFINED};
+}
 
 bool alpha_tested(const BvhInstanceDesc& d) {
   return (d.flags & gpu::kBvhInstanceAlphaTested) != 0u;
@@ -51,6 +65,10 @@ struct HostVisibility::Embree {
   bool instanced = false;             // `scene` holds an instance
   std::vector<RTCScene> mesh_scenes;  // per mesh id, made when an instance needs it
   std::vector<bool> merged;           // per instance: in the merged world-space geometry
+  // The merged geometry's triangles instance by instance: merged_first[k] is the first primID of
+  // the k-th merged instance, merged_instance[k] its instance index (closest hits name theirs).
+  std::vector<std::uint32_t> merged_first;
+  std::vector<std::uint32_t> merged_instance;
   std::vector<glm::mat4> placed;      // per instanced instance: the transform Embree has
 
   ~Embree() {
@@ -142,6 +160,8 @@ void HostVisibility::build(const SceneBvh& bvh, std::span<const BvhInstanceDesc>
   e.release_placed_scenes();
   e.mesh_scenes.resize(bvh.mesh_count(), nullptr);
   e.merged.assign(instances.size(), false);
+  e.merged_first.clear();
+  e.merged_instance.clear();
   e.placed.assign(instances.size(), glm::mat4(1.0f));
   e.scene = rtcNewScene(e.device);
   e.instanced = false;
@@ -153,6 +173,8 @@ void HostVisibility::build(const SceneBvh& bvh, std::span<const BvhInstanceDesc>
     const BvhInstanceDesc& d = instances[i];
     if (!in_merged_geometry(bvh, instances, i)) continue;
     e.merged[i] = true;
+    e.merged_first.push_back(static_cast<std::uint32_t>(triangle_count));
+    e.merged_instance.push_back(static_cast<std::uint32_t>(i));
     vertex_count += bvh.mesh(d.mesh).positions().size();
     triangle_count += bvh.mesh(d.mesh).triangle_count();
   }
@@ -277,14 +299,8 @@ runtime::graph::BufferHandle HostVisibility::import_rays(runtime::graph::RenderG
     }
     capacity_ = slots;
   }
-  // Last frame's passes may still use it (a window keeps frames in flight): order after them.
-  const runtime::graph::AccessState any_prior_use{
-      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
-      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT |
-          VK_ACCESS_2_HOST_WRITE_BIT,
-      VK_IMAGE_LAYOUT_UNDEFINED};
   return graph.import_buffer("visibility.host_rays", rays_.handle(), {rays_.size()},
-                             {.read_only = false, .initial = any_prior_use});
+                             {.read_only = false, .initial = any_prior_use()});
 }
 
 runtime::graph::BufferHandle HostVisibility::add_trace_pass(runtime::graph::RenderGraph& graph,
@@ -304,6 +320,115 @@ runtime::graph::BufferHandle HostVisibility::add_trace_pass(runtime::graph::Rend
             last_traced_ = trace(std::span(records, std::min(slots, capacity_)));
           })
       .rays;
+}
+
+void HostVisibility::trace_primary(const gpu::FrameConstants& frame, std::uint32_t width,
+                                   std::uint32_t height, std::span<glm::uvec2> hits) const {
+  const std::size_t pixels = std::size_t{width} * height;
+  if (hits.size() < pixels) {
+    throw RuntimeError(fmt::format("host visibility: {} hit records for {}x{} pixels", hits.size(),
+                                   width, height));
+  }
+  const Embree& e = *embree_;
+  RTCScene merged = e.merged_scene;
+  RTCScene instances = e.instanced ? e.scene : nullptr;
+  const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
+  const glm::vec2 jitter(frame.jitter.x, frame.jitter.y);
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    std::array<RTCRayHit, kRaysPerChunk> chunk;
+    for (std::size_t begin = next.fetch_add(kRaysPerChunk); begin < pixels;
+         begin = next.fetch_add(kRaysPerChunk)) {
+      const auto count = static_cast<unsigned>(std::min<std::size_t>(kRaysPerChunk, pixels - begin));
+      for (unsigned k = 0; k < count; ++k) {
+        const std::size_t p = begin + k;
+        const glm::vec2 point = glm::vec2(static_cast<float>(p % width),
+                                          static_cast<float>(p / width)) + 0.5f + jitter;
+        const gpu::GBufferCameraRay camera =
+            gpu::gbuffer_camera_ray(frame.inv_view_proj, point, size);
+        RTCRayHit& r = chunk[k];
+        r.ray.org_x = camera.origin.x;
+        r.ray.org_y = camera.origin.y;
+        r.ray.org_z = camera.origin.z;
+        r.ray.tnear = 0.0f;
+        r.ray.dir_x = camera.direction.x;
+        r.ray.dir_y = camera.direction.y;
+        r.ray.dir_z = camera.direction.z;
+        r.ray.time = 0.0f;
+        r.ray.tfar = camera.origin.w;
+        r.ray.mask = ~0u;
+        r.ray.id = static_cast<unsigned>(k);
+        r.ray.flags = 0;
+        r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      }
+      // The merged scene first; the instances' scene then only takes hits nearer than its (tfar
+      // shrank to the hit), and names them by instID.
+      if (merged != nullptr) rtcIntersect1M(merged, &context, chunk.data(), count, sizeof(RTCRayHit));
+      std::array<std::uint32_t, kRaysPerChunk> merged_prim;
+      for (unsigned k = 0; k < count; ++k)
+        merged_prim[k] = chunk[k].hit.geomID != RTC_INVALID_GEOMETRY_ID ? chunk[k].hit.primID
+                                                                         : kNoHit;
+      if (instances != nullptr)
+        rtcIntersect1M(instances, &context, chunk.data(), count, sizeof(RTCRayHit));
+      for (unsigned k = 0; k < count; ++k) {
+        const RTCRayHit& r = chunk[k];
+        glm::uvec2& out = hits[begin + k];
+        if (r.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+          out = glm::uvec2(r.hit.instID[0], r.hit.primID);
+        } else if (merged_prim[k] != kNoHit) {
+          // The last merged instance whose first primID is <= the hit's.
+          const auto it =
+              std::upper_bound(e.merged_first.begin(), e.merged_first.end(), merged_prim[k]);
+          const std::size_t m = static_cast<std::size_t>(it - e.merged_first.begin()) - 1;
+          out = glm::uvec2(e.merged_instance[m], merged_prim[k] - e.merged_first[m]);
+        } else {
+          out = glm::uvec2(gpu::kNoInstance, gpu::kNoInstance);
+        }
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const std::size_t chunks = (pixels + kRaysPerChunk - 1) / kRaysPerChunk;
+  for (unsigned t = 1; t < std::min<std::size_t>(threads_, chunks); ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+runtime::graph::BufferHandle HostVisibility::add_primary_pass(runtime::graph::RenderGraph& graph,
+                                                              const gpu::FrameConstants& frame,
+                                                              std::uint32_t width,
+                                                              std::uint32_t height) {
+  const std::uint64_t pixels = std::max<std::uint64_t>(std::uint64_t{width} * height, 1);
+  if (pixels > hit_capacity_) {
+    if (hit_capacity_ > 0) device_.wait_idle();  // the old buffer may still be read
+    hits_ = runtime::Buffer(device_, {.size = pixels * sizeof(glm::uvec2),
+                                      .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                      .memory = runtime::MemoryUsage::Readback,
+                                      .name = "gbuffer.host_hits"});
+    if (hits_.mapped() == nullptr) throw RuntimeError("host visibility: the hit buffer is not mapped");
+    hit_capacity_ = pixels;
+  }
+  const runtime::graph::BufferHandle imported = graph.import_buffer(
+      "gbuffer.host_hits", hits_.handle(), {hits_.size()},
+      {.read_only = false, .initial = any_prior_use()});
+  struct Data {
+    runtime::graph::BufferHandle hits;
+  };
+  return graph
+      .add_pass<Data>(
+          "gbuffer.host", runtime::graph::PassKind::Host,
+          [&](runtime::graph::PassBuilder& b, Data& d) {
+            d.hits = b.write(imported, runtime::graph::Access::HostReadWrite);
+          },
+          [this, frame, width, height](runtime::graph::PassContext&, const Data&) {
+            auto* records = reinterpret_cast<glm::uvec2*>(hits_.mapped());
+            trace_primary(frame, width, height,
+                          std::span(records, static_cast<std::size_t>(hit_capacity_)));
+          })
+      .hits;
 }
 
 runtime::graph::BufferHandle HostVisibility::add_shadow_rays(

@@ -41,6 +41,7 @@
 #include "runtime/graph/render_graph.h"
 #include "runtime/runtime_fwd.h"
 #include "shared/host_visibility.h"
+#include "shared/scene.h"
 
 namespace lantern::lighting {
 
@@ -87,6 +88,21 @@ class HostVisibility {
       runtime::graph::RenderGraph& graph, std::uint32_t slots,
       const std::function<runtime::graph::BufferHandle(runtime::graph::BufferHandle)>& emit);
 
+  // Primary visibility (GBufferMethod::Host): per pixel of a width x height frame, row-major, the
+  // closest triangle along the camera ray through its raster sample (pixel + 0.5 + the frame's
+  // jitter; shared/gbuffer.h's gbuffer_camera_ray, near to far plane) as (instance, triangle of
+  // the instance's mesh), or (kNoInstance, kNoInstance) where the ray meets nothing. On all host
+  // threads; `hits` holds at least width x height records.
+  void trace_primary(const gpu::FrameConstants& frame, std::uint32_t width, std::uint32_t height,
+                     std::span<glm::uvec2> hits) const;
+  // gbuffer.host: a host pass writing trace_primary's records for `frame` into the frame's hit
+  // buffer ("gbuffer.host_hits", host-visible, mapped; grows when a frame needs more); returns
+  // it for gbuffer.resolve to read.
+  [[nodiscard]] runtime::graph::BufferHandle add_primary_pass(runtime::graph::RenderGraph& graph,
+                                                              const gpu::FrameConstants& frame,
+                                                              std::uint32_t width,
+                                                              std::uint32_t height);
+
   unsigned threads() const { return threads_; }
   std::size_t merged_instances() const;
   double build_ms() const { return build_ms_; }
@@ -103,6 +119,8 @@ class HostVisibility {
   double build_ms_ = 0.0;
   runtime::Buffer rays_;
   std::uint32_t capacity_ = 0;
+  runtime::Buffer hits_;
+  std::uint64_t hit_capacity_ = 0;
   std::size_t last_traced_ = 0;
 };
 

@@ -50,12 +50,9 @@ GBufferTexel gbuffer_sky_texel() {
 // top-left; a pixel centre is pixel + 0.5) meets the plane of the world triangle (w0, w0 + e1,
 // w0 + e2); the centroid when edge-on or degenerate.
 vec2 gbuffer_ray_barycentrics(vec2 point, vec3 w0, vec3 e1, vec3 e2) {
-  vec2 size = vec2(frame_constants.frame.frame.xy);
-  vec2 ndc = point / size * 2.0 - 1.0;
-  mat4 inv_view_proj = frame_constants.frame.inv_view_proj;
-  vec4 a = inv_view_proj * vec4(ndc, 0.0, 1.0);
-  vec4 b = inv_view_proj * vec4(ndc, 0.5, 1.0);
-  vec3 dir = b.xyz / b.w - a.xyz / a.w;
+  vec3 dir = gbuffer_camera_ray(frame_constants.frame.inv_view_proj, point,
+                                vec2(frame_constants.frame.frame.xy))
+                 .direction.xyz;
   vec3 origin = frame_constants.frame.camera_position.xyz;
   vec3 q = cross(dir, e2);
   float det = dot(e1, q);

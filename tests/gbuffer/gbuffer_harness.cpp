@@ -59,7 +59,18 @@ GBufferHarness::GBufferHarness(runtime::Device& device, runtime::ShaderLibrary& 
       vertex_texcoords1_(
           make_storage(device, std::span(scene.vertex_texcoords1), "test.vertex_texcoords1")),
       executor_(device),
-      timer_(device, 16) {}
+      timer_(device, 16) {
+  if (options.method == lighting::GBufferMethod::Host) {
+    std::vector<lighting::BvhInstanceDesc> descs(scene.instances.size());
+    for (std::size_t i = 0; i < descs.size(); ++i) {
+      descs[i].mesh = scene.bvh.instance_mesh(i);
+      descs[i].object_to_world = scene.instances[i].object_to_world;
+      descs[i].user_id = static_cast<std::uint32_t>(i);
+      descs[i].fixed = scene.bvh.merged(i);
+    }
+    host_ = std::make_unique<lighting::HostVisibility>(device, scene.bvh, descs);
+  }
+}
 
 void GBufferHarness::set_instances(std::span<const gpu::GpuInstance> instances) {
   instances_ = make_storage(device_, instances, "test.instances");
@@ -101,8 +112,10 @@ std::optional<GBufferImages> GBufferHarness::render(const gpu::FrameConstants& c
   scene[gpu::kSceneTexels] = import(texels_);
   scene[gpu::kSceneVertexTangents] = import(vertex_tangents_);
   scene[gpu::kSceneVertexTexcoords1] = import(vertex_texcoords1_);
-  const lighting::GBufferHandles g = pass_.add_pass(
-      graph_, scene, width, height, std::span<const gpu::GpuInstance>(instances_host_));
+  const lighting::GBufferHandles g =
+      host_ ? pass_.add_host_pass(graph_, scene, width, height, *host_, constants)
+            : pass_.add_pass(graph_, scene, width, height,
+                             std::span<const gpu::GpuInstance>(instances_host_));
   const std::array<ImageHandle, 6> images = {g.position,          g.normal, g.albedo_roughness,
                                              g.emission_metallic, g.ids,    g.motion};
 

@@ -1,10 +1,13 @@
 // Runs the gbuffer pass on its own for tests and the benchmark: the scene records of a SceneData
 // in device buffers imported into a render graph, frame constants per frame, optional read-back
-// of every G-buffer image through a Transfer pass, and GPU timings per pass.
+// of every G-buffer image through a Transfer pass, and GPU timings per pass. With
+// GBufferMethod::Host it builds the host visibility (Embree) over the scene's BVH meshes at the
+// instances' transforms (set_instances does not move them: tests move only previous transforms).
 #pragma once
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -12,6 +15,7 @@
 
 #include "lighting/gbuffer/gbuffer_pass.h"
 #include "lighting/scene/scene_data.h"
+#include "lighting/visibility/host_visibility.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/gpu/gpu_timer.h"
 #include "runtime/graph/graph_executor.h"
@@ -52,6 +56,8 @@ class GBufferHarness {
  private:
   runtime::Device& device_;
   lighting::GBufferPass pass_;
+  // GBufferMethod::Host: Embree over the scene's BVH meshes at the instances' transforms.
+  std::unique_ptr<lighting::HostVisibility> host_;
   std::vector<gpu::GpuInstance> instances_host_;
   runtime::Buffer frame_constants_, vertices_, indices_, materials_, instances_, textures_, texels_,
       vertex_tangents_, vertex_texcoords1_;

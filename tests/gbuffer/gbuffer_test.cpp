@@ -17,7 +17,11 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include "engine/level/level_loader.h"
 #include "lighting/scene/frame_constants.h"
@@ -239,7 +243,10 @@ TEST_P(GBufferMethodTest, CornellLightsAgreesWithCpuTrace) {
   EXPECT_GT(a.front_emitters, 10u) << "too few emitter pixels: emission is untested";
   // Static camera and instances: no motion.
   for (const glm::vec4& m : g.motion) ASSERT_LE(glm::length(glm::vec2(m)), 0.01f);
-  EXPECT_GT(harness.last_ms("gbuffer"), 0.0);
+  // The method's first pass ran (the host method's is the host pass gbuffer.host).
+  EXPECT_GT(harness.last_ms(GetParam() == lighting::GBufferMethod::Host ? "gbuffer.host"
+                                                                         : "gbuffer"),
+            0.0);
 }
 
 // Seen from outside and above with the ceiling removed: sky around the box, the ceiling panels
@@ -385,19 +392,24 @@ TEST_P(GBufferMethodTest, MovingInstanceGetsItsObjectMotion) {
 
 // Dense geometry: most triangles are smaller than a pixel, so gbuffer.cull's pixel-centre test
 // decides for most of them; a wrongly culled triangle shows as a pixel the CPU trace disagrees on.
+// Both methods that night_market's triangle count picks (visibility on GPUs, host on CPUs).
 TEST_F(GBufferTest, NightMarketAgreesWithCpuTrace) {
   const Level level = load_level_argument("night_market");
   const lighting::SceneData scene = lighting::build_scene_data(level);
-  test::GBufferHarness harness(device, shaders, scene,
-                               {.method = lighting::GBufferMethod::Visibility});
-  harness.warm_up();
-  const gpu::FrameConstants fc = constants_for(level.camera);
-  const test::GBufferImages g = *harness.render(fc, true);
-  EXPECT_EQ(count_non_finite(g), 0u);
-  const Agreement a = compare_with_cpu(scene, fc, g);
-  RecordProperty("edges", std::to_string(a.edges));
-  expect_agreement(a, "night_market");
-  EXPECT_GT(a.hits, a.pixels / 2) << "the camera should mostly see geometry";
+  for (const lighting::GBufferMethod method :
+       {lighting::GBufferMethod::Visibility, lighting::GBufferMethod::Host}) {
+    SCOPED_TRACE(std::string(lighting::gbuffer_method_name(method)));
+    test::GBufferHarness harness(device, shaders, scene, {.method = method});
+    harness.warm_up();
+    const gpu::FrameConstants fc = constants_for(level.camera);
+    const test::GBufferImages g = *harness.render(fc, true);
+    EXPECT_EQ(count_non_finite(g), 0u);
+    const Agreement a = compare_with_cpu(scene, fc, g);
+    RecordProperty(fmt::format("edges_{}", lighting::gbuffer_method_name(method)),
+                   std::to_string(a.edges));
+    expect_agreement(a, "night_market");
+    EXPECT_GT(a.hits, a.pixels / 2) << "the camera should mostly see geometry";
+  }
 }
 
 // The two methods rasterise the same triangles with the same rules: the same surface at every
@@ -461,12 +473,83 @@ TEST_F(GBufferTest, VisibilityMethodMatchesForwardMethod) {
   EXPECT_LE(mismatches, compared / 200) << "first: " << first;
 }
 
+// The host method (Embree traces the camera rays, the resolve rebuilds the images from its hits)
+// resolves exactly as the visibility method does: where both name the same triangle, every image
+// is bit-identical; they may name different triangles only where a pixel's ray grazes an edge
+// (the raster's fill rule and snapping against Embree's intersection test; on night_market's
+// 147k triangles at 160x90 many pixels lie within rounding of an edge: 0.19% differ, the same
+// bound as the forward method's against the visibility method's). With a sub-pixel jitter and a
+// moving camera, so the host's camera rays follow the raster's jittered samples (a wrong jitter
+// sign or scale moves every edge and fails the bound many times over).
+TEST_F(GBufferTest, HostMethodMatchesVisibilityMethod) {
+  const Level level = load_level_argument("night_market");
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  gpu::FrameConstants fc = constants_for(level.camera);
+  Camera prev = level.camera;
+  prev.position += glm::vec3(0.05f, 0.02f, -0.1f);
+  fc.prev_view_proj = lighting::camera_view_proj(prev, kWidth, kHeight);
+  fc.jitter = glm::vec4(0.31f, -0.27f, -0.12f, 0.4f);
+  test::GBufferHarness visibility(device, shaders, scene,
+                                  {.method = lighting::GBufferMethod::Visibility});
+  test::GBufferHarness host(device, shaders, scene, {.method = lighting::GBufferMethod::Host});
+  const test::GBufferImages v = *visibility.render(fc, true);
+  const test::GBufferImages h = *host.render(fc, true);
+  EXPECT_EQ(count_non_finite(h), 0u);
+  std::size_t different = 0, surfaces = 0, unequal = 0;
+  for (std::size_t i = 0; i < v.ids.size(); ++i) {
+    if (v.ids[i] != h.ids[i]) {
+      ++different;
+      continue;
+    }
+    surfaces += v.ids[i].x != gpu::kNoInstance ? 1 : 0;
+    const bool same = v.position[i] == h.position[i] && v.normal[i] == h.normal[i] &&
+                      v.albedo_roughness[i] == h.albedo_roughness[i] &&
+                      v.emission_metallic[i] == h.emission_metallic[i] &&
+                      v.motion[i] == h.motion[i];
+    unequal += same ? 0 : 1;
+  }
+  RecordProperty("different_pixels", std::to_string(different));
+  EXPECT_LE(different, v.ids.size() / 200) << "more than 0.5% of the pixels see another triangle";
+  EXPECT_EQ(unequal, 0u) << "the same triangle resolved differently";
+  EXPECT_GT(surfaces, v.ids.size() / 2) << "the camera should mostly see geometry";
+}
+
+// The host method on the emitter-scaling level at 10^5 panel triangles: the same triangles as the
+// visibility method's cull and raster (the panels' triangles are far smaller than a pixel).
+TEST_F(GBufferTest, HostMethodMatchesVisibilityMethodOnSubPixelTriangles) {
+  nlohmann::json json;
+  std::ifstream(std::filesystem::path(LANTERN_SOURCE_DIR) / "content/levels/light_panels.json") >>
+      json;
+  json.erase("budgets");  // relative to content/levels
+  json["generators"][0]["emitter_triangles"] = 100000;
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() /
+      fmt::format("lantern_gbuffer_panels_{}.json", static_cast<long>(::getpid()));
+  std::ofstream(file) << json.dump();
+  const Level level = load_level(file);
+  std::filesystem::remove(file);
+  const lighting::SceneData scene = lighting::build_scene_data(level);
+  const gpu::FrameConstants fc = constants_for(level.camera);
+  test::GBufferHarness visibility(device, shaders, scene,
+                                  {.method = lighting::GBufferMethod::Visibility});
+  test::GBufferHarness host(device, shaders, scene, {.method = lighting::GBufferMethod::Host});
+  const test::GBufferImages v = *visibility.render(fc, true);
+  const test::GBufferImages h = *host.render(fc, true);
+  std::size_t different = 0;
+  for (std::size_t i = 0; i < v.ids.size(); ++i) different += v.ids[i] != h.ids[i] ? 1 : 0;
+  EXPECT_LE(different, v.ids.size() / 1000);
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, GBufferMethodTest,
                          ::testing::Values(lighting::GBufferMethod::Visibility,
-                                           lighting::GBufferMethod::Forward),
+                                           lighting::GBufferMethod::Forward,
+                                           lighting::GBufferMethod::Host),
                          [](const ::testing::TestParamInfo<lighting::GBufferMethod>& param) {
-                           return param.param == lighting::GBufferMethod::Forward ? "Forward"
-                                                                                  : "Visibility";
+                           return std::string(lighting::gbuffer_method_name(param.param)) ==
+                                          "forward"
+                                      ? "Forward"
+                                      : param.param == lighting::GBufferMethod::Host ? "Host"
+                                                                                     : "Visibility";
                          });
 
 // Auto: Forward for frames with at most one triangle per kForwardPixelsPerTriangle pixels.
@@ -483,6 +566,13 @@ TEST(GBufferMethodChoice, AutoPicksForwardOnlyForFewTrianglesPerPixel) {
   EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 320 * 180 / 16 + 1, 320, 180),
             GBufferMethod::Visibility);
   EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Visibility, 1, 320, 180),
+            GBufferMethod::Visibility);
+  // With host visibility (a CPU device) the host method replaces Visibility, never Forward.
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 147518, 320, 180, true),
+            GBufferMethod::Host);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 122, 320, 180, true),
+            GBufferMethod::Forward);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Visibility, 147518, 320, 180, true),
             GBufferMethod::Visibility);
   EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Forward, 1u << 30, 320, 180),
             GBufferMethod::Forward);

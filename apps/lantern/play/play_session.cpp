@@ -92,6 +92,7 @@ RenderBundle build_bundle(runtime::Device& device, const ShaderReloader& reloade
   b.renderer = std::make_unique<lighting::FrameRenderer>(
       device, *b.shaders, level, lighting::make_integrator(device, *b.shaders, config), width,
       height, seed);
+  b.renderer->set_gbuffer_method(config.gbuffer);
   b.renderer->warm_up();
   b.accumulate = std::make_unique<runtime::ComputePipeline>(
       device, b.shaders->load("play/play_accumulate.comp"),
