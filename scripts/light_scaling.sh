@@ -8,12 +8,14 @@
 # count, also in units of the calibration workload each bench times in the same run.
 # Usage: scripts/light_scaling.sh [--size WxH] [--frames N] [--warmup N] [--rounds N]
 #                                 [--preset P] [--counts "1000 10000 100000 1000000"]
+#                                 [--set KEY=VALUE]... (passed to every bench, e.g. gbuffer=visibility)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-cache}"
 lantern=build/bin/lantern
 [ -x "$lantern" ] || { echo "light_scaling: build first (bash scripts/build.sh)" >&2; exit 2; }
 size=320x180 frames=20 warmup=5 rounds=1 preset=balanced counts="1000 10000 100000 1000000"
+sets=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --size) size=$2; shift 2 ;;
@@ -22,6 +24,7 @@ while [ $# -gt 0 ]; do
     --rounds) rounds=$2; shift 2 ;;
     --preset) preset=$2; shift 2 ;;
     --counts) counts=$2; shift 2 ;;
+    --set) sets+=(--set "$2"); shift 2 ;;
     *) echo "light_scaling: unknown argument '$1' (see the usage line in $0)" >&2; exit 2 ;;
   esac
 done
@@ -42,7 +45,7 @@ for r in $(seq 1 "$rounds"); do
     for integrator in restir baseline; do
       echo "light_scaling: round $r, $n emitters, $integrator ($size, $warmup + $frames frames)" >&2
       "$lantern" bench "$out/light_panels_$n.json" --integrator "$integrator" --preset "$preset" \
-        --size "$size" --frames "$frames" --warmup "$warmup" --quiet \
+        --size "$size" --frames "$frames" --warmup "$warmup" --quiet "${sets[@]}" \
         --json "$out/$integrator.$n.$r.json" >/dev/null
     done
   done

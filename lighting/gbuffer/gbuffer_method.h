@@ -9,7 +9,8 @@ namespace lantern::lighting {
 
 enum class GBufferMethod : std::uint8_t {
   // Per frame: Forward when the frame has at most one triangle per kForwardPixelsPerTriangle
-  // pixels, else Host where the scene has host visibility (a CPU device), else Visibility.
+  // pixels, Host when it has at least kHostTrianglesPerPixel triangles per pixel and the scene
+  // has host visibility (a CPU device), else Visibility (gbuffer_pass.h).
   Auto,
   // Cull, raster the kept triangles' ids into gbuffer.visibility, resolve every image per pixel:
   // cost ~ triangles / cores + pixels. 4-5x faster than Forward on night_market at 320x180.

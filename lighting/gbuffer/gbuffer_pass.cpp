@@ -189,7 +189,8 @@ GBufferMethod GBufferPass::method_for(GBufferMethod method, std::uint64_t triang
   if (method != GBufferMethod::Auto) return method;
   const std::uint64_t pixels = std::uint64_t{width} * height;
   if (triangles * kForwardPixelsPerTriangle <= pixels) return GBufferMethod::Forward;
-  return host ? GBufferMethod::Host : GBufferMethod::Visibility;
+  return host && triangles >= pixels * kHostTrianglesPerPixel ? GBufferMethod::Host
+                                                              : GBufferMethod::Visibility;
 }
 
 GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& scene,

@@ -43,6 +43,11 @@ class HostVisibility;
 // triangle and ~40 ns per pixel, Visibility ~0.035 us per triangle (+ ~0.3 us per kept one) and
 // ~60 ns per pixel, so Forward wins below roughly one triangle per 14 pixels.
 inline constexpr std::uint64_t kForwardPixelsPerTriangle = 16;
+// Host vs Visibility (night_market, `lantern bench --set gbuffer=...` alternating, README): the
+// host traces ~55-75 ns per pixel on two threads whatever the triangle count; at 320x180 (2.6
+// triangles per pixel) it took 0.6-0.95x the cull + raster, at 640x360 (0.64) 1.05-1.15x. So
+// Auto takes it from one triangle per pixel up.
+inline constexpr std::uint64_t kHostTrianglesPerPixel = 1;
 
 struct GBufferPassOptions {
   GBufferMethod method = GBufferMethod::Auto;
@@ -96,8 +101,8 @@ class GBufferPass {
 
   static std::uint64_t triangle_count(std::span<const gpu::GpuInstance> instances);
   // The method a frame of `triangles` at width x height uses (Auto resolved; others as given):
-  // Forward for few triangles per pixel, else Host where `host` (the scene has host visibility),
-  // else Visibility.
+  // Forward for few triangles per pixel (kForwardPixelsPerTriangle), Host for many
+  // (kHostTrianglesPerPixel) where `host` (the scene has host visibility), else Visibility.
   static GBufferMethod method_for(GBufferMethod method, std::uint64_t triangles,
                                   std::uint32_t width, std::uint32_t height, bool host = false);
 

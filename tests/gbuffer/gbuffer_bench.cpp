@@ -1,11 +1,12 @@
 // G-buffer benchmark (not a test): GPU milliseconds of the G-buffer passes (`gbuffer.draws`,
-// `gbuffer`, `gbuffer.resolve` and their total) per level, size and method, median over N frames
+// `gbuffer.cull`, `gbuffer`, the host method's host pass `gbuffer.host`, `gbuffer.resolve` and
+// their total) per level, size and method, median over N frames
 // after warm-up, from the render graph's GPU timestamps (min alongside: the machine is shared and
 // noisy), and the wall time of the whole submitted frame. Methods are interleaved frame by frame
 // (A/B in one run), and each method's total is also given as the median of its per-round ratio to
 // the first method's total (robust to load changes during the run). The level's own camera; no
 // read-back inside the timed frames.
-// Usage: gbuffer_bench [--frames N] [--methods auto,visibility,forward] [level ...]
+// Usage: gbuffer_bench [--frames N] [--methods auto,visibility,forward,host] [level ...]
 //        (default: cornell_lights night_market, 15 frames, forward and visibility)
 //        A level suffixed ":untextured" is the level with every material texture and alpha mode
 //        removed (the same geometry without the textured path: the cost of textures, A/B).
@@ -19,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/error.h"
 #include "engine/level/level_loader.h"
 #include "lighting/scene/frame_constants.h"
 #include "lighting/scene/scene_data.h"
@@ -37,29 +39,13 @@ double median(std::vector<double> v) {
   return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-struct MethodName {
-  const char* name;
-  GBufferMethod method;
-};
-constexpr MethodName kMethods[] = {
-    {"auto", GBufferMethod::Auto},
-    {"visibility", GBufferMethod::Visibility},
-    {"forward", GBufferMethod::Forward},
-};
-
 GBufferMethod parse_method(const std::string& name) {
-  for (const MethodName& m : kMethods) {
-    if (name == m.name) return m.method;
+  try {
+    return lantern::lighting::parse_gbuffer_method(name);
+  } catch (const lantern::InputError& e) {
+    fmt::print(stderr, "gbuffer_bench: {}\n", e.what());
+    std::exit(2);
   }
-  fmt::print(stderr, "gbuffer_bench: unknown method '{}' (auto, visibility, forward)\n", name);
-  std::exit(2);
-}
-
-const char* method_name(GBufferMethod method) {
-  for (const MethodName& m : kMethods) {
-    if (m.method == method) return m.name;
-  }
-  return "?";
 }
 
 }  // namespace
@@ -88,9 +74,10 @@ int main(int argc, char** argv) {
   runtime::ShaderLibrary shaders;
   fmt::print("device: {}\n", device.info().name);
   fmt::print(
-      "{:<15} {:>8} {:>9} {:>5} {:<11} {:>9} {:>8} {:>7} {:>7} {:>8} {:>8} {:>7} {:>8} {:>5}\n",
+      "{:<15} {:>8} {:>9} {:>5} {:<11} {:>9} {:>8} {:>7} {:>7} {:>8} {:>7} {:>8} {:>7} {:>8} "
+      "{:>5}\n",
       "level", "size", "triangles", "inst", "method", "total ms", "(min)", "draws", "cull",
-      "gbuffer", "resolve", "ratio", "wall ms", "frames");
+      "gbuffer", "host", "resolve", "ratio", "wall ms", "frames");
   for (const std::string& name : levels) {
     const bool untextured = name.size() > 11 && name.ends_with(":untextured");
     Level level = load_level_argument(untextured ? name.substr(0, name.size() - 11) : name);
@@ -113,7 +100,7 @@ int main(int argc, char** argv) {
     for (const auto& [w, h] : {std::pair{320u, 180u}, std::pair{640u, 360u}}) {
       const gpu::FrameConstants fc = lighting::make_frame_constants(level.camera, w, h, 0, 1, {});
       struct Samples {
-        std::vector<double> total, draws, cull, raster, resolve, wall, ratio;
+        std::vector<double> total, draws, cull, raster, host, resolve, wall, ratio;
       };
       std::vector<Samples> samples(methods.size());
       for (auto& harness : harnesses) harness->render(fc, false);  // transient allocation
@@ -129,11 +116,13 @@ int main(int argc, char** argv) {
           const double raster = std::max(0.0, harness.last_ms("gbuffer"));
           const double resolve = std::max(0.0, harness.last_ms("gbuffer.resolve"));
           const double cull = std::max(0.0, harness.last_ms("gbuffer.cull"));
+          const double host = std::max(0.0, harness.last_ms("gbuffer.host"));
           samples[m].cull.push_back(cull);
+          samples[m].host.push_back(host);
           samples[m].draws.push_back(draws);
           samples[m].raster.push_back(raster);
           samples[m].resolve.push_back(resolve);
-          samples[m].total.push_back(draws + cull + raster + resolve);
+          samples[m].total.push_back(draws + cull + raster + host + resolve);
         }
         for (std::size_t m = 0; m < methods.size(); ++m) {
           samples[m].ratio.push_back(samples[m].total.back() / samples[0].total.back());
@@ -143,11 +132,12 @@ int main(int argc, char** argv) {
         const Samples& s = samples[m];
         fmt::print(
             "{:<15} {:>8} {:>9} {:>5} {:<11} {:>9.3f} {:>8.3f} {:>7.3f} {:>7.3f} {:>8.3f} "
-            "{:>8.3f} {:>7.3f} {:>8.3f} {:>5}\n",
+            "{:>7.3f} {:>8.3f} {:>7.3f} {:>8.3f} {:>5}\n",
             name, fmt::format("{}x{}", w, h), triangles, scene.instances.size(),
-            method_name(methods[m]), median(s.total),
+            lighting::gbuffer_method_name(methods[m]), median(s.total),
             *std::min_element(s.total.begin(), s.total.end()), median(s.draws), median(s.cull),
-            median(s.raster), median(s.resolve), median(s.ratio), median(s.wall), frames);
+            median(s.raster), median(s.host), median(s.resolve), median(s.ratio), median(s.wall),
+            frames);
       }
     }
   }

@@ -567,9 +567,16 @@ TEST(GBufferMethodChoice, AutoPicksForwardOnlyForFewTrianglesPerPixel) {
             GBufferMethod::Visibility);
   EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Visibility, 1, 320, 180),
             GBufferMethod::Visibility);
-  // With host visibility (a CPU device) the host method replaces Visibility, never Forward.
+  // With host visibility (a CPU device) the host method takes over from one triangle per pixel
+  // (night_market at 320x180, not at 640x360), never from Forward.
   EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 147518, 320, 180, true),
             GBufferMethod::Host);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 147518, 640, 360, true),
+            GBufferMethod::Visibility);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 320 * 180, 320, 180, true),
+            GBufferMethod::Host);
+  EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 320 * 180 - 1, 320, 180, true),
+            GBufferMethod::Visibility);
   EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Auto, 122, 320, 180, true),
             GBufferMethod::Forward);
   EXPECT_EQ(GBufferPass::method_for(GBufferMethod::Visibility, 147518, 320, 180, true),

@@ -8,7 +8,9 @@
 // two-level, single rays, --threads host threads), each project path's throughput as a ratio of
 // Embree flat, and Embree's hit/miss agreement with the CPU traversal. "host": the renderer's host
 // visibility backend (lighting/visibility/host_visibility.h: its own Embree scenes, streams of
-// 256 rays through rtcOccluded1M) on the shadow-ray sets, with its agreement.
+// 256 rays through rtcOccluded1M) on the shadow-ray sets, and on the primary set its G-buffer
+// trace (HostVisibility::trace_primary: the camera rays made from the frame constants,
+// rtcIntersect1M), with its agreement (hit/miss, and the same triangle).
 // "texel" and "cpu" trace the renderer's layout (lighting/bvh/scene_bvh.h: the fixed instances
 // merged into one world-space tree, movers instanced); "texel two-level" and "cpu two-level" the
 // same scene with every instance under the TLAS (the layout before the merge).
@@ -30,6 +32,7 @@
 #include <vector>
 
 #include "engine/level/level_loader.h"
+#include "lighting/scene/frame_constants.h"
 #include "lighting/scene/scene_data.h"
 #include "lighting/visibility/ray_query_scene.h"
 #include "tests/visibility/shading_ray_sets.h"
@@ -183,6 +186,8 @@ int run(int argc, char** argv) {
   };
   for (const auto& [w, h] : sizes) {
     const std::vector<gpu::BvhRay> primary = test::camera_rays(level.camera, w, h);
+    const gpu::FrameConstants primary_constants =
+        make_frame_constants(level.camera, w, h, 0, 1, {});
     std::vector<RaySet> sets;
     sets.push_back({"primary", 0, primary, ""});
     sets.push_back(
@@ -235,6 +240,11 @@ int run(int argc, char** argv) {
         if (set.mode == 1) {
           std::vector<gpu::HostShadowRay> records = test::host_records(set.rays);
           const double t = wall_ms([&] { host.trace(records); });
+          if (r >= 0) ms[set.name]["host"].push_back(t);
+        } else {
+          // The host G-buffer's trace: the same pixels' camera rays, made from the frame constants.
+          std::vector<glm::uvec2> hits(set.rays.size());
+          const double t = wall_ms([&] { host.trace_primary(primary_constants, w, h, hits); });
           if (r >= 0) ms[set.name]["host"].push_back(t);
         }
       }
@@ -317,6 +327,21 @@ int run(int argc, char** argv) {
           same += (cpu[i].w != 0u) == gpu::host_ray_visible(records[i]) ? 1u : 0u;
         agree += fmt::format(" host {:.4f}%", 100.0 * static_cast<double>(same) /
                                                   std::max<std::size_t>(cpu.size(), 1));
+      } else {
+        // The host G-buffer names the triangle: the same hit or miss, and the same (instance,
+        // triangle) where both hit.
+        std::vector<glm::uvec2> hits(set.rays.size());
+        host.trace_primary(primary_constants, w, h, hits);
+        std::size_t same = 0, same_triangle = 0;
+        for (std::size_t i = 0; i < cpu.size(); ++i) {
+          const bool cpu_hit = cpu[i].x != ~0u, host_hit = hits[i].x != gpu::kNoInstance;
+          same += cpu_hit == host_hit ? 1u : 0u;
+          same_triangle += !cpu_hit || (host_hit && hits[i] == glm::uvec2(cpu[i])) ? 1u : 0u;
+        }
+        const double n_rays = static_cast<double>(std::max<std::size_t>(cpu.size(), 1));
+        agree += fmt::format(" host {:.4f}% (same triangle {:.4f}%)",
+                             100.0 * static_cast<double>(same) / n_rays,
+                             100.0 * static_cast<double>(same_triangle) / n_rays);
       }
       fmt::print("{}{}\n", ratios.substr(0, ratios.size() - 2), agree);
     }
