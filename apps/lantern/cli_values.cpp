@@ -9,6 +9,8 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "lighting/denoise/denoise_settings.h"
+#include "lighting/scene/scene_data.h"
+#include "lighting/visibility/host_visibility.h"
 #include "runtime/core/device.h"
 
 namespace lantern::app {
@@ -52,10 +54,7 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
       throw InputError(fmt::format("--set {}: expected KEY=VALUE", s));
     }
     if (s.substr(0, eq) == "visibility") continue;  // the frame's: visibility_setting()
-    if (s.substr(0, eq) == "gbuffer") {  // the frame's G-buffer method
-      config.gbuffer = lighting::parse_gbuffer_method(s.substr(eq + 1));
-      continue;
-    }
+    if (s.substr(0, eq) == "gbuffer") continue;  // the frame's: gbuffer_setting()
     if (s.rfind(denoise, 0) == 0) {  // the frame's denoiser, whichever integrator
       config.denoise.emplace_back(s.substr(denoise.size(), eq - denoise.size()), s.substr(eq + 1));
       continue;
@@ -70,6 +69,7 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
   lighting::validate_integrator_config(config);
   (void)lighting::make_denoise_settings(config.preset, config.denoise);  // InputError on a bad key
   config.visibility = visibility_setting(common);
+  config.gbuffer = gbuffer_setting(common, level, config.visibility);
   // rayquery on a device without it: refused before any device is created.
   if (config.visibility == lighting::VisibilitySetting::RayQuery)
     (void)visibility_choice(common, config.visibility);
@@ -98,6 +98,27 @@ lighting::VisibilityChoice visibility_choice(const CommonOptions& common,
   const std::vector<runtime::DeviceInfo> devices = runtime::Device::enumerate();
   return lighting::choose_visibility(devices.at(runtime::select_device(devices, common.device)),
                                      setting);
+}
+
+lighting::GBufferMethod gbuffer_setting(const CommonOptions& common, const Level& level,
+                                        lighting::VisibilitySetting visibility) {
+  lighting::GBufferMethod method = lighting::GBufferMethod::Auto;
+  for (const std::string& s : common.settings) {
+    if (s.rfind("gbuffer=", 0) == 0) method = lighting::parse_gbuffer_method(s.substr(8));
+  }
+  if (method != lighting::GBufferMethod::Host) return method;
+  const lighting::VisibilityChoice choice = visibility_choice(common, visibility);
+  if (choice.backend != lighting::VisibilityBackend::Host) {
+    throw InputError(fmt::format(
+        "--set gbuffer=host needs host visibility, but the frame would use visibility={} ({})",
+        lighting::visibility_backend_name(choice.backend), choice.why));
+  }
+  if (!lighting::HostVisibility::supports(lighting::bvh_instance_descs(level))) {
+    throw InputError(
+        "--set gbuffer=host: the level has alpha-tested materials, whose cutout only the raster "
+        "G-buffer evaluates; use gbuffer=auto");
+  }
+  return method;
 }
 
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {

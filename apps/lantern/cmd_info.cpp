@@ -33,7 +33,8 @@ void run_info(const InfoOptions& o, const CommonOptions& common) {
   } catch (const RuntimeError&) {
     if (setting == lighting::VisibilitySetting::RayQuery) throw;
   }
-  lighting::describe_requirements(level, width, height, summary, visibility);
+  lighting::describe_requirements(level, width, height, summary, visibility,
+                                  gbuffer_setting(common, level, setting));
   std::fputs(to_text(summary).c_str(), stdout);
   if (!o.json.empty()) {
     std::ofstream out(o.json, std::ios::binary | std::ios::trunc);

@@ -33,7 +33,8 @@ std::string mib(std::uint64_t bytes) {
 }  // namespace
 
 void describe_requirements(const Level& level, std::uint32_t width, std::uint32_t height,
-                           LevelSummary& summary, const VisibilityChoice& visibility) {
+                           LevelSummary& summary, const VisibilityChoice& visibility,
+                           GBufferMethod gbuffer_setting) {
   // The volumes' grids are read once, for the scene and for the "volumes" section.
   const std::vector<runtime::VolumeGrid> grids = runtime::load_volume_grids(level);
   const SceneData scene = build_scene_data(level, grids);
@@ -173,9 +174,9 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
   const std::uint64_t pixels = std::uint64_t{width} * height;
   const std::uint64_t gbuffer = pixels * (5 * 16 + 8 + 4);
   const std::uint64_t hdr = pixels * 16;
-  // The G-buffer method Auto picks at this size (GBufferPass::method_for).
+  // The G-buffer method the frame uses at this size (GBufferPass::method_for: Auto resolved).
   const GBufferMethod gbuffer_method = GBufferPass::method_for(
-      GBufferMethod::Auto, GBufferPass::triangle_count(scene.instances), width, height, host);
+      gbuffer_setting, GBufferPass::triangle_count(scene.instances), width, height, host);
   summary.enabled["per_frame"] = {{"size", fmt::format("{}x{}", width, height)},
                                   {"gbuffer_method", gbuffer_method_name(gbuffer_method)},
                                   {"gbuffer_bytes", gbuffer},

@@ -10,6 +10,7 @@
 
 #include "engine/scene/level.h"
 #include "engine/scene/level_summary.h"
+#include "lighting/gbuffer/gbuffer_method.h"
 #include "lighting/visibility/visibility_backend.h"
 
 namespace lantern::lighting {
@@ -17,8 +18,10 @@ namespace lantern::lighting {
 // Adds the sections "light_sampling", "environment", "visibility", "geometry", "textures",
 // "volumes" (volume_requirements.h), "per_frame" and "shader_variants" to summary.enabled;
 // `visibility` is the backend chosen for the device (named with its reason; ray query adds its
-// BLAS/TLAS estimate). Throws InputError on bad level data.
+// BLAS/TLAS estimate), `gbuffer` the --set gbuffer= method (Auto: what the frame would pick).
+// Throws InputError on bad level data.
 void describe_requirements(const Level& level, std::uint32_t width, std::uint32_t height,
-                           LevelSummary& summary, const VisibilityChoice& visibility = {});
+                           LevelSummary& summary, const VisibilityChoice& visibility = {},
+                           GBufferMethod gbuffer = GBufferMethod::Auto);
 
 }  // namespace lantern::lighting

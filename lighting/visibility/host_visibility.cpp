@@ -346,18 +346,20 @@ void HostVisibility::trace_primary(const gpu::FrameConstants& frame, std::uint32
         const std::size_t p = begin + k;
         const glm::vec2 point = glm::vec2(static_cast<float>(p % width),
                                           static_cast<float>(p / width)) + 0.5f + jitter;
-        const gpu::GBufferCameraRay camera =
-            gpu::gbuffer_camera_ray(frame.inv_view_proj, point, size);
+        glm::vec3 origin;
+        float far_t = 0.0f;
+        const glm::vec3 direction =
+            gpu::gbuffer_camera_ray(frame.inv_view_proj, point, size, origin, far_t);
         RTCRayHit& r = chunk[k];
-        r.ray.org_x = camera.origin.x;
-        r.ray.org_y = camera.origin.y;
-        r.ray.org_z = camera.origin.z;
+        r.ray.org_x = origin.x;
+        r.ray.org_y = origin.y;
+        r.ray.org_z = origin.z;
         r.ray.tnear = 0.0f;
-        r.ray.dir_x = camera.direction.x;
-        r.ray.dir_y = camera.direction.y;
-        r.ray.dir_z = camera.direction.z;
+        r.ray.dir_x = direction.x;
+        r.ray.dir_y = direction.y;
+        r.ray.dir_z = direction.z;
         r.ray.time = 0.0f;
-        r.ray.tfar = camera.origin.w;
+        r.ray.tfar = far_t;
         r.ray.mask = ~0u;
         r.ray.id = static_cast<unsigned>(k);
         r.ray.flags = 0;

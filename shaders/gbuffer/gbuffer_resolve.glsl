@@ -50,9 +50,10 @@ GBufferTexel gbuffer_sky_texel() {
 // top-left; a pixel centre is pixel + 0.5) meets the plane of the world triangle (w0, w0 + e1,
 // w0 + e2); the centroid when edge-on or degenerate.
 vec2 gbuffer_ray_barycentrics(vec2 point, vec3 w0, vec3 e1, vec3 e2) {
+  vec3 near_point;
+  float far_t;
   vec3 dir = gbuffer_camera_ray(frame_constants.frame.inv_view_proj, point,
-                                vec2(frame_constants.frame.frame.xy))
-                 .direction.xyz;
+                                vec2(frame_constants.frame.frame.xy), near_point, far_t);
   vec3 origin = frame_constants.frame.camera_position.xyz;
   vec3 q = cross(dir, e2);
   float det = dot(e1, q);

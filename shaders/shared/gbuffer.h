@@ -59,34 +59,26 @@ LANTERN_FUNC vec4 gbuffer_jitter_clip(vec4 clip, vec2 jitter, vec2 size) {
 }
 
 // The camera ray through image point `point` (pixels from the top-left of a `size` image; pixel
-// p's raster sample is p + 0.5 + jitter): it starts on the near plane (origin.xyz) and its
-// direction (direction.xyz) reaches the point at NDC depth 0.5, the direction gbuffer.resolve
-// meets triangles with (from the camera position, on the same line). What the raster can see
-// along it lies at t in [0, origin.w]: origin.w is where it meets the far plane (a huge value when
-// the projection has none). The host G-buffer (GBufferMethod::Host) traces exactly this segment.
-struct GBufferCameraRay {
-  vec4 origin;     // xyz near-plane point, w: t at the far plane
-  vec4 direction;  // xyz, w: 0
-};
-LANTERN_STATIC_SIZE(GBufferCameraRay, 32);
-
-LANTERN_FUNC GBufferCameraRay gbuffer_camera_ray(mat4 inv_view_proj, vec2 point, vec2 size) {
+// p's raster sample is p + 0.5 + jitter): it starts on the near plane (`origin`) and the returned
+// direction reaches the point at NDC depth 0.5, the direction gbuffer.resolve meets triangles with
+// (from the camera position, on the same line). What the raster can see along it lies at t in
+// [0, far_t]: far_t is where it meets the far plane (3e38 when the projection has none). The
+// host G-buffer (GBufferMethod::Host) traces exactly this segment.
+LANTERN_FUNC vec3 gbuffer_camera_ray(mat4 inv_view_proj, vec2 point, vec2 size,
+                                     LANTERN_OUT(vec3) origin, LANTERN_OUT(float) far_t) {
   vec2 ndc = point / size * 2.0f - 1.0f;
   vec4 a = inv_view_proj * vec4(ndc.x, ndc.y, 0.0f, 1.0f);
   vec4 b = inv_view_proj * vec4(ndc.x, ndc.y, 0.5f, 1.0f);
   vec4 f = inv_view_proj * vec4(ndc.x, ndc.y, 1.0f, 1.0f);
-  vec3 near_point = vec3(a.x, a.y, a.z) / a.w;
-  vec3 direction = vec3(b.x, b.y, b.z) / b.w - near_point;
-  float far_t = 3.0e38f;
+  origin = vec3(a.x, a.y, a.z) / a.w;
+  vec3 direction = vec3(b.x, b.y, b.z) / b.w - origin;
+  far_t = 3.0e38f;
   float d2 = dot(direction, direction);
   if (f.w > 0.0f && d2 > 0.0f) {
-    float t = dot(vec3(f.x, f.y, f.z) / f.w - near_point, direction) / d2;
+    float t = dot(vec3(f.x, f.y, f.z) / f.w - origin, direction) / d2;
     if (t > 0.0f && t < 3.0e38f) far_t = t;
   }
-  GBufferCameraRay r;
-  r.origin = vec4(near_point, far_t);
-  r.direction = vec4(direction, 0.0f);
-  return r;
+  return direction;
 }
 
 // Sky test on gbuffer.position.w.

@@ -73,6 +73,7 @@ lighting::IntegratorConfig config_for(const PanelState& panel,
   c.name = panel.integrator;
   c.preset = panel.preset;
   c.visibility = base.visibility;  // the backend stays across switches and reloads
+  c.gbuffer = base.gbuffer;        // and so does the G-buffer method
   if (c.name == lighting::RestirIntegrator::kName) {
     c.settings = lighting::describe(panel.restir);
   } else if (c.name == base.name) {
