@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "engine/core/error.h"
+#include "lighting/scene/gpu_scene.h"
 #include "runtime/core/device.h"
 #include "shared/gbuffer.h"
 
@@ -27,6 +28,10 @@ static_assert(offsetof(RTCRay, mask) == offsetof(gpu::HostShadowRay, mask));
 // Rays handed to one rtcOccluded1M call: big enough for Embree's stream path to sort them into
 // packets, small enough that two threads share the frame's rays evenly.
 constexpr std::uint32_t kRaysPerChunk = 256;
+
+// The host G-buffer's hit buffers: as many as the scene's staging slots (frames in flight + 1),
+// so the slot a frame writes was last read by a frame that has finished.
+constexpr std::uint32_t kHitSlots = GpuScene::kStagingSlots;
 
 // A hit slot the merged scene left empty.
 constexpr std::uint32_t kNoHit = 0xffffffffu;
@@ -405,17 +410,26 @@ runtime::graph::BufferHandle HostVisibility::add_primary_pass(runtime::graph::Re
                                                               std::uint32_t height) {
   const std::uint64_t pixels = std::max<std::uint64_t>(std::uint64_t{width} * height, 1);
   if (pixels > hit_capacity_) {
-    if (hit_capacity_ > 0) device_.wait_idle();  // the old buffer may still be read
-    hits_ = runtime::Buffer(device_, {.size = pixels * sizeof(glm::uvec2),
-                                      .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                      .memory = runtime::MemoryUsage::Readback,
-                                      .name = "gbuffer.host_hits"});
-    if (hits_.mapped() == nullptr) throw RuntimeError("host visibility: the hit buffer is not mapped");
+    if (hit_capacity_ > 0) device_.wait_idle();  // the old buffers may still be read
+    hits_.clear();
+    for (std::uint32_t slot = 0; slot < kHitSlots; ++slot) {
+      hits_.emplace_back(device_, runtime::BufferDesc{.size = pixels * sizeof(glm::uvec2),
+                                                      .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                      .memory = runtime::MemoryUsage::Readback,
+                                                      .name = "gbuffer.host_hits"});
+      if (hits_.back().mapped() == nullptr)
+        throw RuntimeError("host visibility: the hit buffer is not mapped");
+    }
     hit_capacity_ = pixels;
   }
+  // A ring of kHitSlots buffers: this frame's slot was last read by the resolve kHitSlots frames
+  // ago, which has finished (at most kHitSlots - 1 frames are in flight). So the import has no
+  // prior use to wait for, and the executor runs gbuffer.host at once: the trace overlaps the
+  // frame still in flight instead of waiting for it (graph_executor.h).
+  runtime::Buffer& hits = hits_[hit_slot_];
+  hit_slot_ = (hit_slot_ + 1) % kHitSlots;
   const runtime::graph::BufferHandle imported = graph.import_buffer(
-      "gbuffer.host_hits", hits_.handle(), {hits_.size()},
-      {.read_only = false, .initial = any_prior_use()});
+      "gbuffer.host_hits", hits.handle(), {hits.size()}, {.read_only = false, .initial = {}});
   struct Data {
     runtime::graph::BufferHandle hits;
   };
@@ -425,8 +439,8 @@ runtime::graph::BufferHandle HostVisibility::add_primary_pass(runtime::graph::Re
           [&](runtime::graph::PassBuilder& b, Data& d) {
             d.hits = b.write(imported, runtime::graph::Access::HostReadWrite);
           },
-          [this, frame, width, height](runtime::graph::PassContext&, const Data&) {
-            auto* records = reinterpret_cast<glm::uvec2*>(hits_.mapped());
+          [this, &hits, frame, width, height](runtime::graph::PassContext&, const Data&) {
+            auto* records = reinterpret_cast<glm::uvec2*>(hits.mapped());
             trace_primary(frame, width, height,
                           std::span(records, static_cast<std::size_t>(hit_capacity_)));
           })

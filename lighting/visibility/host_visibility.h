@@ -96,8 +96,9 @@ class HostVisibility {
   void trace_primary(const gpu::FrameConstants& frame, std::uint32_t width, std::uint32_t height,
                      std::span<glm::uvec2> hits) const;
   // gbuffer.host: a host pass writing trace_primary's records for `frame` into the frame's hit
-  // buffer ("gbuffer.host_hits", host-visible, mapped; grows when a frame needs more); returns
-  // it for gbuffer.resolve to read.
+  // buffer ("gbuffer.host_hits", host-visible, mapped, one of a ring of three; grows when a frame
+  // needs more); returns it for gbuffer.resolve to read. It needs nothing from the frame's
+  // device passes, so it runs without waiting for them or for the frame still in flight.
   [[nodiscard]] runtime::graph::BufferHandle add_primary_pass(runtime::graph::RenderGraph& graph,
                                                               const gpu::FrameConstants& frame,
                                                               std::uint32_t width,
@@ -119,7 +120,8 @@ class HostVisibility {
   double build_ms_ = 0.0;
   runtime::Buffer rays_;
   std::uint32_t capacity_ = 0;
-  runtime::Buffer hits_;
+  std::vector<runtime::Buffer> hits_;  // the host G-buffer's ring (host_visibility.cpp kHitSlots)
+  std::uint32_t hit_slot_ = 0;
   std::uint64_t hit_capacity_ = 0;
   std::size_t last_traced_ = 0;
 };

@@ -220,19 +220,11 @@ void GraphExecutor::record(RenderGraph& graph, VkCommandBuffer cmd, GpuTimer* ti
       device_.end_label(target);
   };
 
-  // A host pass splits the frame: the passes before it (and the barriers that make their writes
-  // visible to the host) are submitted on their own and waited for, the host pass runs on this
-  // thread (timed as a host scope), and recording goes on. What follows the last host pass is
-  // recorded into `cmd`, which the caller submits.
-  std::size_t next = 0;
-  for (std::size_t i = 0; i < compiled.passes.size(); ++i) {
-    const CompiledPass& host_pass = compiled.passes[i];
+  const auto is_host = [&](std::size_t i) {
+    return decl.passes[compiled.passes[i].pass].kind == PassKind::Host;
+  };
+  const auto run_host = [&](const CompiledPass& host_pass) {
     const PassDecl& pass = decl.passes[host_pass.pass];
-    if (pass.kind != PassKind::Host) continue;
-    device_.submit_and_wait([&](VkCommandBuffer segment) {
-      for (; next < i; ++next) record_pass(segment, compiled.passes[next]);
-      record_barriers(segment, barrier2_, host_pass.before, decl, physical);
-    });
     const auto start = std::chrono::steady_clock::now();
     if (pass.execute) {
       PassContext context(VK_NULL_HANDLE, decl, host_pass.pass, physical);
@@ -243,9 +235,33 @@ void GraphExecutor::record(RenderGraph& graph, VkCommandBuffer cmd, GpuTimer* ti
                                      std::chrono::steady_clock::now() - start)
                                      .count());
     }
+  };
+  // A host pass splits the frame: the passes before it (and the barriers that make their writes
+  // visible to the host) are submitted on their own and waited for, the host pass runs on this
+  // thread (timed as a host scope), and recording goes on. A host pass that needs no barrier
+  // uses nothing an earlier pass of the frame touches (and nothing a finished frame left
+  // unsynchronised): it runs at once, without that submission and wait, and the passes before it
+  // go into the next segment (so it overlaps the frames still in flight instead of waiting for
+  // them). What follows the last waiting host pass is recorded into `cmd`, which the caller
+  // submits.
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < compiled.passes.size(); ++i) {
+    if (!is_host(i)) continue;
+    const CompiledPass& host_pass = compiled.passes[i];
+    if (host_pass.before.empty()) {
+      run_host(host_pass);
+      continue;
+    }
+    device_.submit_and_wait([&](VkCommandBuffer segment) {
+      for (; next < i; ++next)
+        if (!is_host(next)) record_pass(segment, compiled.passes[next]);
+      record_barriers(segment, barrier2_, host_pass.before, decl, physical);
+    });
+    run_host(host_pass);
     next = i + 1;
   }
-  for (; next < compiled.passes.size(); ++next) record_pass(cmd, compiled.passes[next]);
+  for (; next < compiled.passes.size(); ++next)
+    if (!is_host(next)) record_pass(cmd, compiled.passes[next]);
   record_barriers(cmd, barrier2_, compiled.after, decl, physical);
 }
 

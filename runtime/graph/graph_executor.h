@@ -42,7 +42,8 @@ class GraphExecutor {
   // transient layout changes, waits for the device before freeing the old one. Host passes
   // (PassKind::Host) split the frame: what precedes each is submitted and waited for first (so
   // reset a timer with GpuTimer::reset_on_host, not into `cmd`), and only what follows the last
-  // lands in `cmd`.
+  // lands in `cmd`; a host pass that needs no barrier (its resources untouched earlier in the
+  // frame and imported without a prior use to wait for) runs at once, without that wait.
   void record(RenderGraph& graph, VkCommandBuffer cmd, GpuTimer* timer = nullptr);
 
   // Test switch: record Vulkan 1.0 barriers even when synchronization2 is available.

@@ -5,6 +5,7 @@
 // host's writes, and the timer reports the host pass among the device passes, in order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -113,6 +114,89 @@ TEST(GraphHostPass, RunsBetweenSubmissionsAndSeesTheDevicesWrites) {
     }
     EXPECT_EQ(names, (std::vector<std::string>{"test.fill", "test.host", "test.copy"}));
   }
+  EXPECT_EQ(f.device.validation_errors(), 0u) << f.graph.dump();
+}
+
+// A host pass that needs no barrier (its buffer imported with no prior use, untouched by the
+// frame's earlier passes) runs at once: the device pass declared before it has not been
+// submitted yet when it runs (the host still sees the old contents of the buffer that pass
+// fills), and a later device pass still sees what the host wrote. The host G-buffer's trace
+// (gbuffer.host) runs this way so it overlaps the frame in flight.
+TEST(GraphHostPass, WithoutBarriersRunsAtOnceWithoutWaiting) {
+  HostPassFixture f;
+  Buffer fresh{f.device,
+               {.size = kCount * sizeof(std::uint32_t),
+                .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                .memory = MemoryUsage::Readback,
+                .name = "test.fresh"}};
+  constexpr AccessState kAnyPriorUse{
+      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+  std::memset(f.shared.mapped(), 0, kCount * sizeof(std::uint32_t));
+  f.graph.begin_frame();
+  struct One {
+    BufferHandle buffer;
+  };
+  f.graph.add_pass<One>(
+      "test.fill", PassKind::Transfer,
+      [&](PassBuilder& p, One& d) {
+        d.buffer = p.write(f.graph.import_buffer("test.shared", f.shared.handle(),
+                                                 {f.shared.size()}, {.initial = kAnyPriorUse}),
+                           Access::TransferDst);
+        p.side_effect();
+      },
+      [](PassContext& ctx, const One& d) {
+        vkCmdFillBuffer(ctx.cmd(), ctx.buffer(d.buffer), 0, VK_WHOLE_SIZE, 5u);
+      });
+  std::uint32_t filled_before_host = 0;
+  const BufferHandle written =
+      f.graph
+          .add_pass<One>(
+              "test.host", PassKind::Host,
+              [&](PassBuilder& p, One& d) {
+                d.buffer = p.write(f.graph.import_buffer("test.fresh", fresh.handle(),
+                                                         {fresh.size()}, {.initial = {}}),
+                                   Access::HostReadWrite);
+              },
+              [&](PassContext&, const One&) {
+                const auto* seen = reinterpret_cast<const std::uint32_t*>(f.shared.mapped());
+                for (std::uint32_t i = 0; i < kCount; ++i) filled_before_host += seen[i] != 0u;
+                auto* out = reinterpret_cast<std::uint32_t*>(fresh.mapped());
+                for (std::uint32_t i = 0; i < kCount; ++i) out[i] = 3u * i + 1u;
+              })
+          .buffer;
+  struct Copy {
+    BufferHandle from, to;
+  };
+  f.graph.add_pass<Copy>(
+      "test.copy", PassKind::Transfer,
+      [&](PassBuilder& p, Copy& d) {
+        p.read(written, Access::TransferSrc);
+        d.from = written;
+        d.to = p.write(f.graph.import_buffer("test.result", f.result.handle(), {f.result.size()},
+                                             {.initial = kAnyPriorUse}),
+                       Access::TransferDst);
+        p.side_effect();
+      },
+      [](PassContext& ctx, const Copy& d) {
+        const VkBufferCopy region{0, 0, kCount * sizeof(std::uint32_t)};
+        vkCmdCopyBuffer(ctx.cmd(), ctx.buffer(d.from), ctx.buffer(d.to), 1, &region);
+      });
+  f.graph.bake(f.executor.compile_options());
+  f.timer.reset_on_host();
+  f.device.submit_and_wait([&](VkCommandBuffer cmd) { f.executor.record(f.graph, cmd, &f.timer); });
+  f.graph.end_frame();
+  EXPECT_EQ(filled_before_host, 0u) << "the host pass waited for the fill before it";
+  const auto* shared = reinterpret_cast<const std::uint32_t*>(f.shared.mapped());
+  const auto* copied = reinterpret_cast<const std::uint32_t*>(f.result.mapped());
+  for (std::uint32_t i = 0; i < kCount; i += 511) {
+    EXPECT_EQ(shared[i], 5u) << "the fill did not run";
+    EXPECT_EQ(copied[i], 3u * i + 1u) << "the copy missed the host's write " << i;
+  }
+  std::vector<std::string> names;
+  for (const GpuTimer::Result& t : f.timer.resolve()) names.push_back(t.name);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"test.copy", "test.fill", "test.host"}));
   EXPECT_EQ(f.device.validation_errors(), 0u) << f.graph.dump();
 }
 
