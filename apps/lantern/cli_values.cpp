@@ -69,7 +69,9 @@ lighting::IntegratorConfig integrator_config(const std::string& integrator,
   lighting::validate_integrator_config(config);
   (void)lighting::make_denoise_settings(config.preset, config.denoise);  // InputError on a bad key
   config.visibility = visibility_setting(common);
-  config.gbuffer = gbuffer_setting(common, level, config.visibility);
+  config.gbuffer = gbuffer_setting(common);
+  if (config.gbuffer == lighting::GBufferMethod::Host)
+    require_gbuffer_method(config.gbuffer, level, visibility_choice(common, config.visibility));
   // rayquery on a device without it: refused before any device is created.
   if (config.visibility == lighting::VisibilitySetting::RayQuery)
     (void)visibility_choice(common, config.visibility);
@@ -100,25 +102,27 @@ lighting::VisibilityChoice visibility_choice(const CommonOptions& common,
                                      setting);
 }
 
-lighting::GBufferMethod gbuffer_setting(const CommonOptions& common, const Level& level,
-                                        lighting::VisibilitySetting visibility) {
+lighting::GBufferMethod gbuffer_setting(const CommonOptions& common) {
   lighting::GBufferMethod method = lighting::GBufferMethod::Auto;
   for (const std::string& s : common.settings) {
     if (s.rfind("gbuffer=", 0) == 0) method = lighting::parse_gbuffer_method(s.substr(8));
   }
-  if (method != lighting::GBufferMethod::Host) return method;
-  const lighting::VisibilityChoice choice = visibility_choice(common, visibility);
-  if (choice.backend != lighting::VisibilityBackend::Host) {
+  return method;
+}
+
+void require_gbuffer_method(lighting::GBufferMethod method, const Level& level,
+                            const lighting::VisibilityChoice& visibility) {
+  if (method != lighting::GBufferMethod::Host) return;
+  if (visibility.backend != lighting::VisibilityBackend::Host) {
     throw InputError(fmt::format(
         "--set gbuffer=host needs host visibility, but the frame would use visibility={} ({})",
-        lighting::visibility_backend_name(choice.backend), choice.why));
+        lighting::visibility_backend_name(visibility.backend), visibility.why));
   }
-  if (!lighting::HostVisibility::supports(lighting::bvh_instance_descs(level))) {
+  if (!lighting::HostVisibility::answers(visibility.backend, lighting::bvh_instance_descs(level))) {
     throw InputError(
         "--set gbuffer=host: the level has alpha-tested materials, whose cutout only the raster "
         "G-buffer evaluates; use gbuffer=auto");
   }
-  return method;
 }
 
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {

@@ -28,13 +28,14 @@ void run_info(const InfoOptions& o, const CommonOptions& common) {
   // The backend the frame would pick on the --device (enumerated only; bvh when none is found).
   lighting::VisibilityChoice visibility{lighting::VisibilityBackend::Bvh, "no Vulkan device"};
   const lighting::VisibilitySetting setting = visibility_setting(common);
+  const lighting::GBufferMethod gbuffer = gbuffer_setting(common);  // before any device work
   try {
     visibility = visibility_choice(common, setting);
   } catch (const RuntimeError&) {
     if (setting == lighting::VisibilitySetting::RayQuery) throw;
   }
-  lighting::describe_requirements(level, width, height, summary, visibility,
-                                  gbuffer_setting(common, level, setting));
+  require_gbuffer_method(gbuffer, level, visibility);
+  lighting::describe_requirements(level, width, height, summary, visibility, gbuffer);
   std::fputs(to_text(summary).c_str(), stdout);
   if (!o.json.empty()) {
     std::ofstream out(o.json, std::ios::binary | std::ios::trunc);

@@ -66,10 +66,12 @@ lighting::VisibilityChoice visibility_choice(const CommonOptions& common,
                                              lighting::VisibilitySetting setting);
 
 // The last --set gbuffer=auto|visibility|forward|host (auto without one); InputError on another
-// value. With host, InputError unless the frame on that device would have host visibility for
-// `level` (the host backend chosen, no alpha-tested material): refused before any device work.
-lighting::GBufferMethod gbuffer_setting(const CommonOptions& common, const Level& level,
-                                        lighting::VisibilitySetting visibility);
+// value (no device work).
+lighting::GBufferMethod gbuffer_setting(const CommonOptions& common);
+// InputError when `method` cannot run for `level` on `visibility` (the choice the device makes):
+// host needs the host backend and no alpha-tested material (HostVisibility::answers).
+void require_gbuffer_method(lighting::GBufferMethod method, const Level& level,
+                            const lighting::VisibilityChoice& visibility);
 
 // "640x360" -> (640, 360); InputError naming the flag otherwise.
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size);

@@ -1,9 +1,13 @@
 // FrameSession: FrameRenderer + hooks + output + delivery through one graph (frame_session.h).
 #include "lighting/frame/frame_session.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 
+#include "engine/core/error.h"
 #include "lighting/frame/frame_renderer.h"
+#include "lighting/scene/gpu_scene.h"
 #include "runtime/gpu/gpu_timer.h"
 #include "runtime/graph/graph_executor.h"
 
@@ -37,6 +41,12 @@ FrameSession::FrameSession(runtime::Device& device, runtime::RenderTarget& targe
     : target_(target),
       renderer_(&renderer),
       executor_(std::make_unique<runtime::graph::GraphExecutor>(device)) {
+  // The scene's staging ring and the host G-buffer's hit ring (GpuScene::kStagingSlots slots)
+  // reuse a slot only once the frame that used it has finished.
+  if (target.frames_in_flight() >= GpuScene::kStagingSlots) {
+    throw RuntimeError(fmt::format("frame session: {} frames in flight, the scene's rings hold {}",
+                                   target.frames_in_flight(), GpuScene::kStagingSlots - 1));
+  }
   for (std::uint32_t i = 0; i < target.frames_in_flight(); ++i) {
     timers_.push_back(std::make_unique<runtime::GpuTimer>(device, kTimerScopes));
   }

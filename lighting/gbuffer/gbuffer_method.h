@@ -19,7 +19,8 @@ enum class GBufferMethod : std::uint8_t {
   // every varying) + pixels (cheaper per pixel than the resolve: 1.8x faster on cornell_lights).
   Forward,
   // Embree traces the camera rays on the host, resolve as Visibility: cost ~ pixels x log
-  // triangles. Needs the scene's HostVisibility (GpuScene::host_visibility()).
+  // triangles. Needs the scene's HostVisibility (GpuScene::host_visibility()), and traces every
+  // instance of it.
   Host,
 };
 

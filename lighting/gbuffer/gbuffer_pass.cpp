@@ -204,8 +204,10 @@ GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& sce
   HostVisibility* host = gpu_scene.host_visibility();
   const std::uint64_t triangles =
       triangle_count(std::span<const gpu::GpuInstance>(instances.data(), instance_count));
-  const GBufferMethod method =
-      method_for(options_.method, triangles, width, height, host != nullptr && resolve_hits_);
+  // Auto takes the host method only on a CPU device: on a GPU with visibility=host forced, the
+  // host's rays are a comparison, not a fast path (it traces every instance of the scene).
+  const bool host_fast = host != nullptr && resolve_hits_ && device_.info().type == "cpu";
+  const GBufferMethod method = method_for(options_.method, triangles, width, height, host_fast);
   if (method == GBufferMethod::Host) {
     if (host == nullptr) {
       throw InputError(

@@ -124,7 +124,7 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
     ray_query_ = std::make_unique<RayQueryScene>(device_, data_.bvh);
   // Embree's scene for the host backend (setup time); levels it cannot answer keep the BVH.
   if (visibility == VisibilityBackend::Host) {
-    if (HostVisibility::supports(bvh_descs_)) {
+    if (HostVisibility::answers(visibility, bvh_descs_)) {
       host_ = std::make_unique<HostVisibility>(device_, data_.bvh, bvh_descs_);
       log::debug("scene: host visibility ({}, {} threads), {} instances merged, built in {:.1f} ms",
                  host_->version(), host_->threads(), host_->merged_instances(),

@@ -80,8 +80,7 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
   // Visibility: the scene BVH (compute traversal), and with ray query also a BLAS per mesh and
   // a TLAS over the instances (the driver's; its size is known only on the device).
   const SceneBvh& bvh = scene.bvh;
-  const bool host = visibility.backend == VisibilityBackend::Host &&
-                    HostVisibility::supports(bvh_instance_descs(level));
+  const bool host = HostVisibility::answers(visibility.backend, bvh_instance_descs(level));
   std::string traversal = "compute-shader BVH, nodes in texel buffers";
   if (visibility.backend == VisibilityBackend::RayQuery) {
     traversal =
@@ -174,9 +173,11 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
   const std::uint64_t pixels = std::uint64_t{width} * height;
   const std::uint64_t gbuffer = pixels * (5 * 16 + 8 + 4);
   const std::uint64_t hdr = pixels * 16;
-  // The G-buffer method the frame uses at this size (GBufferPass::method_for: Auto resolved).
-  const GBufferMethod gbuffer_method = GBufferPass::method_for(
-      gbuffer_setting, GBufferPass::triangle_count(scene.instances), width, height, host);
+  // The G-buffer method the frame uses at this size (GBufferPass::method_for: Auto resolved; its
+  // host method only on a CPU device).
+  const GBufferMethod gbuffer_method =
+      GBufferPass::method_for(gbuffer_setting, GBufferPass::triangle_count(scene.instances), width,
+                              height, host && visibility.cpu_device);
   summary.enabled["per_frame"] = {{"size", fmt::format("{}x{}", width, height)},
                                   {"gbuffer_method", gbuffer_method_name(gbuffer_method)},
                                   {"gbuffer_bytes", gbuffer},

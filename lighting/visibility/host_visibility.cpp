@@ -415,7 +415,7 @@ runtime::graph::BufferHandle HostVisibility::add_primary_pass(runtime::graph::Re
     for (std::uint32_t slot = 0; slot < kHitSlots; ++slot) {
       hits_.emplace_back(device_, runtime::BufferDesc{.size = pixels * sizeof(glm::uvec2),
                                                       .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                      .memory = runtime::MemoryUsage::Readback,
+                                                      .memory = runtime::MemoryUsage::Upload,
                                                       .name = "gbuffer.host_hits"});
       if (hits_.back().mapped() == nullptr)
         throw RuntimeError("host visibility: the hit buffer is not mapped");
@@ -426,8 +426,11 @@ runtime::graph::BufferHandle HostVisibility::add_primary_pass(runtime::graph::Re
   // ago, which has finished (at most kHitSlots - 1 frames are in flight). So the import has no
   // prior use to wait for, and the executor runs gbuffer.host at once: the trace overlaps the
   // frame still in flight instead of waiting for it (graph_executor.h).
-  runtime::Buffer& hits = hits_[hit_slot_];
+  // (FrameSession refuses more frames in flight than GpuScene::kStagingSlots - 1.)
+  const runtime::Buffer& hits = hits_[hit_slot_];
   hit_slot_ = (hit_slot_ + 1) % kHitSlots;
+  auto* records = reinterpret_cast<glm::uvec2*>(hits.mapped());
+  const auto record_count = static_cast<std::size_t>(hit_capacity_);
   const runtime::graph::BufferHandle imported = graph.import_buffer(
       "gbuffer.host_hits", hits.handle(), {hits.size()}, {.read_only = false, .initial = {}});
   struct Data {
@@ -439,10 +442,9 @@ runtime::graph::BufferHandle HostVisibility::add_primary_pass(runtime::graph::Re
           [&](runtime::graph::PassBuilder& b, Data& d) {
             d.hits = b.write(imported, runtime::graph::Access::HostReadWrite);
           },
-          [this, &hits, frame, width, height](runtime::graph::PassContext&, const Data&) {
-            auto* records = reinterpret_cast<glm::uvec2*>(hits.mapped());
-            trace_primary(frame, width, height,
-                          std::span(records, static_cast<std::size_t>(hit_capacity_)));
+          [this, records, record_count, frame, width, height](runtime::graph::PassContext&,
+                                                               const Data&) {
+            trace_primary(frame, width, height, std::span(records, record_count));
           })
       .hits;
 }

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "lighting/bvh/scene_bvh.h"
+#include "lighting/visibility/visibility_backend.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/graph/render_graph.h"
 #include "runtime/runtime_fwd.h"
@@ -49,6 +50,11 @@ class HostVisibility {
  public:
   // Whether the host can answer every shadow ray of these instances (none alpha-tested).
   static bool supports(std::span<const BvhInstanceDesc> instances);
+  // Whether a frame on `backend` has host visibility for these instances: the one rule GpuScene
+  // builds the Embree scene by, `lantern info` reports and --set gbuffer=host checks.
+  static bool answers(VisibilityBackend backend, std::span<const BvhInstanceDesc> instances) {
+    return backend == VisibilityBackend::Host && supports(instances);
+  }
 
   // Builds Embree's scene over `bvh`'s meshes placed by `instances` (as given to
   // bvh.set_instances). lantern::RuntimeError naming Embree's error when it fails;

@@ -43,7 +43,9 @@ std::string_view visibility_setting_name(VisibilitySetting setting) {
   return "?";
 }
 
-VisibilityChoice choose_visibility(const runtime::DeviceInfo& device, VisibilitySetting setting) {
+namespace {
+
+VisibilityChoice choose_backend(const runtime::DeviceInfo& device, VisibilitySetting setting) {
   switch (setting) {
     case VisibilitySetting::Bvh:
       return {VisibilityBackend::Bvh, "visibility=bvh"};
@@ -75,6 +77,14 @@ VisibilityChoice choose_visibility(const runtime::DeviceInfo& device, Visibility
   }
   return {VisibilityBackend::Bvh,
           fmt::format("auto: {} device, where the compute BVH outruns ray query", device.type)};
+}
+
+}  // namespace
+
+VisibilityChoice choose_visibility(const runtime::DeviceInfo& device, VisibilitySetting setting) {
+  VisibilityChoice choice = choose_backend(device, setting);
+  choice.cpu_device = device.type == "cpu";
+  return choice;
 }
 
 }  // namespace lantern::lighting

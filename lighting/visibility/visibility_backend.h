@@ -44,6 +44,7 @@ std::string_view visibility_setting_name(VisibilitySetting setting);
 struct VisibilityChoice {
   VisibilityBackend backend = VisibilityBackend::Bvh;
   std::string why;  // one line: the setting and, for auto, the device fact that decided
+  bool cpu_device = false;  // the device is a CPU (lavapipe): the host G-buffer is a fast path
 };
 
 // The backend for `setting` on `device` (pure: tests pass a hand-made DeviceInfo). auto: ray query

@@ -2,10 +2,11 @@
 // validation: a transfer pass fills a mapped buffer, the host pass sees every value the device
 // wrote and overwrites them, a transfer pass copies what the host wrote to a second buffer. Over
 // frames, the host always sees this frame's fill (not last frame's), the copy always sees the
-// host's writes, and the timer reports the host pass among the device passes, in order.
+// host's writes, and the timer reports the host pass among the device passes, in order. A host
+// pass that needs no barrier runs at once instead (before the device passes declared ahead of
+// it are submitted; the timer then reports it first), beside one that waits.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -120,8 +121,10 @@ TEST(GraphHostPass, RunsBetweenSubmissionsAndSeesTheDevicesWrites) {
 // A host pass that needs no barrier (its buffer imported with no prior use, untouched by the
 // frame's earlier passes) runs at once: the device pass declared before it has not been
 // submitted yet when it runs (the host still sees the old contents of the buffer that pass
-// fills), and a later device pass still sees what the host wrote. The host G-buffer's trace
-// (gbuffer.host) runs this way so it overlaps the frame in flight.
+// fills), and a later device pass still sees what the host wrote. A second host pass that reads
+// the fill waits for it as before, and every device pass runs exactly once (the fill's value is
+// seen, the copy lands). The host G-buffer's trace (gbuffer.host) runs this way so it overlaps
+// the frame in flight.
 TEST(GraphHostPass, WithoutBarriersRunsAtOnceWithoutWaiting) {
   HostPassFixture f;
   Buffer fresh{f.device,
@@ -137,7 +140,7 @@ TEST(GraphHostPass, WithoutBarriersRunsAtOnceWithoutWaiting) {
   struct One {
     BufferHandle buffer;
   };
-  f.graph.add_pass<One>(
+  const BufferHandle filled = f.graph.add_pass<One>(
       "test.fill", PassKind::Transfer,
       [&](PassBuilder& p, One& d) {
         d.buffer = p.write(f.graph.import_buffer("test.shared", f.shared.handle(),
@@ -147,7 +150,7 @@ TEST(GraphHostPass, WithoutBarriersRunsAtOnceWithoutWaiting) {
       },
       [](PassContext& ctx, const One& d) {
         vkCmdFillBuffer(ctx.cmd(), ctx.buffer(d.buffer), 0, VK_WHOLE_SIZE, 5u);
-      });
+      }).buffer;
   std::uint32_t filled_before_host = 0;
   const BufferHandle written =
       f.graph
@@ -165,6 +168,17 @@ TEST(GraphHostPass, WithoutBarriersRunsAtOnceWithoutWaiting) {
                 for (std::uint32_t i = 0; i < kCount; ++i) out[i] = 3u * i + 1u;
               })
           .buffer;
+  std::uint32_t fill_seen_by_waiting_host = 0;
+  f.graph.add_pass<One>(
+      "test.host_after_fill", PassKind::Host,
+      [&](PassBuilder& p, One& d) {
+        d.buffer = p.write(filled, Access::HostReadWrite);
+        p.side_effect();
+      },
+      [&](PassContext&, const One&) {
+        const auto* seen = reinterpret_cast<const std::uint32_t*>(f.shared.mapped());
+        for (std::uint32_t i = 0; i < kCount; ++i) fill_seen_by_waiting_host += seen[i] == 5u;
+      });
   struct Copy {
     BufferHandle from, to;
   };
@@ -187,16 +201,18 @@ TEST(GraphHostPass, WithoutBarriersRunsAtOnceWithoutWaiting) {
   f.device.submit_and_wait([&](VkCommandBuffer cmd) { f.executor.record(f.graph, cmd, &f.timer); });
   f.graph.end_frame();
   EXPECT_EQ(filled_before_host, 0u) << "the host pass waited for the fill before it";
+  EXPECT_EQ(fill_seen_by_waiting_host, kCount) << "the waiting host pass missed the fill";
   const auto* shared = reinterpret_cast<const std::uint32_t*>(f.shared.mapped());
   const auto* copied = reinterpret_cast<const std::uint32_t*>(f.result.mapped());
   for (std::uint32_t i = 0; i < kCount; i += 511) {
     EXPECT_EQ(shared[i], 5u) << "the fill did not run";
     EXPECT_EQ(copied[i], 3u * i + 1u) << "the copy missed the host's write " << i;
   }
+  // Reported in the order they ran: the barrier-free host pass first.
   std::vector<std::string> names;
   for (const GpuTimer::Result& t : f.timer.resolve()) names.push_back(t.name);
-  std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"test.copy", "test.fill", "test.host"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"test.host", "test.fill", "test.host_after_fill",
+                                             "test.copy"}));
   EXPECT_EQ(f.device.validation_errors(), 0u) << f.graph.dump();
 }
 
