@@ -5,7 +5,9 @@
 // History: none. Shape (visibility method): gbuffer.draws (one workgroup) -> gbuffer.cull
 // (indirect, one workgroup per 128 triangles of an instance) -> gbuffer (one indirect draw of the
 // kept triangles) -> gbuffer.resolve (one full-screen triangle). Forward method: gbuffer.draws ->
-// gbuffer (one indirect draw per instance). Auto picks per frame (GBufferPass::method_for).
+// gbuffer (one indirect draw per instance). Host method: gbuffer.host (a host pass: Embree writes
+// gbuffer.host_hits) -> gbuffer.resolve ("hosthits" variant). Auto picks per frame
+// (GBufferPass::method_for).
 #include "lighting/gbuffer/gbuffer_pass.h"
 
 #include "shared/textures.h"

@@ -15,7 +15,8 @@
 // pixel's camera ray with Embree (HostVisibility::trace_primary) into gbuffer.host_hits, and
 // `gbuffer.resolve` (its "hosthits" variant) rebuilds the images from those (instance, triangle)
 // records: no triangle is culled or rasterised, so the cost follows the pixels, not the
-// triangles (log of them). Auto picks it over Visibility where the scene has host visibility.
+// triangles (log of them). Auto picks it over Visibility on a CPU device whose scene has host
+// visibility, from kHostTrianglesPerPixel triangles per pixel up.
 // Reads: scene frame_constants, vertices, indices, materials, instances (SceneHandles).
 // Writes: the six colour images (transient, returned) and internal transients.
 // History: none (motion comes from FrameConstants.prev_view_proj and
