@@ -208,7 +208,7 @@ GBufferHandles GBufferPass::add_pass(RenderGraph& graph, const SceneHandles& sce
       triangle_count(std::span<const gpu::GpuInstance>(instances.data(), instance_count));
   // Auto takes the host method only on a CPU device: on a GPU with visibility=host forced, the
   // host's rays are a comparison, not a fast path (it traces every instance of the scene).
-  const bool host_fast = host != nullptr && resolve_hits_ && device_.info().type == "cpu";
+  const bool host_fast = host != nullptr && resolve_hits_ && is_cpu_device(device_.info());
   const GBufferMethod method = method_for(options_.method, triangles, width, height, host_fast);
   if (method == GBufferMethod::Host) {
     if (host == nullptr) {

@@ -103,7 +103,8 @@ class GBufferPass {
   static std::uint64_t triangle_count(std::span<const gpu::GpuInstance> instances);
   // The method a frame of `triangles` at width x height uses (Auto resolved; others as given):
   // Forward for few triangles per pixel (kForwardPixelsPerTriangle), Host for many
-  // (kHostTrianglesPerPixel) where `host` (the scene has host visibility), else Visibility.
+  // (kHostTrianglesPerPixel) where `host` (the scene has host visibility on a CPU device: the
+  // frame and `lantern info` decide it alike), else Visibility.
   static GBufferMethod method_for(GBufferMethod method, std::uint64_t triangles,
                                   std::uint32_t width, std::uint32_t height, bool host = false);
 

@@ -43,6 +43,8 @@ std::string_view visibility_setting_name(VisibilitySetting setting) {
   return "?";
 }
 
+bool is_cpu_device(const runtime::DeviceInfo& device) { return device.type == "cpu"; }
+
 namespace {
 
 VisibilityChoice choose_backend(const runtime::DeviceInfo& device, VisibilitySetting setting) {
@@ -70,7 +72,7 @@ VisibilityChoice choose_backend(const runtime::DeviceInfo& device, VisibilitySet
   if (hardware) {
     return {VisibilityBackend::Bvh, fmt::format("auto: {} GPU without ray query", device.type)};
   }
-  if (device.type == "cpu") {
+  if (is_cpu_device(device)) {
     return {VisibilityBackend::Host,
             "auto: cpu device, where Embree on the host answers the shadow rays (a level with "
             "alpha-tested materials keeps the compute BVH)"};
@@ -83,7 +85,7 @@ VisibilityChoice choose_backend(const runtime::DeviceInfo& device, VisibilitySet
 
 VisibilityChoice choose_visibility(const runtime::DeviceInfo& device, VisibilitySetting setting) {
   VisibilityChoice choice = choose_backend(device, setting);
-  choice.cpu_device = device.type == "cpu";
+  choice.cpu_device = is_cpu_device(device);
   return choice;
 }
 

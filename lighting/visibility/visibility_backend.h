@@ -41,6 +41,10 @@ std::string_view visibility_backend_name(VisibilityBackend backend);
 VisibilitySetting parse_visibility_setting(std::string_view value);
 std::string_view visibility_setting_name(VisibilitySetting setting);
 
+// Whether `device` runs on the CPU (lavapipe): where the host backends (Embree answering shadow
+// rays, the host G-buffer) are the fast path.
+bool is_cpu_device(const runtime::DeviceInfo& device);
+
 struct VisibilityChoice {
   VisibilityBackend backend = VisibilityBackend::Bvh;
   std::string why;  // one line: the setting and, for auto, the device fact that decided

@@ -124,6 +124,16 @@ gpu::FrameConstants constants_for(const Camera& camera) {
   return lighting::make_frame_constants(camera, kWidth, kHeight, 0, 1, {});
 }
 
+// constants_for(camera) after a camera that stood a few centimetres away last frame (every pixel
+// has motion).
+gpu::FrameConstants moving_constants_for(const Camera& camera) {
+  gpu::FrameConstants fc = constants_for(camera);
+  Camera prev = camera;
+  prev.position += glm::vec3(0.05f, 0.02f, -0.1f);
+  fc.prev_view_proj = lighting::camera_view_proj(prev, kWidth, kHeight);
+  return fc;
+}
+
 struct Agreement {
   std::size_t pixels = 0, agree = 0, hits = 0, sky = 0, front_emitters = 0;
   std::size_t back_emitters = 0;  // emissive material seen from behind (must show no emission)
@@ -421,10 +431,7 @@ TEST_F(GBufferTest, NightMarketAgreesWithCpuTrace) {
 TEST_F(GBufferTest, VisibilityMethodMatchesForwardMethod) {
   const Level level = load_level_argument("night_market");
   const lighting::SceneData scene = lighting::build_scene_data(level);
-  gpu::FrameConstants fc = constants_for(level.camera);
-  Camera prev = level.camera;
-  prev.position += glm::vec3(0.05f, 0.02f, -0.1f);
-  fc.prev_view_proj = lighting::camera_view_proj(prev, kWidth, kHeight);
+  const gpu::FrameConstants fc = moving_constants_for(level.camera);
   test::GBufferHarness visibility(device, shaders, scene,
                                   {.method = lighting::GBufferMethod::Visibility});
   test::GBufferHarness forward(device, shaders, scene,
@@ -484,10 +491,7 @@ TEST_F(GBufferTest, VisibilityMethodMatchesForwardMethod) {
 TEST_F(GBufferTest, HostMethodMatchesVisibilityMethod) {
   const Level level = load_level_argument("night_market");
   const lighting::SceneData scene = lighting::build_scene_data(level);
-  gpu::FrameConstants fc = constants_for(level.camera);
-  Camera prev = level.camera;
-  prev.position += glm::vec3(0.05f, 0.02f, -0.1f);
-  fc.prev_view_proj = lighting::camera_view_proj(prev, kWidth, kHeight);
+  gpu::FrameConstants fc = moving_constants_for(level.camera);
   fc.jitter = glm::vec4(0.31f, -0.27f, -0.12f, 0.4f);
   test::GBufferHarness visibility(device, shaders, scene,
                                   {.method = lighting::GBufferMethod::Visibility});
