@@ -38,19 +38,17 @@ vec3 load_history(ivec2 q) {
   return history.p[uint(q.y) * push.out_width + uint(q.x)].rgb;
 }
 
-// Bilinear at continuous texel coordinate u (texel centres at integers), clamped at the edges.
-vec3 bilinear_in(vec2 u) {
-  ivec2 b = ivec2(floor(u));
-  vec2 f = u - vec2(b);
-  return mix(mix(load_in(b), load_in(b + ivec2(1, 0)), f.x),
-             mix(load_in(b + ivec2(0, 1)), load_in(b + ivec2(1, 1)), f.x), f.y);
-}
-
 vec3 bilinear_history(vec2 u) {
   ivec2 b = ivec2(floor(u));
   vec2 f = u - vec2(b);
   return mix(mix(load_history(b), load_history(b + ivec2(1, 0)), f.x),
              mix(load_history(b + ivec2(0, 1)), load_history(b + ivec2(1, 1)), f.x), f.y);
+}
+
+// Bilinear weights along one axis over the three texels n - 1, n, n + 1 for a sample at b + f,
+// where b = floor(u) is n - 1 or n (n = the texel nearest u).
+vec3 bilinear_weights(int b, int n, float f) {
+  return b < n ? vec3(1.0 - f, f, 0.0) : vec3(0.0, 1.0 - f, f);
 }
 
 void main() {
@@ -59,17 +57,24 @@ void main() {
   vec2 in_size = vec2(push.in_width, push.in_height);
   vec2 out_size = vec2(push.out_width, push.out_height);
   vec2 u = (vec2(o) + 0.5) * (in_size / out_size) - 0.5 - push.jitter;
-  vec3 current = bilinear_in(u);
+  // The 3x3 internal texels around the nearest one hold the bilinear footprint and the
+  // neighbourhood that rectifies the history: each is read once.
+  ivec2 b = ivec2(floor(u));
+  vec2 f = u - vec2(b);
+  ivec2 n = clamp(ivec2(floor(u + 0.5)), ivec2(0), ivec2(in_size) - 1);
+  vec3 wx = bilinear_weights(b.x, n.x, f.x);
+  vec3 wy = bilinear_weights(b.y, n.y, f.y);
+  vec3 current = vec3(0.0);
+  vec3 lo = vec3(3.0e38);
+  vec3 hi = vec3(0.0);
+  [[unroll]] for (int t = 0; t < 9; ++t) {
+    vec3 c = load_in(n + ivec2(t % 3 - 1, t / 3 - 1));
+    current += (wx[t % 3] * wy[t / 3]) * c;
+    lo = min(lo, c);
+    hi = max(hi, c);
+  }
   vec3 result = current;
   if ((push.flags & kUpscaleFlagHistoryValid) != 0u && push.history_weight > 0.0) {
-    ivec2 n = clamp(ivec2(floor(u + 0.5)), ivec2(0), ivec2(in_size) - 1);
-    vec3 lo = current;
-    vec3 hi = current;
-    [[unroll]] for (int t = 0; t < 9; ++t) {
-      vec3 c = load_in(n + ivec2(t % 3 - 1, t / 3 - 1));
-      lo = min(lo, c);
-      hi = max(hi, c);
-    }
     vec2 motion = imageLoad(gbuffer_motion, n).xy * (out_size / in_size);
     vec2 previous = vec2(o) + 0.5 + motion;
     if (is_finite(motion.x) && is_finite(motion.y) && all(greaterThanEqual(previous, vec2(0.0))) &&
