@@ -601,6 +601,41 @@ TEST_F(DenoiseGpuTest, HalfInternalSizeUpscalesAConstantImageUnchanged) {
                           [](const auto& p) { return p.first == "upscale.temporal"; }));
 }
 
+// upscale.temporal resamples this frame's jittered samples bilinearly: a linear ramp over the
+// internal pixels comes out as the ramp at each output pixel's position in internal pixels,
+// (o + 0.5) / 2 - 0.5 - jitter, wherever its bilinear footprint lies inside the image (the first
+// frame: no history to blend; raw output, so no filter touches the ramp).
+TEST_F(DenoiseGpuTest, HalfInternalSizeResamplesALinearRampExactly) {
+  Run run = make_run();
+  run.harness->renderer().set_output(lighting::FrameOutput::Raw);
+  constexpr std::uint32_t kInW = kW / 2, kInH = kH / 2;
+  run.harness->renderer().set_internal_size(kInW, kInH);
+  const auto ramp = [](float x, float y) { return 0.1f + 0.01f * x + 0.02f * y; };
+  ImageRGBA32F in(kW, kH);  // the first kInW x kInH pixels, rows of kInW, are read
+  for (std::uint32_t y = 0; y < kInH; ++y) {
+    for (std::uint32_t x = 0; x < kInW; ++x) {
+      const float v = ramp(static_cast<float>(x), static_cast<float>(y));
+      for (int c = 0; c < 4; ++c) in.pixels[4 * (std::size_t{y} * kInW + x) + c] = c == 3 ? 1.0f : v;
+    }
+  }
+  const ImageRGBA32F out = render(run, in, test::first_snapshot(level, kW, kH));
+  const glm::vec2 jitter = run.harness->renderer().jitter();
+  ASSERT_GT(glm::length(jitter), 0.0f) << "upscaling jitters the samples";
+  std::size_t checked = 0;
+  float worst = 0.0f;
+  for (std::uint32_t y = 0; y < kH; ++y) {
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      const glm::vec2 u = (glm::vec2(x, y) + 0.5f) * 0.5f - 0.5f - jitter;
+      if (u.x < 0.0f || u.y < 0.0f || u.x > kInW - 1.0f || u.y > kInH - 1.0f) continue;
+      ++checked;
+      const float* p = &out.pixels[4 * (std::size_t{y} * kW + x)];
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(p[c] - ramp(u.x, u.y)));
+    }
+  }
+  EXPECT_GT(checked, std::size_t{kW} * kH * 3 / 4);
+  EXPECT_LT(worst, 1e-5f) << "largest difference from the ramp at the output pixel";
+}
+
 // With the sample jitter on, a still scene's motion vectors are exactly the jitter step (this
 // frame's offset minus last frame's: the previous frame's pixel whose sample was nearest), so
 // ReSTIR's and the denoiser's reprojection stay consistent with it. Both G-buffer methods: the
