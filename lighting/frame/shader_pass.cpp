@@ -13,6 +13,15 @@ namespace lantern::lighting {
 using runtime::graph::Access;
 using runtime::graph::BufferHandle;
 
+namespace {
+// Whether the shader reads buffer `name` through a texel view (a utextureBuffer) rather than as
+// a storage buffer: the shader's declaration decides, the graph supplies the view.
+bool reads_texels(const runtime::ComputePipeline& pipeline, const char* name) {
+  const runtime::DescriptorBinding* binding = pipeline.find_binding(name);
+  return binding != nullptr && binding->type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+}
+}  // namespace
+
 ShaderPass::ShaderPass(runtime::Device& device, runtime::ShaderLibrary& shaders, std::string name,
                        const std::string& shader, std::string_view variant)
     : name_(std::move(name)),
@@ -40,11 +49,15 @@ std::vector<BufferHandle> ShaderPass::add_bytes(runtime::graph::RenderGraph& gra
             buffer.handle = b.write(buffer.handle, Access::StorageWrite);
           } else if (buffer.use == ShaderPassBuffer::ReadWrite) {
             buffer.handle = b.write(buffer.handle, Access::StorageReadWrite);
-          } else if (std::none_of(
-                         d.buffers.begin(), d.buffers.end(), [&](const ShaderPassBuffer& o) {
-                           return o.use == ShaderPassBuffer::Read && o.handle == buffer.handle;
-                         })) {
-            b.read(buffer.handle, Access::StorageRead);
+          } else {
+            // A handle read under two names is declared once per way it is read.
+            const bool texels = reads_texels(pipeline_, buffer.name);
+            if (std::none_of(d.buffers.begin(), d.buffers.end(), [&](const ShaderPassBuffer& o) {
+                  return o.use == ShaderPassBuffer::Read && o.handle == buffer.handle &&
+                         reads_texels(pipeline_, o.name) == texels;
+                })) {
+              b.read(buffer.handle, texels ? Access::UniformTexelRead : Access::StorageRead);
+            }
           }
           d.buffers.push_back(buffer);
         }
@@ -54,7 +67,11 @@ std::vector<BufferHandle> ShaderPass::add_bytes(runtime::graph::RenderGraph& gra
         d.scene.bind(b, ctx);
         d.gbuffer.bind(b, ctx);
         for (const ShaderPassBuffer& buffer : d.buffers) {
-          b.buffer(buffer.name, ctx.buffer(buffer.handle), 0, VK_WHOLE_SIZE);
+          if (buffer.use == ShaderPassBuffer::Read && reads_texels(pipeline_, buffer.name)) {
+            b.texel_buffer(buffer.name, ctx.texel_view(buffer.handle));
+          } else {
+            b.buffer(buffer.name, ctx.buffer(buffer.handle), 0, VK_WHOLE_SIZE);
+          }
         }
         pipeline_.bind(ctx.cmd(), b);
         pipeline_.push_constants(ctx.cmd(), push.data.data(), push.size);

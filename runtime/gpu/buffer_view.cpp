@@ -14,15 +14,19 @@
 
 namespace lantern::runtime {
 BufferView::BufferView(Device& device, const Buffer& buffer, VkFormat format, std::string_view name)
+    : BufferView(device, buffer.handle(), buffer.size(), format, name) {}
+
+BufferView::BufferView(Device& device, VkBuffer buffer, VkDeviceSize size, VkFormat format,
+                       std::string_view name)
     : device_(&device) {
   const VkDeviceSize texel = texel_size(format);  // throws for a format it does not know
-  const VkDeviceSize elements = buffer.size() / texel;
+  const VkDeviceSize elements = size / texel;
   if (elements > device.properties().limits.maxTexelBufferElements)
     throw RuntimeError(
         fmt::format("buffer view '{}': {} texels exceed the device's maxTexelBufferElements ({})",
                     name, elements, device.properties().limits.maxTexelBufferElements));
   VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
-  info.buffer = buffer.handle();
+  info.buffer = buffer;
   info.format = format;
   info.offset = 0;
   info.range = elements * texel;

@@ -18,6 +18,9 @@ class BufferView {
   // Whole buffer as `format` texels. Throws lantern::RuntimeError when the element count exceeds
   // the device's maxTexelBufferElements.
   BufferView(Device& device, const Buffer& buffer, VkFormat format, std::string_view name);
+  // The first `size` bytes of `buffer` (a buffer the caller created), the same way.
+  BufferView(Device& device, VkBuffer buffer, VkDeviceSize size, VkFormat format,
+             std::string_view name);
   ~BufferView();
   BufferView(BufferView&& other) noexcept;
   BufferView& operator=(BufferView&& other) noexcept;

@@ -13,6 +13,17 @@
 #include "runtime/graph/transient_create_info.h"
 
 namespace lantern::runtime::graph {
+namespace {
+
+// A graph buffer's texel view; none where the buffer holds no whole texel or more than the
+// device allows in one view (PassContext::texel_view then names the buffer).
+BufferView texel_view(Device& device, VkBuffer buffer, VkDeviceSize size, std::string_view name) {
+  const VkDeviceSize texels = size / kGraphTexelBytes;
+  if (texels == 0 || texels > device.properties().limits.maxTexelBufferElements) return {};
+  return BufferView(device, buffer, size, kGraphTexelFormat, fmt::format("{}.texels", name));
+}
+
+}  // namespace
 
 GraphExecutor::GraphExecutor(Device& device) : device_(device) {
   barrier2_ = device.fn().cmd_pipeline_barrier2;
@@ -54,7 +65,8 @@ CompileOptions GraphExecutor::compile_options() const {
 
 void GraphExecutor::release_transients() {
   const VkDevice device = device_.handle();
-  for (const Transient& t : transients_) {
+  for (Transient& t : transients_) {
+    t.texels = {};
     if (t.view != VK_NULL_HANDLE) vkDestroyImageView(device, t.view, nullptr);
     if (t.image != VK_NULL_HANDLE) vkDestroyImage(device, t.image, nullptr);
     if (t.buffer != VK_NULL_HANDLE) vkDestroyBuffer(device, t.buffer, nullptr);
@@ -110,7 +122,7 @@ void GraphExecutor::realize_transients(const GraphDecl& decl, const CompiledGrap
       vkGetBufferMemoryRequirements(device, t.buffer, &req);
       device_.set_name(t.buffer, r.name);
     }
-    transients_.push_back(t);
+    transients_.push_back(std::move(t));
     transient_resources_.push_back(compiled.aliased[i]);
     if (req.size > compiled.alias_requests[i].size)
       throw RenderGraphError(
@@ -135,6 +147,9 @@ void GraphExecutor::realize_transients(const GraphDecl& decl, const CompiledGrap
       VK_CHECK(vkCreateImageView(device, &view, nullptr, &t.view));
     } else {
       VK_CHECK(vkBindBufferMemory(device, t.buffer, transient_allocation_.memory, offset));
+      const ResourceDecl& r = decl.resources[transient_resources_[i]];
+      if ((r.buffer_usage & VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) != 0)
+        t.texels = texel_view(device_, t.buffer, r.buffer.size, r.name);
     }
   }
   transient_signature_ = signature;
@@ -142,10 +157,13 @@ void GraphExecutor::realize_transients(const GraphDecl& decl, const CompiledGrap
 
 PhysicalResource GraphExecutor::realize_history(const ResourceDecl& r) {
   const HistoryDesc desc = r.is_image ? HistoryDesc{r.image} : HistoryDesc{r.buffer};
-  // Usage every history gets, plus whatever this frame declares; recreated if that grows.
+  // Usage every history gets, plus whatever this frame declares; recreated if that grows. A
+  // history buffer is written in one frame and may be read as texels in the next: both slots
+  // are texel buffers from the start (a later-grown usage would recreate one and lose it).
   const VkFlags usage =
       r.is_image ? (r.image_usage | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT)
-                 : (r.buffer_usage | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+                 : (r.buffer_usage | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                    VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   const auto key = std::make_pair(r.name, r.history_slot);
   auto it = history_.find(key);
   if (it == history_.end() || !(it->second.desc == desc) || (it->second.usage & usage) != usage) {
@@ -166,7 +184,10 @@ PhysicalResource GraphExecutor::realize_history(const ResourceDecl& r) {
                               .usage = usage,
                               .memory = MemoryUsage::DeviceLocal,
                               .name = name});
-      it = history_.insert_or_assign(key, HistorySlot{desc, usage, std::move(buffer)}).first;
+      BufferView texels = texel_view(device_, buffer.handle(), buffer.size(), name);
+      it = history_
+               .insert_or_assign(key, HistorySlot{desc, usage, std::move(buffer), std::move(texels)})
+               .first;
     }
   }
   PhysicalResource p;
@@ -177,6 +198,7 @@ PhysicalResource GraphExecutor::realize_history(const ResourceDecl& r) {
     const Buffer& buffer = std::get<Buffer>(it->second.object);
     p.buffer = buffer.handle();
     p.size = buffer.size();
+    p.texel_view = it->second.texels.handle();
   }
   return p;
 }
@@ -192,7 +214,8 @@ void GraphExecutor::record(RenderGraph& graph, VkCommandBuffer cmd, GpuTimer* ti
   for (size_t i = 0; i < transients_.size(); ++i)
     physical[transient_resources_[i]] = {transients_[i].buffer,
                                          decl.resources[transient_resources_[i]].buffer.size,
-                                         transients_[i].image, transients_[i].view};
+                                         transients_[i].image, transients_[i].view,
+                                         transients_[i].texels.handle()};
   for (uint32_t r = 0; r < decl.resources.size(); ++r) {
     const ResourceDecl& res = decl.resources[r];
     if (res.origin == Origin::Imported)

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "runtime/gpu/buffer.h"
+#include "runtime/gpu/buffer_view.h"
 #include "runtime/gpu/image.h"
 #include "runtime/gpu/memory_allocator.h"
 #include "runtime/graph/render_graph.h"
@@ -57,11 +58,13 @@ class GraphExecutor {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
+    BufferView texels;  // where the frame reads the buffer as texels
   };
   struct HistorySlot {
     HistoryDesc desc;
     VkFlags usage = 0;
     std::variant<Buffer, Image> object;
+    BufferView texels;  // every history buffer has one (a later frame may read texels)
   };
 
   void realize_transients(const GraphDecl& decl, const CompiledGraph& compiled);

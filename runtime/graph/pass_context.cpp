@@ -22,6 +22,20 @@ const PhysicalResource& PassContext::resolve(uint32_t resource, bool image) cons
   return physical_[resource];
 }
 
+VkBufferView PassContext::texel_view(BufferHandle h) const {
+  const PhysicalResource& p = resolve(h.index, false);
+  const PassDecl& pass = decl_.passes[pass_];
+  const bool texel_read = std::any_of(pass.uses.begin(), pass.uses.end(), [&](const ResourceUse& u) {
+    return u.resource == h.index && u.access == Access::UniformTexelRead;
+  });
+  if (!texel_read || p.texel_view == VK_NULL_HANDLE)
+    throw RenderGraphError(fmt::format(
+        "pass '{}' asks for a texel view of '{}', which it did not declare as a texel read "
+        "(or which is imported without one)",
+        pass.name, decl_.resources[h.index].name));
+  return p.texel_view;
+}
+
 const ImageDesc& PassContext::image_desc(ImageHandle h) const {
   resolve(h.index, true);
   return decl_.resources[h.index].image;

@@ -16,6 +16,7 @@ struct PhysicalResource {
   VkDeviceSize size = 0;
   VkImage image = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;
+  VkBufferView texel_view = VK_NULL_HANDLE;  // kGraphTexelFormat, where some pass reads texels
 };
 
 class PassContext {
@@ -31,6 +32,9 @@ class PassContext {
   [[nodiscard]] VkDeviceSize buffer_size(BufferHandle h) const {
     return resolve(h.index, false).size;
   }
+  // The buffer's texel view (kGraphTexelFormat over the whole buffer), for a buffer this pass
+  // declared with Access::UniformTexelRead.
+  [[nodiscard]] VkBufferView texel_view(BufferHandle h) const;
   [[nodiscard]] VkImage image(ImageHandle h) const { return resolve(h.index, true).image; }
   [[nodiscard]] VkImageView view(ImageHandle h) const { return resolve(h.index, true).view; }
   [[nodiscard]] const ImageDesc& image_desc(ImageHandle h) const;

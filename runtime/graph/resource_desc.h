@@ -26,6 +26,11 @@ struct ImageDesc {
   }
 };
 
+// The format of a graph-made buffer's texel view (UniformTexelRead): one uvec4 per 16 bytes,
+// which a shader reinterprets (uintBitsToFloat) as the record it reads.
+inline constexpr VkFormat kGraphTexelFormat = VK_FORMAT_R32G32B32A32_UINT;
+inline constexpr VkDeviceSize kGraphTexelBytes = 16;
+
 // How a pass uses a resource. Reads keep the version; writes produce a new one.
 enum class Access : uint8_t {
   StorageRead,       // buffer or image, read in shaders
@@ -33,7 +38,8 @@ enum class Access : uint8_t {
   StorageReadWrite,  // buffer or image, read-modify-write in shaders (needs written contents)
   UniformRead,       // buffer
   UniformTexelRead,  // buffer, through a uniform texel buffer view (texelFetch on a
-                     // [u]samplerBuffer / [u]textureBuffer): SHADER_SAMPLED_READ
+                     // [u]samplerBuffer / [u]textureBuffer): SHADER_SAMPLED_READ; a graph-made
+                     // buffer's view is kGraphTexelFormat (PassContext::texel_view)
   Sampled,           // image through a sampler
   ColorAttachment,   // image, written by rasterisation
   DepthAttachment,   // image, depth test and write

@@ -16,8 +16,8 @@
 #include "denoise/denoise_common.glsl"
 
 layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_position;
-layout(std430, binding = 1) readonly buffer Guide { vec4 p[]; } guide;
-layout(std430, binding = 2) readonly buffer AccumIn { vec4 p[]; } accum_in;
+layout(binding = 1) uniform utextureBuffer guide;
+layout(binding = 2) uniform utextureBuffer accum_in;
 layout(std430, binding = 3) writeonly buffer AccumOut { vec4 p[]; } accum_out;
 layout(std430, binding = 4) readonly buffer LuminanceIn { float l[]; } luminance_in;
 
@@ -37,7 +37,7 @@ float filtered_variance(ivec2 pixel) {
       ivec2 q = pixel + ivec2(dx, dy);
       if (!denoise_inside(q)) continue;
       float w = kKernel[abs(dx)] * kKernel[abs(dy)];
-      sum += w * accum_in.p[denoise_index(q)].a;
+      sum += w * vec4_fetch(accum_in, denoise_index(q)).a;
       sum_w += w;
     }
   }
@@ -48,8 +48,8 @@ void main() {
   ivec2 pixel;
   if (!denoise_pixel(pixel)) return;
   uint index = denoise_index(pixel);
-  vec4 centre = accum_in.p[index];
-  vec4 g = guide.p[index];
+  vec4 centre = vec4_fetch(accum_in, index);
+  vec4 g = vec4_fetch(guide, index);
   if (denoise_guide_sky(g)) {
     accum_out.p[index] = centre;
     return;
@@ -70,9 +70,9 @@ void main() {
     ivec2 q = pixel + o * step;
     if (!denoise_inside(q)) continue;
     uint qi = denoise_index(q);
-    vec4 gq = guide.p[qi];
+    vec4 gq = vec4_fetch(guide, qi);
     if (denoise_guide_sky(gq)) continue;
-    vec4 c = accum_in.p[qi];
+    vec4 c = vec4_fetch(accum_in, qi);
     float w = kKernel[abs(o.x)] * kKernel[abs(o.y)] *
               denoise_geometry_weight(g, n, depth, gq, float(step),
                                       abs(stop_luminance(qi, c.rgb) - l) / lum_scale);

@@ -37,9 +37,9 @@ layout(binding = PASS_BINDING(4), rgba32ui) readonly uniform uimage2D gbuffer_id
 layout(binding = PASS_BINDING(5), rgba32f) readonly uniform image2D gbuffer_motion;
 layout(std430, binding = PASS_BINDING(6)) readonly buffer HdrIn { vec4 p[]; } hdr_in;
 layout(std430, binding = PASS_BINDING(7)) writeonly buffer SurfacesOut { RestirSurface s[]; } denoise_surfaces;
-layout(std430, binding = PASS_BINDING(8)) readonly buffer SurfacesHistory { RestirSurface s[]; } surfaces_history;
-layout(std430, binding = PASS_BINDING(9)) readonly buffer ColorHistory { vec4 p[]; } color_history;
-layout(std430, binding = PASS_BINDING(10)) readonly buffer MomentsHistory { vec4 p[]; } moments_history;
+layout(binding = PASS_BINDING(8)) uniform utextureBuffer surfaces_history;
+layout(binding = PASS_BINDING(9)) uniform utextureBuffer color_history;
+layout(binding = PASS_BINDING(10)) uniform utextureBuffer moments_history;
 layout(std430, binding = PASS_BINDING(11)) writeonly buffer AccumOut { vec4 p[]; } accum_out;
 layout(std430, binding = PASS_BINDING(12)) writeonly buffer MomentsOut { vec4 p[]; } moments_out;
 layout(std430, binding = PASS_BINDING(13)) writeonly buffer GuideOut { vec4 p[]; } guide_out;
@@ -108,11 +108,11 @@ void main() {
       ivec2 q = base + o;
       if (w <= 0.0 || !denoise_inside(q)) continue;
       uint qi = denoise_index(q);
-      if (!restir_surfaces_similar(surface, expected_depth, surfaces_history.s[qi], push.similarity)) {
+      if (!restir_surfaces_similar(surface, expected_depth, restir_surface_fetch(surfaces_history, qi), push.similarity)) {
         continue;
       }
-      history_color += w * color_history.p[qi].rgb;
-      history_moments += w * moments_history.p[qi];
+      history_color += w * vec4_fetch(color_history, qi).rgb;
+      history_moments += w * vec4_fetch(moments_history, qi);
       weight_sum += w;
     }
   }

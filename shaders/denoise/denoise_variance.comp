@@ -15,9 +15,9 @@
 #include "denoise/denoise_common.glsl"
 
 layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_position;
-layout(std430, binding = 1) readonly buffer Guide { vec4 p[]; } guide;
-layout(std430, binding = 2) readonly buffer AccumIn { vec4 p[]; } accum_in;
-layout(std430, binding = 3) readonly buffer MomentsIn { vec4 p[]; } moments_in;
+layout(binding = 1) uniform utextureBuffer guide;
+layout(binding = 2) uniform utextureBuffer accum_in;
+layout(binding = 3) uniform utextureBuffer moments_in;
 layout(std430, binding = 4) writeonly buffer AccumOut { vec4 p[]; } accum_out;
 layout(std430, binding = 5) writeonly buffer LuminanceOut { float l[]; } luminance_out;
 
@@ -25,9 +25,9 @@ void main() {
   ivec2 pixel;
   if (!denoise_pixel(pixel)) return;
   uint index = denoise_index(pixel);
-  vec4 centre = accum_in.p[index];
-  vec4 g = guide.p[index];
-  float frames = moments_in.p[index].z;
+  vec4 centre = vec4_fetch(accum_in, index);
+  vec4 g = vec4_fetch(guide, index);
+  float frames = vec4_fetch(moments_in, index).z;
   if (denoise_guide_sky(g)) {
     accum_out.p[index] = centre;
     luminance_out.l[index] = 0.0;
@@ -44,10 +44,10 @@ void main() {
     ivec2 q = pixel + ivec2(t % 3 - 1, t / 3 - 1);
     if (!denoise_inside(q)) continue;
     uint qi = denoise_index(q);
-    vec4 gq = guide.p[qi];
+    vec4 gq = vec4_fetch(guide, qi);
     if (denoise_guide_sky(gq)) continue;
     float w = denoise_geometry_weight(g, n, depth, gq, 1.0, 0.0);
-    smooth_sum += w * luminance(accum_in.p[qi].rgb);
+    smooth_sum += w * luminance(vec4_fetch(accum_in, qi).rgb);
     smooth_w += w;
   }
   luminance_out.l[index] = smooth_sum / max(smooth_w, 1e-6);
@@ -62,10 +62,10 @@ void main() {
       ivec2 q = pixel + ivec2(dx, dy);
       if (!denoise_inside(q)) continue;
       uint qi = denoise_index(q);
-      vec4 gq = guide.p[qi];
+      vec4 gq = vec4_fetch(guide, qi);
       if (denoise_guide_sky(gq)) continue;
       float w = denoise_geometry_weight(g, n, depth, gq, 1.0, 0.0);
-      float l = luminance(accum_in.p[qi].rgb);
+      float l = luminance(vec4_fetch(accum_in, qi).rgb);
       moments += w * vec2(l, l * l);
       sum_w += w;
     }

@@ -50,7 +50,7 @@ layout(push_constant) uniform Push { BaselinePush push; };
 // media's transmittance along the shadow ray, lib/volumes.glsl).
 vec3 sample_light(uint index, float select_pdf, vec3 x, vec3 n, vec3 ng, vec3 v, GpuMaterial mat,
                   vec2 u, inout uint rng) {
-  GpuLight light = scene_lights.l[index];
+  GpuLight light = scene_light(index);
   float pdf = select_pdf * light_eval_point_pdf(light);
   if (!(pdf > 0.0)) return vec3(0.0);
   vec3 y = light_eval_position(light, u, x, frame_constants.frame.scene.x);
@@ -106,8 +106,8 @@ vec3 shade_pixel(uvec2 pixel) {
       // Reuse u_select, rescaled to [0,1), for the alias slot.
       float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
       uint slot = alias_slot(frame_constants.frame.counts.x, u0);
-      uint index = alias_select(u1, light_alias.e[slot], slot);
-      float select_pdf = (1.0 - p_env) * light_alias.e[index].pdf;
+      uint index = alias_select(u1, scene_light_alias(slot), slot);
+      float select_pdf = (1.0 - p_env) * scene_light_alias(index).pdf;
       result += sample_light(index, select_pdf, x, n, ng, v, mat, u_light, rng);
     }
   }

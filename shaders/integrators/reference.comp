@@ -96,9 +96,9 @@ vec3 sample_light(Shading sh, inout uint rng) {
   float u1 = rng_next_float(rng);
   vec2 u_point = rng_next_vec2(rng);
   uint slot = alias_slot(frame_constants.frame.counts.x, u0);
-  uint index = alias_select(u1, light_alias.e[slot], slot);
-  float select = (1.0 - p_env) * light_alias.e[index].pdf;
-  GpuLight light = scene_lights.l[index];
+  uint index = alias_select(u1, scene_light_alias(slot), slot);
+  float select = (1.0 - p_env) * scene_light_alias(index).pdf;
+  GpuLight light = scene_light(index);
   float pdf_point = select * light_eval_point_pdf(light);
   if (!(pdf_point > 0.0)) return vec3(0.0);
   vec3 target = light_eval_position(light, u_point, sh.x, frame_constants.frame.scene.x);

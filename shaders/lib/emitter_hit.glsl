@@ -44,7 +44,7 @@ SurfaceHit surface_at(VisHit hit) {
 // same value light sampling uses), else the material's emission.
 vec3 emitted(SurfaceHit s, GpuMaterial mat, vec3 dir) {
   if (dot(s.geometric_normal, dir) >= 0.0) return vec3(0.0);
-  return s.light != kInvalidLight ? light_eval_radiance(scene_lights.l[s.light], s.position)
+  return s.light != kInvalidLight ? light_eval_radiance(scene_light(s.light), s.position)
                                    : mat.emission.rgb;
 }
 
@@ -52,8 +52,8 @@ vec3 emitted(SurfaceHit s, GpuMaterial mat, vec3 dir) {
 // at squared distance dist2 (both selection steps), as a solid-angle density.
 float triangle_light_pdf(uint index, float dist2, vec3 l) {
   if (frame_constants.frame.counts.x == 0u) return 0.0;
-  float select = (1.0 - env_header.env.params.x) * light_alias.e[index].pdf;
-  return select * light_eval_solid_angle_pdf(scene_lights.l[index], l, dist2);
+  float select = (1.0 - env_header.env.params.x) * scene_light_alias(index).pdf;
+  return select * light_eval_solid_angle_pdf(scene_light(index), l, dist2);
 }
 
 float power_heuristic(float a, float b) {

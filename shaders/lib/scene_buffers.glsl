@@ -2,7 +2,8 @@
 // names (shared/scene_bindings.h), under the name SceneHandles::bind binds it by
 // (lighting/scene/scene_buffers.h):
 //   frame_constants.frame (FrameConstants), scene_vertices.v[], scene_indices.i[],
-//   scene_materials.m[], scene_instances.i[], scene_lights.l[], light_alias.e[],
+//   scene_materials.m[], scene_instances.i[], scene_light(i) and scene_light_alias(i) (the
+//   lights and their alias table through rgba32ui texel views),
 //   light_previous_to_current.index[] (uint per last frame's light: its current index or
 //   kInvalidLight), the BVH (lib/bvh_traverse.glsl: bvh_header, bvh_*_texels; in the rayquery
 //   variant instead the TLAS scene_tlas at kSceneTlas) and the
@@ -43,12 +44,26 @@ layout(std430, binding = kSceneMaterials) restrict readonly buffer MaterialBuffe
 layout(std430, binding = kSceneInstances) restrict readonly buffer InstanceBuffer {
   GpuInstance i[];
 } scene_instances;
-layout(std430, binding = kSceneLights) restrict readonly buffer LightBuffer {
-  GpuLight l[];
-} scene_lights;
-layout(std430, binding = kSceneLightAlias) restrict readonly buffer AliasBuffer {
-  AliasEntry e[];
-} light_alias;
+// The lights through an rgba32ui texel view (kGpuLightTexels texels each): lavapipe fetches
+// texels faster than it loads storage buffers, and p̂ reads a light record at every evaluation
+// (restir.temporal 0.86x, restir.spatial 0.83x the time with storage-buffer reads, night_market).
+#extension GL_EXT_samplerless_texture_functions : require
+layout(binding = kSceneLights) uniform utextureBuffer scene_light_texels;
+GpuLight scene_light(uint index) {
+  int base = int(kGpuLightTexels * index);
+  GpuLight light;
+  light.p0 = uintBitsToFloat(texelFetch(scene_light_texels, base));
+  light.p1 = uintBitsToFloat(texelFetch(scene_light_texels, base + 1));
+  light.p2 = uintBitsToFloat(texelFetch(scene_light_texels, base + 2));
+  light.radiance = uintBitsToFloat(texelFetch(scene_light_texels, base + 3));
+  return light;
+}
+// The alias table through an rgba32ui texel view (one texel per AliasEntry), as the lights.
+layout(binding = kSceneLightAlias) uniform utextureBuffer light_alias_texels;
+AliasEntry scene_light_alias(uint slot) {
+  uvec4 t = texelFetch(light_alias_texels, int(slot));
+  return AliasEntry(uintBitsToFloat(t.x), t.y, uintBitsToFloat(t.z), t.w);
+}
 layout(std430, binding = kSceneLightPreviousToCurrent) restrict readonly buffer RemapBuffer {
   uint index[];
 } light_previous_to_current;

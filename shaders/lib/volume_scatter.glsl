@@ -73,9 +73,9 @@ bool medium_choose_light(inout uint rng, out MediumLight m) {
   if (lights == 0u) return false;
   float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
   uint slot = alias_slot(lights, u0);
-  m.index = alias_select(u1, light_alias.e[slot], slot);
-  GpuLight light = scene_lights.l[m.index];
-  m.pdf = (1.0 - p_env) * light_alias.e[m.index].pdf * light_eval_point_pdf(light);
+  m.index = alias_select(u1, scene_light_alias(slot), slot);
+  GpuLight light = scene_light(m.index);
+  m.pdf = (1.0 - p_env) * scene_light_alias(m.index).pdf * light_eval_point_pdf(light);
   m.uv = u_light;
   m.positional = light_kind(light) != kLightDirectional;
   if (m.positional) m.y = light_eval_position(light, u_light, vec3(0.0), fc.scene.x);
@@ -139,7 +139,7 @@ vec3 volume_sample_light(VolumeSample s, vec3 x, vec3 dir, float g, out vec3 tar
     target = x + l * (kDirectionalShadowRadii * fc.scene.x);
     return light_eval_scattered_incident(l, env_miss_radiance(l), 1.0, dir, g);
   }
-  GpuLight light = scene_lights.l[s.light];
+  GpuLight light = scene_light(s.light);
   target = light_eval_position(light, s.uv, x, fc.scene.x);
   return light_eval_scattered_at(light, target, x, dir, g);
 }
@@ -264,7 +264,7 @@ float volume_light_mis_weight(VolumeSample s, vec3 origin, vec3 dir, float t_end
   if (s.light == kEnvironmentLight) {
     l = env_uv_to_world_direction(env_header.env, s.uv);
   } else {
-    GpuLight light = scene_lights.l[s.light];
+    GpuLight light = scene_light(s.light);
     if (light_kind(light) != kLightTriangle) return 1.0;
     y = light_eval_position(light, s.uv, x, frame_constants.frame.scene.x);
     vec3 to_light = y - x;

@@ -21,6 +21,7 @@
 #include "shared/scene.h"
 
 #include "lib/scene_buffers.glsl"
+#include "lib/texel_records.glsl"
 
 layout(local_size_x = kRestirTileSize, local_size_y = kRestirTileSize) in;
 
@@ -93,7 +94,7 @@ vec3 restir_contribution(ShadingPoint p, uint light, vec2 uv) {
   if (!p.valid) return vec3(0.0);
   if (light == kEnvironmentLight) return restir_env_contribution(p, uv);
   if (light >= restir_light_count()) return vec3(0.0);
-  return restir_light_contribution(p, scene_lights.l[light], uv);
+  return restir_light_contribution(p, scene_light(light), uv);
 }
 
 // The point a shadow ray from p aims at for sample (light, uv): on the light, or far along the
@@ -103,7 +104,7 @@ vec3 restir_light_position(ShadingPoint p, uint light, vec2 uv) {
     return p.x + env_uv_to_world_direction(env_header.env, uv) *
                      (kDirectionalShadowRadii * restir_scene_radius());
   }
-  return light_eval_position(scene_lights.l[light], uv, p.x, restir_scene_radius());
+  return light_eval_position(scene_light(light), uv, p.x, restir_scene_radius());
 }
 
 // p̂ of sample s at p.

@@ -32,9 +32,7 @@ layout(std430, binding = PASS_BINDING(5)) writeonly buffer SurfaceOut {
 layout(std430, binding = PASS_BINDING(6)) writeonly buffer ReservoirOut {
   PackedReservoir r[];
 } reservoirs_out;
-layout(std430, binding = PASS_BINDING(7)) readonly buffer PresampledIn {
-  PresampledLight e[];
-} presampled_lights;
+layout(binding = PASS_BINDING(7)) uniform utextureBuffer presampled_lights;
 
 // Probability of the GGX lobe in the BSDF sampling mixture (the rest is cosine-weighted).
 float specular_lobe_probability(ShadingPoint p) {
@@ -61,7 +59,7 @@ float bsdf_area_pdf(ShadingPoint p, GpuLight light, vec3 y) {
 // is over the emitters; the environment takes p_env of the selections first). Presampled
 // candidates have the same marginal density (restir.presample stores it).
 float light_strategy_pdf(uint index, float p_env) {
-  return (1.0 - p_env) * light_alias.e[index].pdf * light_eval_point_pdf(scene_lights.l[index]);
+  return (1.0 - p_env) * scene_light_alias(index).pdf * light_eval_point_pdf(scene_light(index));
 }
 
 // A light candidate from u0 (in [0,1), after the environment's share) and u1: from this
@@ -70,15 +68,20 @@ float light_strategy_pdf(uint index, float p_env) {
 uint draw_light(float u0, float u1, uint tile_base, out GpuLight light, out float pdf) {
   if (push.presample_tiles > 0u) {
     uint slot = min(uint(u0 * float(kRestirPresampleTileSize)), kRestirPresampleTileSize - 1u);
-    PresampledLight e = presampled_lights.e[tile_base + slot];
-    light = e.light;
-    pdf = e.pdf;
-    return e.index;
+    // PresampledLight through its texel view: the light record, then index and pdf.
+    int base = int(kPresampledLightTexels * (tile_base + slot));
+    light.p0 = uintBitsToFloat(texelFetch(presampled_lights, base));
+    light.p1 = uintBitsToFloat(texelFetch(presampled_lights, base + 1));
+    light.p2 = uintBitsToFloat(texelFetch(presampled_lights, base + 2));
+    light.radiance = uintBitsToFloat(texelFetch(presampled_lights, base + 3));
+    uvec2 index_pdf = texelFetch(presampled_lights, base + 4).xy;
+    pdf = uintBitsToFloat(index_pdf.y);
+    return index_pdf.x;
   }
   uint slot = alias_slot(restir_light_count(), u0);
-  uint index = alias_select(u1, light_alias.e[slot], slot);
-  light = scene_lights.l[index];
-  pdf = light_alias.e[index].pdf * light_eval_point_pdf(light);
+  uint index = alias_select(u1, scene_light_alias(slot), slot);
+  light = scene_light(index);
+  pdf = scene_light_alias(index).pdf * light_eval_point_pdf(light);
   return index;
 }
 
@@ -183,11 +186,11 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
       }
     }
     if (index != kInvalidLight && index != kEnvironmentLight &&
-        light_kind(scene_lights.l[index]) == kLightTriangle) {
+        light_kind(scene_light(index)) == kLightTriangle) {
       target = light_eval_target(restir_contribution(p, index, uv));
-      vec3 y = light_eval_position(scene_lights.l[index], uv, p.x, restir_scene_radius());
+      vec3 y = light_eval_position(scene_light(index), uv, p.x, restir_scene_radius());
       float denominator = m_light * light_strategy_pdf(index, p_env) +
-                          m_bsdf * bsdf_area_pdf(p, scene_lights.l[index], y);
+                          m_bsdf * bsdf_area_pdf(p, scene_light(index), y);
       weight = safe_ratio(target, denominator);
     }
     reservoir_update(r, light_sample_make(index, uv, target), weight, u_pick);

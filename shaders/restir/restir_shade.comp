@@ -18,9 +18,7 @@
 
 layout(binding = PASS_BINDING(0), rgba32f) readonly uniform image2D gbuffer_emission_metallic;
 layout(binding = PASS_BINDING(1), rgba32f) readonly uniform image2D gbuffer_motion;
-layout(std430, binding = PASS_BINDING(2)) readonly buffer SurfaceIn {
-  RestirSurface s[];
-} restir_surfaces;
+layout(binding = PASS_BINDING(2)) uniform utextureBuffer restir_surfaces;
 layout(std430, binding = PASS_BINDING(3)) buffer ReservoirInOut {
   PackedReservoir r[];
 } reservoirs_in;
@@ -73,7 +71,7 @@ void shade_main() {
   uvec2 pixel;
   if (!restir_pixel(pixel)) return;
   uint index = restir_index(pixel);
-  RestirSurface surface = restir_surfaces.s[index];
+  RestirSurface surface = restir_surface_fetch(restir_surfaces, index);
   Reservoir r = reservoir_unpack(reservoirs_in.r[index]);
   vis_host_begin(index);
   vec3 value;

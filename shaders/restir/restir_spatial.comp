@@ -14,12 +14,8 @@
 #define RESTIR_REUSE_PASS_DOMAINS
 #include "restir/restir_common.glsl"
 
-layout(std430, binding = PASS_BINDING(0)) readonly buffer SurfaceIn {
-  RestirSurface s[];
-} restir_surfaces;
-layout(std430, binding = PASS_BINDING(1)) readonly buffer ReservoirIn {
-  PackedReservoir r[];
-} reservoirs_in;
+layout(binding = PASS_BINDING(0)) uniform utextureBuffer restir_surfaces;
+layout(binding = PASS_BINDING(1)) uniform utextureBuffer reservoirs_in;
 layout(std430, binding = PASS_BINDING(2)) writeonly buffer ReservoirOut {
   PackedReservoir r[];
 } reservoirs_out;
@@ -33,13 +29,13 @@ ShadingPoint g_canonical_point;
 vec3 g_camera;
 Reservoir combine_domain_reservoir(uint j) {
   if (j == 0u) return g_canonical;
-  Reservoir r = reservoir_unpack(reservoirs_in.r[g_domain_pixel[j]]);
+  Reservoir r = reservoir_unpack(reservoir_fetch(reservoirs_in, g_domain_pixel[j]));
   reservoir_set_visibility(r, false, false);  // its visibility was seen from another surface
   return r;
 }
 float combine_domain_target(uint j, LightSample y) {
   ShadingPoint p = j == 0u ? g_canonical_point
-                           : restir_shading_point(restir_surfaces.s[g_domain_pixel[j]], g_camera);
+                           : restir_shading_point(restir_surface_fetch(restir_surfaces, g_domain_pixel[j]), g_camera);
   return restir_target(p, y);
 }
 #include "restir/restir_reuse.glsl"
@@ -48,8 +44,8 @@ void main() {
   uvec2 pixel;
   if (!restir_pixel(pixel)) return;
   uint index = restir_index(pixel);
-  RestirSurface surface = restir_surfaces.s[index];
-  Reservoir r = reservoir_unpack(reservoirs_in.r[index]);
+  RestirSurface surface = restir_surface_fetch(restir_surfaces, index);
+  Reservoir r = reservoir_unpack(reservoir_fetch(reservoirs_in, index));
   if (!restir_surface_valid(surface)) {
     reservoirs_out.r[index] = reservoir_pack(r);
     return;
@@ -72,7 +68,7 @@ void main() {
     ivec2 q = ivec2(pixel) + ivec2(round(radius * vec2(cos(angle), sin(angle))));
     if (q == ivec2(pixel) || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
     uint q_index = uint(q.y) * restir_size().x + uint(q.x);
-    RestirSurface other = restir_surfaces.s[q_index];
+    RestirSurface other = restir_surface_fetch(restir_surfaces, q_index);
     if (!restir_surfaces_similar(surface, depth, other, push.similarity)) continue;
     g_domain_pixel[count] = q_index;
     ++count;

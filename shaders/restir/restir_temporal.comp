@@ -17,18 +17,10 @@
 #include "restir/restir_reuse.glsl"
 
 layout(binding = PASS_BINDING(0), rgba32f) readonly uniform image2D gbuffer_motion;
-layout(std430, binding = PASS_BINDING(1)) readonly buffer SurfaceIn {
-  RestirSurface s[];
-} restir_surfaces;
-layout(std430, binding = PASS_BINDING(2)) readonly buffer SurfaceHistory {
-  RestirSurface s[];
-} surfaces_history;
-layout(std430, binding = PASS_BINDING(3)) readonly buffer ReservoirIn {
-  PackedReservoir r[];
-} reservoirs_in;
-layout(std430, binding = PASS_BINDING(4)) readonly buffer ReservoirHistory {
-  PackedReservoir r[];
-} reservoirs_history;
+layout(binding = PASS_BINDING(1)) uniform utextureBuffer restir_surfaces;
+layout(binding = PASS_BINDING(2)) uniform utextureBuffer surfaces_history;
+layout(binding = PASS_BINDING(3)) uniform utextureBuffer reservoirs_in;
+layout(binding = PASS_BINDING(4)) uniform utextureBuffer reservoirs_history;
 layout(std430, binding = PASS_BINDING(5)) writeonly buffer ReservoirOut {
   PackedReservoir r[];
 } reservoirs_out;
@@ -51,7 +43,7 @@ ivec2 find_history(uvec2 pixel, RestirSurface surface, inout uint rng, out uint 
     vec2 jitter = t == 0u ? vec2(0.0) : (rng_next_vec2(rng) - 0.5) * 3.0;
     ivec2 q = ivec2(floor(previous + jitter));
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-    RestirSurface old = surfaces_history.s[q.y * size.x + q.x];
+    RestirSurface old = restir_surface_fetch(surfaces_history, q.y * size.x + q.x);
     if (restir_surfaces_similar(surface, expected_depth, old, push.similarity)) {
       status = kRestirStatusReprojected + t;
       return q;
@@ -67,14 +59,14 @@ void main() {
   Reservoir r = reservoir_empty();
   uint status = kRestirStatusNoHistory;
   if (inside) {
-    RestirSurface surface = restir_surfaces.s[index];
-    r = reservoir_unpack(reservoirs_in.r[index]);
+    RestirSurface surface = restir_surface_fetch(restir_surfaces, index);
+    r = reservoir_unpack(reservoir_fetch(reservoirs_in, index));
     if (restir_surface_valid(surface) && (push.flags & kRestirFlagHistoryValid) != 0u) {
       uint rng = frame_rng(pixel, kRestirRngTemporal);
       ivec2 q = find_history(pixel, surface, rng, status);
       if (q.x >= 0) {
         uint q_index = uint(q.y) * restir_size().x + uint(q.x);
-        Reservoir history = reservoir_unpack(reservoirs_history.r[q_index]);
+        Reservoir history = reservoir_unpack(reservoir_fetch(reservoirs_history, q_index));
         reservoir_age_one_frame(history);
         // Visibility reuse only along a direct reprojection (a jittered retry is another point).
         if (status != kRestirStatusReprojected) reservoir_set_visibility(history, false, false);
@@ -94,7 +86,7 @@ void main() {
           g_reservoirs[0] = r;
           g_points[0] = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
           g_reservoirs[1] = history;
-          g_points[1] = restir_shading_point(surfaces_history.s[q_index],
+          g_points[1] = restir_shading_point(restir_surface_fetch(surfaces_history, q_index),
                                              frame_constants.frame.prev_camera_position.xyz);
           r = restir_combine(2u, push.bias_correction, rng);
         }

@@ -25,6 +25,9 @@ struct GpuLight {
   vec4 radiance;  // rgb: W/(sr m^2) for triangles, W/sr for point/spot, W/m^2 for directional
 };
 LANTERN_STATIC_SIZE(GpuLight, 64);
+// rgba32ui texels per GpuLight where shaders fetch it through a texel view (scene_light(),
+// lib/scene_buffers.glsl): p0, p1, p2, radiance in that order.
+LANTERN_CONST uint kGpuLightTexels = 4u;
 
 LANTERN_FUNC uint light_kind(GpuLight light) { return floatBitsToUint(light.p0.w); }
 

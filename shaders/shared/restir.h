@@ -67,6 +67,9 @@ struct PresampledLight {
   uint pad1;
 };
 LANTERN_STATIC_SIZE(PresampledLight, 80);
+// rgba32ui texels per PresampledLight through restir.initial's texel view: the light's
+// kGpuLightTexels, then (index, pdf, pad0, pad1).
+LANTERN_CONST uint kPresampledLightTexels = 5u;
 
 // What the restir.* passes take from the settings (lighting/restir/restir_settings.h). The frame's
 // size, index, seed, light counts and scene radius are FrameConstants' (restir_common.glsl).
@@ -104,6 +107,9 @@ struct RestirSurface {
   uvec4 material;       // x: metallic, specular factor (unorm 2x16); y: material id; z, w: 0
 };
 LANTERN_STATIC_SIZE(RestirSurface, 48);
+// rgba32ui texels per RestirSurface where a pass reads surfaces through a texel view
+// (restir_surface_fetch): position_depth, packed, material.
+LANTERN_CONST uint kRestirSurfaceTexels = 3u;
 
 LANTERN_FUNC RestirSurface restir_surface_sky() {
   RestirSurface s;

@@ -2,6 +2,8 @@
 // image, reduce the image into row sums, accumulate the sums with last frame's history and copy
 // them to a host buffer. Checked on the CPU, over frames with and without history, clean under
 // validation including synchronization validation, with synchronization2 and with v1 barriers.
+// The transform reads the transient values, and the accumulation last frame's history, through
+// the graph's texel views (PassContext::texel_view).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -103,7 +105,7 @@ struct Fixture {
     const Img& transform = graph.add_pass<Img>(
         "test.transform", PassKind::Compute,
         [&](PassBuilder& b, Img& d) {
-          b.read(fill.values, Access::StorageRead);
+          b.read(fill.values, Access::UniformTexelRead);
           d.image =
               b.write(graph.create_image("test.image", {{kWidth, kHeight, 1}, VK_FORMAT_R32_UINT}),
                       Access::StorageWrite);
@@ -111,7 +113,7 @@ struct Fixture {
         [this, values = fill.values](PassContext& ctx, const Img& d) {
           pipes.transform.bind(
               ctx.cmd(), Bindings(pipes.transform)
-                             .buffer("values", ctx.buffer(values), 0, VK_WHOLE_SIZE)
+                             .texel_buffer("values", ctx.texel_view(values))
                              .image_view("image", ctx.view(d.image), VK_IMAGE_LAYOUT_GENERAL));
           pipes.transform.push_constants(ctx.cmd(), Push2{kWidth, kHeight});
           pipes.transform.dispatch_threads(ctx.cmd(), kWidth, kHeight);
@@ -145,18 +147,20 @@ struct Fixture {
           d.sums = reduce.sums;
           d.previous = previous;
           b.read(reduce.sums, Access::StorageRead);
-          if (previous) b.read(previous, Access::StorageRead);
+          // Without history the sums stand in for `previous` (not read): a texel read too.
+          b.read(previous ? previous : reduce.sums, Access::UniformTexelRead);
           d.running = b.write(running, Access::StorageWrite);
           d.out = b.write(out, Access::StorageWrite);
         },
         [this](PassContext& ctx, const Acc& d) {
-          // Without history the shader ignores `previous`; bind the sums there (declared, same
-          // size).
-          const VkBuffer previous_buffer = d.previous ? ctx.buffer(d.previous) : ctx.buffer(d.sums);
+          // Without history the shader ignores `previous`; bind the sums' view there (declared,
+          // same size).
+          const VkBufferView previous_view =
+              d.previous ? ctx.texel_view(d.previous) : ctx.texel_view(d.sums);
           pipes.accumulate.bind(ctx.cmd(),
                                 Bindings(pipes.accumulate)
                                     .buffer("sums", ctx.buffer(d.sums), 0, VK_WHOLE_SIZE)
-                                    .buffer("previous", previous_buffer, 0, VK_WHOLE_SIZE)
+                                    .texel_buffer("previous", previous_view)
                                     .buffer("running", ctx.buffer(d.running), 0, VK_WHOLE_SIZE)
                                     .buffer("readback", ctx.buffer(d.out), 0, VK_WHOLE_SIZE));
           pipes.accumulate.push_constants(ctx.cmd(), Push2{kHeight, d.previous ? 1u : 0u});

@@ -182,6 +182,37 @@ TEST(GraphValidation, ExecuteMayResolveOnlyDeclaredResources) {
   EXPECT_THROW((void)ctx.buffer(other), RenderGraphError);
 }
 
+// A texel view only for a buffer the pass declared as a texel read (and that has one): a storage
+// read of the same buffer, or an imported buffer without a view, is refused by name.
+TEST(GraphValidation, TexelViewOnlyForADeclaredTexelRead) {
+  RenderGraph g;
+  const BufferHandle texels = g.import_buffer("texels", VK_NULL_HANDLE, {64});
+  const BufferHandle storage = g.import_buffer("storage", VK_NULL_HANDLE, {64});
+  g.add_pass<Empty>(
+      "test.fetch", PassKind::Compute,
+      [&](PassBuilder& b, Empty&) {
+        b.read(texels, Access::UniformTexelRead);
+        b.read(storage, Access::StorageRead);
+        b.side_effect();
+      },
+      kNoExecute);
+  g.bake();
+  std::vector<PhysicalResource> physical(g.decl().resources.size());
+  const VkBufferView view = reinterpret_cast<VkBufferView>(std::uintptr_t{0x1234});
+  physical[texels.index].texel_view = view;
+  physical[storage.index].texel_view = view;
+  PassContext ctx(VK_NULL_HANDLE, g.decl(), 0, physical);
+  EXPECT_EQ(ctx.texel_view(texels), view);
+  try {
+    (void)ctx.texel_view(storage);
+    ADD_FAILURE() << "a storage read got a texel view";
+  } catch (const RenderGraphError& e) {
+    EXPECT_NE(std::string(e.what()).find("'storage'"), std::string::npos) << e.what();
+  }
+  physical[texels.index].texel_view = VK_NULL_HANDLE;  // imported without a view
+  EXPECT_THROW((void)ctx.texel_view(texels), RenderGraphError);
+}
+
 // Host passes use mapped buffers on the host, and only they do: a compute pass declaring a host
 // access, a host pass declaring a shader access, and a host pass on a transient (device-local,
 // unmapped) buffer are refused.

@@ -300,6 +300,30 @@ std::vector<std::filesystem::path> shared_headers() {
   return headers;
 }
 
+// Records the shaders fetch through rgba32ui texel views (the render graph's kGraphTexelFormat,
+// the scene's texel rows) are whole texels with their members where the fetch functions read
+// them: scene_light(), scene_light_alias(), restir_surface_fetch(), reservoir_fetch(), and
+// restir.initial's presampled lights.
+TEST(Layout, TexelFetchedRecordsAreWholeTexels) {
+  EXPECT_EQ(sizeof(gpu::GpuLight), 16u * gpu::kGpuLightTexels);
+  EXPECT_EQ(offsetof(gpu::GpuLight, radiance), 16u * (gpu::kGpuLightTexels - 1));
+  EXPECT_EQ(sizeof(gpu::AliasEntry), 16u);
+  EXPECT_EQ(offsetof(gpu::AliasEntry, threshold), 0u);
+  EXPECT_EQ(offsetof(gpu::AliasEntry, alias), 4u);
+  EXPECT_EQ(offsetof(gpu::AliasEntry, pdf), 8u);
+  EXPECT_EQ(sizeof(gpu::RestirSurface), 16u * gpu::kRestirSurfaceTexels);
+  EXPECT_EQ(offsetof(gpu::RestirSurface, packed), 16u);
+  EXPECT_EQ(offsetof(gpu::RestirSurface, material), 32u);
+  EXPECT_EQ(sizeof(gpu::PackedReservoir), 16u);
+  EXPECT_EQ(offsetof(gpu::PackedReservoir, light_age), 0u);
+  EXPECT_EQ(offsetof(gpu::PackedReservoir, uv), 4u);
+  EXPECT_EQ(offsetof(gpu::PackedReservoir, W), 8u);
+  EXPECT_EQ(offsetof(gpu::PackedReservoir, m_target), 12u);
+  EXPECT_EQ(sizeof(gpu::PresampledLight), 16u * gpu::kPresampledLightTexels);
+  EXPECT_EQ(offsetof(gpu::PresampledLight, index), 16u * gpu::kGpuLightTexels);
+  EXPECT_EQ(offsetof(gpu::PresampledLight, pdf), 16u * gpu::kGpuLightTexels + 4u);
+}
+
 TEST(Layout, EverySharedHeaderStructIsChecked) {
   std::set<std::string> covered;
   for (const StructLayout& s : cpp_layouts()) covered.insert(s.name);

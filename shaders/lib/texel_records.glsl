@@ -1,0 +1,34 @@
+// Records a pass only reads, fetched through an rgba32ui texel view of a render-graph buffer
+// (runtime/graph's kGraphTexelFormat): ShaderPass binds a view wherever the shader declares the
+// buffer as a utextureBuffer, and a storage buffer otherwise. On lavapipe a texel fetch is
+// cheaper than a storage-buffer load (restir.spatial 0.81x, restir.temporal 0.88x the time with
+// the surfaces and reservoirs as texels, night_market 320x180), and the reuse passes and the
+// denoiser read neighbours' records at every tap. Each record is whole texels, members in
+// declaration order (tests/layout: TexelFetchedRecordsAreWholeTexels).
+#ifndef LANTERN_LIB_TEXEL_RECORDS_GLSL
+#define LANTERN_LIB_TEXEL_RECORDS_GLSL
+
+#extension GL_EXT_samplerless_texture_functions : require
+
+#include "shared/reservoir_pack.h"
+#include "shared/restir.h"
+
+vec4 vec4_fetch(utextureBuffer texels, uint index) {
+  return uintBitsToFloat(texelFetch(texels, int(index)));
+}
+
+RestirSurface restir_surface_fetch(utextureBuffer texels, uint index) {
+  int base = int(kRestirSurfaceTexels * index);
+  RestirSurface s;
+  s.position_depth = uintBitsToFloat(texelFetch(texels, base));
+  s.packed = texelFetch(texels, base + 1);
+  s.material = texelFetch(texels, base + 2);
+  return s;
+}
+
+PackedReservoir reservoir_fetch(utextureBuffer texels, uint index) {
+  uvec4 t = texelFetch(texels, int(index));
+  return PackedReservoir(t.x, t.y, uintBitsToFloat(t.z), t.w);
+}
+
+#endif
