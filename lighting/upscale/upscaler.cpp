@@ -45,18 +45,19 @@ BufferHandle Upscaler::add_pass(runtime::graph::RenderGraph& graph, const FrameI
         d.motion = inputs.gbuffer.motion;
         b.read(d.motion, Access::StorageRead);
         d.hdr = hdr;
-        b.read(hdr, Access::StorageRead);
-        // Without history this frame's input stands in (not read: the flag is clear).
+        // Both read through texel views (lib/texel_records.glsl). Without history this frame's
+        // input stands in (not read: the flag is clear).
+        b.read(hdr, Access::UniformTexelRead);
         d.history = history.valid() ? history : hdr;
-        if (history.valid()) b.read(history, Access::StorageRead);
+        if (history.valid()) b.read(history, Access::UniformTexelRead);
         d.out = b.write(out, Access::StorageWrite);
       },
       [this, push](runtime::graph::PassContext& ctx, const Data& d) {
         pipeline_.bind(ctx.cmd(),
                        runtime::Bindings(pipeline_)
                            .image_view("gbuffer_motion", ctx.view(d.motion), VK_IMAGE_LAYOUT_GENERAL)
-                           .buffer("hdr_in", ctx.buffer(d.hdr), 0, VK_WHOLE_SIZE)
-                           .buffer("history", ctx.buffer(d.history), 0, VK_WHOLE_SIZE)
+                           .texel_buffer("hdr_in", ctx.texel_view(d.hdr))
+                           .texel_buffer("history", ctx.texel_view(d.history))
                            .buffer("hdr_out", ctx.buffer(d.out), 0, VK_WHOLE_SIZE));
         pipeline_.push_constants(ctx.cmd(), push);
         pipeline_.dispatch_threads(ctx.cmd(), push.out_width, push.out_height);

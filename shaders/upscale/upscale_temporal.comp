@@ -15,12 +15,14 @@
 #include "shared/common_math.h"
 #include "shared/upscale.h"
 
+#include "lib/texel_records.glsl"
+
 layout(local_size_x = kUpscaleGroupSize, local_size_y = kUpscaleGroupSize) in;
 layout(push_constant) uniform Push { UpscalePush push; };
 
 layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_motion;
-layout(std430, binding = 1) readonly buffer HdrIn { vec4 p[]; } hdr_in;
-layout(std430, binding = 2) readonly buffer History { vec4 p[]; } history;
+layout(binding = 1) uniform utextureBuffer hdr_in;
+layout(binding = 2) uniform utextureBuffer history;
 layout(std430, binding = 3) writeonly buffer HdrOut { vec4 p[]; } hdr_out;
 
 vec3 finite3(vec3 c) {
@@ -30,12 +32,12 @@ vec3 finite3(vec3 c) {
 
 vec3 load_in(ivec2 q) {
   q = clamp(q, ivec2(0), ivec2(push.in_width, push.in_height) - 1);
-  return finite3(hdr_in.p[uint(q.y) * push.in_width + uint(q.x)].rgb);
+  return finite3(vec4_fetch(hdr_in, uint(q.y) * push.in_width + uint(q.x)).rgb);
 }
 
 vec3 load_history(ivec2 q) {
   q = clamp(q, ivec2(0), ivec2(push.out_width, push.out_height) - 1);
-  return history.p[uint(q.y) * push.out_width + uint(q.x)].rgb;
+  return vec4_fetch(history, uint(q.y) * push.out_width + uint(q.x)).rgb;
 }
 
 vec3 bilinear_history(vec2 u) {
