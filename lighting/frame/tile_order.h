@@ -15,4 +15,9 @@ std::uint32_t tile_count(std::uint32_t width, std::uint32_t height, std::uint32_
 // 1 when the product could overflow 32 bits.
 std::uint32_t tile_stride(std::uint32_t count);
 
+// The restir.* passes' interleaved bands of tile rows (shared/restir.h, restir_tile_origin): on a
+// CPU device the number of threads lavapipe splits a dispatch between (LP_NUM_THREADS when set,
+// else the host's hardware threads; 1 to 64), 0 (the stride's shuffle) on a GPU.
+std::uint32_t tile_bands(bool cpu_device);
+
 }  // namespace lantern::lighting

@@ -10,6 +10,8 @@
 #include "lighting/frame/tile_order.h"
 #include "lighting/scene/gpu_scene.h"
 #include "lighting/visibility/host_visibility.h"
+#include "lighting/visibility/visibility_backend.h"
+#include "runtime/core/device.h"
 #include "shared/reservoir_pack.h"
 
 namespace lantern::lighting {
@@ -23,6 +25,7 @@ RestirIntegrator::RestirIntegrator(runtime::Device& device, runtime::ShaderLibra
       shaders_(shaders),
       settings_(settings),
       visibility_(visibility),
+      tile_bands_(tile_bands(is_cpu_device(device.info()))),
       presample_(device, shaders, "presample"),
       initial_(device, shaders, "initial", visibility),
       temporal_(device, shaders, "temporal"),
@@ -208,6 +211,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
         // shader does not read them: kRestirFlagHistoryValid is clear).
         const bool reuse = step.history == ReservoirBuffer::History;
         gpu::RestirPush p = push;
+        p.tile_bands = tile_bands_;
         if (!reuse) p.flags &= ~gpu::kRestirFlagHistoryValid;
         const BufferHandle reservoirs_in = handle(step.read);
         const std::vector<BufferHandle> out = temporal_.add(
@@ -227,6 +231,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
         // restir.spatial (N passes): each pixel's reservoir merged with up to k similar
         // neighbours in a disk (more where history is short); the last writes Final.
         gpu::RestirPush p = push;
+        p.tile_bands = tile_bands_;
         p.spatial_pass = step.spatial_index;
         handle(step.write) = spatial_.add(graph, inputs, p,
                                           {{"restir_surfaces", surfaces},

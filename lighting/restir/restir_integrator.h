@@ -66,6 +66,10 @@ class RestirIntegrator final : public Integrator {
   runtime::ShaderLibrary& shaders_;
   RestirSettings settings_;
   VisibilityBackend visibility_;
+  // restir.temporal's and restir.spatial's workgroup order on CPU devices (tile_order.h): bands
+  // of tile rows keep the neighbours they read in the thread's cache (0.72-0.84x their time at
+  // 640x360). restir.initial keeps the shuffle, which its presampled tiles rely on.
+  std::uint32_t tile_bands_;
   RestirPass presample_;
   RestirPass initial_;
   RestirPass temporal_;

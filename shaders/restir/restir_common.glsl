@@ -36,7 +36,8 @@ float restir_scene_radius() { return frame_constants.frame.scene.x; }
 // Pixel of this invocation (shuffled 8x8 tiles); false outside the image.
 bool restir_pixel(out uvec2 pixel) {
   uvec2 size = restir_size();
-  pixel = restir_tile_origin(gl_WorkGroupID.x, push.tile_stride, size) + gl_LocalInvocationID.xy;
+  pixel = restir_tile_origin(gl_WorkGroupID.x, push.tile_stride, push.tile_bands, size) +
+          gl_LocalInvocationID.xy;
   return pixel.x < size.x && pixel.y < size.y;
 }
 

@@ -89,7 +89,7 @@ struct RestirPush {
   float boiling_filter;   // boiling filter strength 0..1
   uint presample_tiles;   // light presampling tiles (0: candidates from the alias table directly)
   uint visibility_reuse;  // re-test a reused visible sample every this many frames (0: off)
-  uint pad2;
+  uint tile_bands;        // > 0: workgroups walk interleaved bands of tile rows (CPU devices)
   vec4 similarity;        // restir_surfaces_similar's thresholds: x max relative depth difference;
                           // y min cos between normals; z max roughness difference; w unused
 };
@@ -179,12 +179,35 @@ LANTERN_FUNC bool restir_surfaces_similar(RestirSurface s, float expected_depth,
   return abs(restir_surface_roughness(s) - restir_surface_roughness(other)) <= similarity.z;
 }
 
-// 8x8 tile g of the shuffled dispatch -> top-left pixel (see kRestirTileSize).
-LANTERN_FUNC uvec2 restir_tile_origin(uint group, uint stride, uvec2 size) {
+// 8x8 tile g of the dispatch -> top-left pixel (see kRestirTileSize). With bands > 0 (CPU
+// devices: lavapipe hands each of its `bands` threads a contiguous run of workgroups), the
+// workgroups walk rows of tiles in order, row t, t + bands, t + 2 bands, ... for the t-th run:
+// each thread sees the whole image's height (sky and geometry alike) while its consecutive
+// workgroups stay side by side and its rows close together, so the neighbours the reuse passes
+// read stay in its cache. With bands == 0, tile (g * stride) mod count: neighbouring workgroups
+// land far apart (GPUs). Either way a permutation of the tiles.
+LANTERN_FUNC uvec2 restir_tile_origin(uint group, uint stride, uint bands, uvec2 size) {
   uint tiles_x = (size.x + kRestirTileSize - 1u) / kRestirTileSize;
   uint tiles_y = (size.y + kRestirTileSize - 1u) / kRestirTileSize;
-  uint tile = (group * stride) % max(tiles_x * tiles_y, 1u);
-  return uvec2(tile % tiles_x, tile / tiles_x) * kRestirTileSize;
+  if (bands == 0u || tiles_x == 0u || tiles_y == 0u) {
+    uint tile = (group * stride) % max(tiles_x * tiles_y, 1u);
+    return uvec2(tile % tiles_x, tile / tiles_x) * kRestirTileSize;
+  }
+  // The k-th row of the sequence: the first `longer` bands hold q + 1 rows, the others q.
+  uint k = group / tiles_x;
+  uint q = tiles_y / bands;
+  uint longer = tiles_y % bands;
+  uint band;
+  uint i;
+  if (k < longer * (q + 1u)) {
+    band = k / (q + 1u);
+    i = k % (q + 1u);
+  } else {
+    uint rest = k - longer * (q + 1u);
+    band = longer + rest / max(q, 1u);
+    i = rest % max(q, 1u);
+  }
+  return uvec2(group % tiles_x, band + i * bands) * kRestirTileSize;
 }
 
 LANTERN_END_SHARED

@@ -88,7 +88,7 @@ const std::vector<StructLayout>& cpp_layouts() {
         LANTERN_MEMBER(RestirPush, radius), LANTERN_MEMBER(RestirPush, m_cap),
         LANTERN_MEMBER(RestirPush, boiling_filter),
         LANTERN_MEMBER(RestirPush, presample_tiles),
-        LANTERN_MEMBER(RestirPush, visibility_reuse), LANTERN_MEMBER(RestirPush, pad2),
+        LANTERN_MEMBER(RestirPush, visibility_reuse), LANTERN_MEMBER(RestirPush, tile_bands),
         LANTERN_MEMBER(RestirPush, similarity)}},
       {"PresampledLight",
        sizeof(gpu::PresampledLight),

@@ -1,10 +1,17 @@
-// The shuffled tile order of the per-pixel passes (lighting/frame/tile_order.h): g -> g * stride
-// mod count visits every tile exactly once, for every count a frame size can give.
+// The tile orders of the per-pixel passes (lighting/frame/tile_order.h, shared/restir.h's
+// restir_tile_origin): g -> g * stride mod count, and the interleaved bands of tile rows the
+// reuse passes walk on CPU devices, visit every tile exactly once for every frame size; each
+// thread's contiguous run of workgroups walks its own band of rows.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <set>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "lighting/frame/tile_order.h"
+#include "shared/restir.h"
 
 namespace lantern::lighting {
 namespace {
@@ -30,6 +37,58 @@ TEST(TileOrder, StrideIsAPermutationAndScatters) {
     }
   }
   EXPECT_EQ(tile_stride(100000), 1u) << "beyond 65535 the product could overflow";
+}
+
+TEST(TileOrder, BandsArePermutationsAndEachRunWalksItsBand) {
+  const std::uint32_t t = gpu::kRestirTileSize;
+  for (const auto& [w, h] : {std::pair{320u, 180u}, {640u, 360u}, {160u, 90u}, {8u, 8u}, {9u, 200u},
+                             {1u, 1u}, {1280u, 720u}}) {
+    const std::uint32_t tiles_x = (w + t - 1) / t, tiles_y = (h + t - 1) / t;
+    const std::uint32_t count = tiles_x * tiles_y;
+    for (std::uint32_t bands : {0u, 1u, 2u, 3u, 4u, 7u, 16u, 64u}) {
+      std::vector<bool> seen(count, false);
+      for (std::uint32_t g = 0; g < count; ++g) {
+        const glm::uvec2 o = gpu::restir_tile_origin(g, tile_stride(count), bands, {w, h});
+        ASSERT_EQ(o.x % t, 0u);
+        ASSERT_EQ(o.y % t, 0u);
+        ASSERT_LT(o.x, w);
+        ASSERT_LT(o.y, h);
+        const std::uint32_t tile = (o.y / t) * tiles_x + o.x / t;
+        ASSERT_FALSE(seen[tile]) << w << "x" << h << " bands " << bands << " group " << g;
+        seen[tile] = true;
+        if (bands > 0 && g > 0 && g % tiles_x != 0) {
+          const glm::uvec2 before = gpu::restir_tile_origin(g - 1, tile_stride(count), bands, {w, h});
+          EXPECT_EQ(before + glm::uvec2(t, 0), o) << "consecutive workgroups lie side by side";
+        }
+      }
+    }
+  }
+  // 2 threads over 320x180 (40 x 23 tiles): the first run of rows is the even rows, the second
+  // the odd ones, so each thread spans the image's height.
+  std::set<std::uint32_t> first, second;
+  const std::uint32_t rows = 23, cols = 40;
+  for (std::uint32_t g = 0; g < rows * cols; ++g) {
+    const std::uint32_t row = gpu::restir_tile_origin(g, 1, 2, {320, 180}).y / t;
+    (g < 12 * cols ? first : second).insert(row);
+  }
+  for (std::uint32_t r : first) EXPECT_EQ(r % 2, 0u) << r;
+  for (std::uint32_t r : second) EXPECT_EQ(r % 2, 1u) << r;
+  EXPECT_EQ(first.size(), 12u);
+  EXPECT_EQ(second.size(), 11u);
+}
+
+TEST(TileOrder, BandsFollowTheCpuDevicesThreads) {
+  EXPECT_EQ(tile_bands(false), 0u) << "GPUs keep the shuffle";
+  const char* saved = std::getenv("LP_NUM_THREADS");
+  const std::string restore = saved != nullptr ? saved : "";
+  setenv("LP_NUM_THREADS", "3", 1);
+  EXPECT_EQ(tile_bands(true), 3u);
+  setenv("LP_NUM_THREADS", "0", 1);
+  EXPECT_EQ(tile_bands(true), 1u) << "lavapipe runs a dispatch on one thread";
+  unsetenv("LP_NUM_THREADS");
+  EXPECT_GE(tile_bands(true), 1u);
+  EXPECT_LE(tile_bands(true), 64u);
+  if (saved != nullptr) setenv("LP_NUM_THREADS", restore.c_str(), 1);
 }
 
 }  // namespace
