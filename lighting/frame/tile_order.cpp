@@ -6,6 +6,8 @@
 #include <numeric>
 #include <thread>
 
+#include <sched.h>
+
 namespace lantern::lighting {
 
 std::uint32_t tile_count(std::uint32_t width, std::uint32_t height, std::uint32_t tile_size) {
@@ -21,11 +23,18 @@ std::uint32_t tile_stride(std::uint32_t count) {
 
 std::uint32_t tile_bands(bool cpu_device) {
   if (!cpu_device) return 0;
-  unsigned threads = std::thread::hardware_concurrency();
+  // As llvmpipe counts its threads: the CPUs this process may run on, LP_NUM_THREADS instead
+  // when it is a whole number (any base strtol reads; anything else is ignored), at most 32
+  // (LP_MAX_THREADS); 0 threads runs a dispatch on one.
+  long threads = static_cast<long>(std::thread::hardware_concurrency());
+  cpu_set_t affinity;
+  if (sched_getaffinity(0, sizeof(affinity), &affinity) == 0) threads = CPU_COUNT(&affinity);
   if (const char* forced = std::getenv("LP_NUM_THREADS"); forced != nullptr && *forced != '\0') {
-    threads = static_cast<unsigned>(std::strtoul(forced, nullptr, 10));
+    char* end = nullptr;
+    const long value = std::strtol(forced, &end, 0);
+    if (end != nullptr && *end == '\0') threads = value;
   }
-  return std::clamp(threads, 1u, 64u);
+  return static_cast<std::uint32_t>(std::clamp(threads, 1L, 32L));
 }
 
 }  // namespace lantern::lighting

@@ -1,7 +1,9 @@
 // The dispatch shape of the per-pixel compute passes (integrators.baseline, integrators.reference,
 // restir.*): one workgroup per square tile, visited in a shuffled order g -> g * stride mod count
 // so neighbouring workgroups land far apart and both lavapipe threads get a mix of sky and
-// geometry (shared/PLATFORM.md).
+// geometry (shared/PLATFORM.md); on CPU devices restir.temporal and restir.spatial walk
+// interleaved bands of tile rows instead (tile_bands), which keeps the neighbours they read in
+// each thread's cache.
 #pragma once
 
 #include <cstdint>
@@ -15,9 +17,10 @@ std::uint32_t tile_count(std::uint32_t width, std::uint32_t height, std::uint32_
 // 1 when the product could overflow 32 bits.
 std::uint32_t tile_stride(std::uint32_t count);
 
-// The restir.* passes' interleaved bands of tile rows (shared/restir.h, restir_tile_origin): on a
-// CPU device the number of threads lavapipe splits a dispatch between (LP_NUM_THREADS when set,
-// else the host's hardware threads; 1 to 64), 0 (the stride's shuffle) on a GPU.
+// The interleaved bands of tile rows restir.temporal and restir.spatial walk (shared/restir.h,
+// restir_tile_origin): on a CPU device the number of threads lavapipe splits a dispatch between
+// (counted as llvmpipe does: the CPUs this process may use, or LP_NUM_THREADS; 1 to 32), 0 (the
+// stride's shuffle) on a GPU.
 std::uint32_t tile_bands(bool cpu_device);
 
 }  // namespace lantern::lighting

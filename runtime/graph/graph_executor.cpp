@@ -167,7 +167,10 @@ PhysicalResource GraphExecutor::realize_history(const ResourceDecl& r) {
   const auto key = std::make_pair(r.name, r.history_slot);
   auto it = history_.find(key);
   if (it == history_.end() || !(it->second.desc == desc) || (it->second.usage & usage) != usage) {
-    if (it != history_.end()) device_.wait_idle();
+    if (it != history_.end()) {
+      device_.wait_idle();
+      it->second.texels = {};  // the old view goes before the buffer it views
+    }
     const std::string name = fmt::format("{}[{}]", r.name, r.history_slot);
     if (r.is_image) {
       if (r.image.extent.depth != 1 || r.image.mip_levels != 1 || r.image.array_layers != 1)

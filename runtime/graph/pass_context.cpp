@@ -28,11 +28,19 @@ VkBufferView PassContext::texel_view(BufferHandle h) const {
   const bool texel_read = std::any_of(pass.uses.begin(), pass.uses.end(), [&](const ResourceUse& u) {
     return u.resource == h.index && u.access == Access::UniformTexelRead;
   });
-  if (!texel_read || p.texel_view == VK_NULL_HANDLE)
+  const ResourceDecl& r = decl_.resources[h.index];
+  if (!texel_read)
     throw RenderGraphError(fmt::format(
-        "pass '{}' asks for a texel view of '{}', which it did not declare as a texel read "
-        "(or which is imported without one)",
-        pass.name, decl_.resources[h.index].name));
+        "pass '{}' asks for a texel view of '{}', which it did not declare as a texel read",
+        pass.name, r.name));
+  if (p.texel_view == VK_NULL_HANDLE)
+    throw RenderGraphError(fmt::format(
+        "pass '{}' reads '{}' as texels, but it has no texel view: {}", pass.name, r.name,
+        r.origin == Origin::Imported
+            ? "an imported buffer brings none"
+            : fmt::format("{} B is no whole texel or more texels than the device's "
+                          "maxTexelBufferElements",
+                          r.buffer.size)));
   return p.texel_view;
 }
 

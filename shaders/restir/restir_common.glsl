@@ -1,4 +1,4 @@
-// Shared GLSL of the restir.* passes: push constants, the light list, the shuffled tile -> pixel
+// Shared GLSL of the restir.* passes: push constants, the light list, the tile -> pixel
 // mapping, decoding a RestirSurface into a shading point, and the target function p̂ evaluated
 // from that decoded point. Every pass evaluates p̂ through restir_contribution() on a packed
 // surface, so all domains use exactly the same target function (needed for unbiased MIS).
@@ -33,7 +33,7 @@ uvec2 restir_size() { return frame_constants.frame.frame.xy; }
 uint restir_light_count() { return frame_constants.frame.counts.x; }
 float restir_scene_radius() { return frame_constants.frame.scene.x; }
 
-// Pixel of this invocation (shuffled 8x8 tiles); false outside the image.
+// Pixel of this invocation (8x8 tiles in restir_tile_origin's order); false outside the image.
 bool restir_pixel(out uvec2 pixel) {
   uvec2 size = restir_size();
   pixel = restir_tile_origin(gl_WorkGroupID.x, push.tile_stride, push.tile_bands, size) +

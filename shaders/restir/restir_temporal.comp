@@ -10,7 +10,8 @@
 // Writes: reservoirs_out, temporal_status.
 // History: "restir.surfaces" and "restir.reservoirs" of last frame; without
 // kRestirFlagHistoryValid the history bindings are stand-ins and are not read.
-// Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
+// Dispatch: one workgroup per 8x8 tile, in interleaved row bands on CPU devices
+// (push.tile_bands), else shuffled (push.tile_stride): restir_tile_origin.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 

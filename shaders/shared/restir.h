@@ -12,8 +12,8 @@
 
 LANTERN_BEGIN_SHARED
 
-// Pixels per side of the square tile one workgroup handles (shuffled over the image like
-// integrators.baseline: lavapipe gives each CPU thread a contiguous range of workgroups).
+// Pixels per side of the square tile one workgroup handles (in restir_tile_origin's order:
+// lavapipe gives each CPU thread a contiguous range of workgroups).
 LANTERN_CONST uint kRestirTileSize = 8u;
 
 // Upper bounds the shaders size their loops and arrays by (settings are validated against them).
@@ -60,7 +60,7 @@ LANTERN_CONST uint kRestirPresampleTileSize = 1024u;
 LANTERN_CONST uint kRestirMaxPresampleTiles = 1024u;
 
 struct PresampledLight {
-  GpuLight light;  // a copy of scene_lights[index] (this frame's)
+  GpuLight light;  // a copy of scene_light(index) (this frame's)
   uint index;      // the light's index in the list
   float pdf;       // alias selection pdf x point density (light_eval_point_pdf): area measure
   uint pad0;
@@ -74,7 +74,8 @@ LANTERN_CONST uint kPresampledLightTexels = 5u;
 // What the restir.* passes take from the settings (lighting/restir/restir_settings.h). The frame's
 // size, index, seed, light counts and scene radius are FrameConstants' (restir_common.glsl).
 struct RestirPush {
-  uint tile_stride;       // workgroup g handles tile (g * tile_stride) mod tile count (coprime)
+  uint tile_stride;       // without tile_bands, workgroup g handles tile (g * tile_stride) mod
+                          // tile count (coprime)
   uint flags;             // kRestirFlag*
   uint light_candidates;  // initial candidates from light sampling
   uint bsdf_candidates;   // initial candidates from BSDF rays

@@ -603,8 +603,9 @@ TEST_F(DenoiseGpuTest, HalfInternalSizeUpscalesAConstantImageUnchanged) {
 
 // upscale.temporal resamples this frame's jittered samples bilinearly: a linear ramp over the
 // internal pixels comes out as the ramp at each output pixel's position in internal pixels,
-// (o + 0.5) / 2 - 0.5 - jitter, wherever its bilinear footprint lies inside the image (the first
-// frame: no history to blend; raw output, so no filter touches the ramp).
+// (o + 0.5) / 2 - 0.5 - jitter, where its bilinear footprint lies inside the image, and as the
+// bilinear blend of the edge texels repeated outward at the borders (the first frame: no history
+// to blend; raw output, so no filter touches the ramp).
 TEST_F(DenoiseGpuTest, HalfInternalSizeResamplesALinearRampExactly) {
   Run run = make_run();
   run.harness->renderer().set_output(lighting::FrameOutput::Raw);
@@ -621,19 +622,32 @@ TEST_F(DenoiseGpuTest, HalfInternalSizeResamplesALinearRampExactly) {
   const ImageRGBA32F out = render(run, in, test::first_snapshot(level, kW, kH));
   const glm::vec2 jitter = run.harness->renderer().jitter();
   ASSERT_GT(glm::length(jitter), 0.0f) << "upscaling jitters the samples";
-  std::size_t checked = 0;
-  float worst = 0.0f;
+  const auto texel = [&](int x, int y) {  // clamped to the image, as the shader reads
+    return ramp(static_cast<float>(std::clamp(x, 0, static_cast<int>(kInW) - 1)),
+                static_cast<float>(std::clamp(y, 0, static_cast<int>(kInH) - 1)));
+  };
+  std::size_t inside = 0;
+  float worst_inside = 0.0f, worst_border = 0.0f;
   for (std::uint32_t y = 0; y < kH; ++y) {
     for (std::uint32_t x = 0; x < kW; ++x) {
       const glm::vec2 u = (glm::vec2(x, y) + 0.5f) * 0.5f - 0.5f - jitter;
-      if (u.x < 0.0f || u.y < 0.0f || u.x > kInW - 1.0f || u.y > kInH - 1.0f) continue;
-      ++checked;
+      const glm::ivec2 b(std::floor(u.x), std::floor(u.y));
+      const glm::vec2 f = u - glm::vec2(b);
+      const float bilinear =
+          (1 - f.y) * ((1 - f.x) * texel(b.x, b.y) + f.x * texel(b.x + 1, b.y)) +
+          f.y * ((1 - f.x) * texel(b.x, b.y + 1) + f.x * texel(b.x + 1, b.y + 1));
+      const bool in = u.x >= 0.0f && u.y >= 0.0f && u.x <= kInW - 1.0f && u.y <= kInH - 1.0f;
+      inside += in;
       const float* p = &out.pixels[4 * (std::size_t{y} * kW + x)];
-      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(p[c] - ramp(u.x, u.y)));
+      for (int c = 0; c < 3; ++c) {
+        float& worst = in ? worst_inside : worst_border;
+        worst = std::max(worst, std::abs(p[c] - (in ? ramp(u.x, u.y) : bilinear)));
+      }
     }
   }
-  EXPECT_GT(checked, std::size_t{kW} * kH * 3 / 4);
-  EXPECT_LT(worst, 1e-5f) << "largest difference from the ramp at the output pixel";
+  EXPECT_GT(inside, std::size_t{kW} * kH * 3 / 4);
+  EXPECT_LT(worst_inside, 1e-5f) << "largest difference from the ramp inside";
+  EXPECT_LT(worst_border, 1e-5f) << "largest difference from the clamped bilinear at the borders";
 }
 
 // With the sample jitter on, a still scene's motion vectors are exactly the jitter step (this

@@ -1,6 +1,7 @@
 // Misuse rejected when the graph is baked, with messages naming the pass and the resource.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <initializer_list>
 
 #include "tests/graph/graph_test_util.h"

@@ -301,9 +301,10 @@ std::vector<std::filesystem::path> shared_headers() {
 }
 
 // Records the shaders fetch through rgba32ui texel views (the render graph's kGraphTexelFormat,
-// the scene's texel rows) are whole texels with their members where the fetch functions read
-// them: scene_light(), scene_light_alias(), restir_surface_fetch(), reservoir_fetch(), and
-// restir.initial's presampled lights.
+// the scene's texel rows) are whole texels, with their members at the offsets the fetch
+// functions assume (scene_light(), scene_light_alias(), restir_surface_fetch(),
+// reservoir_fetch(), restir.initial's presampled lights). The fetch order itself is GLSL: a wrong
+// one shows in the images the ReSTIR, denoiser and integrator tests compare.
 TEST(Layout, TexelFetchedRecordsAreWholeTexels) {
   EXPECT_EQ(sizeof(gpu::GpuLight), 16u * gpu::kGpuLightTexels);
   EXPECT_EQ(offsetof(gpu::GpuLight, radiance), 16u * (gpu::kGpuLightTexels - 1));

@@ -3,7 +3,9 @@
 // reuse passes walk on CPU devices, visit every tile exactly once for every frame size; each
 // thread's contiguous run of workgroups walks its own band of rows.
 #include <gtest/gtest.h>
+#include <sched.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <set>
 #include <string>
@@ -83,11 +85,19 @@ TEST(TileOrder, BandsFollowTheCpuDevicesThreads) {
   const std::string restore = saved != nullptr ? saved : "";
   setenv("LP_NUM_THREADS", "3", 1);
   EXPECT_EQ(tile_bands(true), 3u);
+  setenv("LP_NUM_THREADS", "0x10", 1);
+  EXPECT_EQ(tile_bands(true), 16u) << "read as llvmpipe reads it (any base)";
+  setenv("LP_NUM_THREADS", "1000", 1);
+  EXPECT_EQ(tile_bands(true), 32u) << "llvmpipe runs at most 32 threads";
   setenv("LP_NUM_THREADS", "0", 1);
   EXPECT_EQ(tile_bands(true), 1u) << "lavapipe runs a dispatch on one thread";
   unsetenv("LP_NUM_THREADS");
-  EXPECT_GE(tile_bands(true), 1u);
-  EXPECT_LE(tile_bands(true), 64u);
+  cpu_set_t affinity;
+  ASSERT_EQ(sched_getaffinity(0, sizeof(affinity), &affinity), 0);
+  const auto usable = static_cast<std::uint32_t>(std::clamp(CPU_COUNT(&affinity), 1, 32));
+  EXPECT_EQ(tile_bands(true), usable) << "the CPUs this process may run on";
+  setenv("LP_NUM_THREADS", "lots", 1);
+  EXPECT_EQ(tile_bands(true), usable) << "a value llvmpipe ignores is ignored";
   if (saved != nullptr) setenv("LP_NUM_THREADS", restore.c_str(), 1);
 }
 
