@@ -636,12 +636,13 @@ TEST_F(DenoiseGpuTest, HalfInternalSizeResamplesALinearRampExactly) {
       const float bilinear =
           (1 - f.y) * ((1 - f.x) * texel(b.x, b.y) + f.x * texel(b.x + 1, b.y)) +
           f.y * ((1 - f.x) * texel(b.x, b.y + 1) + f.x * texel(b.x + 1, b.y + 1));
-      const bool in = u.x >= 0.0f && u.y >= 0.0f && u.x <= kInW - 1.0f && u.y <= kInH - 1.0f;
-      inside += in;
+      const bool interior =
+          u.x >= 0.0f && u.y >= 0.0f && u.x <= kInW - 1.0f && u.y <= kInH - 1.0f;
+      inside += interior;
       const float* p = &out.pixels[4 * (std::size_t{y} * kW + x)];
       for (int c = 0; c < 3; ++c) {
-        float& worst = in ? worst_inside : worst_border;
-        worst = std::max(worst, std::abs(p[c] - (in ? ramp(u.x, u.y) : bilinear)));
+        float& worst = interior ? worst_inside : worst_border;
+        worst = std::max(worst, std::abs(p[c] - (interior ? ramp(u.x, u.y) : bilinear)));
       }
     }
   }
