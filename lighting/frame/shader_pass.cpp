@@ -1,7 +1,7 @@
 // ShaderPass: declare and bind one compute pass by its shader's names (shader_pass.h).
 #include "lighting/frame/shader_pass.h"
 
-#include <algorithm>
+#include <cstddef>
 #include <utility>
 
 #include "runtime/gpu/bindings.h"
@@ -36,6 +36,7 @@ std::vector<BufferHandle> ShaderPass::add_bytes(runtime::graph::RenderGraph& gra
     SceneHandles scene;
     GBufferHandles gbuffer;
     std::vector<ShaderPassBuffer> buffers;  // handles: the versions this pass reads or writes
+    std::vector<bool> texels;  // per buffer: read through a texel view (reads_texels)
   };
   const Data& data = graph.add_pass<Data>(
       name_, runtime::graph::PassKind::Compute,
@@ -45,29 +46,34 @@ std::vector<BufferHandle> ShaderPass::add_bytes(runtime::graph::RenderGraph& gra
         d.scene.declare_reads(b, pipeline_);
         d.gbuffer.declare_reads(b, pipeline_);
         for (ShaderPassBuffer buffer : buffers) {
+          bool texels = false;
           if (buffer.use == ShaderPassBuffer::Write) {
             buffer.handle = b.write(buffer.handle, Access::StorageWrite);
           } else if (buffer.use == ShaderPassBuffer::ReadWrite) {
             buffer.handle = b.write(buffer.handle, Access::StorageReadWrite);
           } else {
             // A handle read under two names is declared once per way it is read.
-            const bool texels = reads_texels(pipeline_, buffer.name);
-            if (std::none_of(d.buffers.begin(), d.buffers.end(), [&](const ShaderPassBuffer& o) {
-                  return o.use == ShaderPassBuffer::Read && o.handle == buffer.handle &&
-                         reads_texels(pipeline_, o.name) == texels;
-                })) {
+            texels = reads_texels(pipeline_, buffer.name);
+            bool declared = false;
+            for (std::size_t i = 0; i < d.buffers.size(); ++i) {
+              declared = declared || (d.buffers[i].use == ShaderPassBuffer::Read &&
+                                      d.buffers[i].handle == buffer.handle && d.texels[i] == texels);
+            }
+            if (!declared) {
               b.read(buffer.handle, texels ? Access::UniformTexelRead : Access::StorageRead);
             }
           }
           d.buffers.push_back(buffer);
+          d.texels.push_back(texels);
         }
       },
       [this, push, dispatch](runtime::graph::PassContext& ctx, const Data& d) {
         runtime::Bindings b(pipeline_);
         d.scene.bind(b, ctx);
         d.gbuffer.bind(b, ctx);
-        for (const ShaderPassBuffer& buffer : d.buffers) {
-          if (buffer.use == ShaderPassBuffer::Read && reads_texels(pipeline_, buffer.name)) {
+        for (std::size_t i = 0; i < d.buffers.size(); ++i) {
+          const ShaderPassBuffer& buffer = d.buffers[i];
+          if (d.texels[i]) {
             b.texel_buffer(buffer.name, ctx.texel_view(buffer.handle));
           } else {
             b.buffer(buffer.name, ctx.buffer(buffer.handle), 0, VK_WHOLE_SIZE);

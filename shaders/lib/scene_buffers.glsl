@@ -27,6 +27,8 @@
 #include "shared/scene_bindings.h"
 #include "shared/textures.h"
 
+#include "lib/texel_records.glsl"
+
 #define PASS_BINDING(i) (kPassBindingBase + (i))
 
 layout(std430, binding = kSceneFrameConstants) restrict readonly buffer FrameBuffer {
@@ -47,16 +49,9 @@ layout(std430, binding = kSceneInstances) restrict readonly buffer InstanceBuffe
 // The lights through an rgba32ui texel view (kGpuLightTexels texels each): lavapipe fetches
 // texels faster than it loads storage buffers, and p̂ reads a light record at every evaluation
 // (restir.temporal 0.86x, restir.spatial 0.83x the time with storage-buffer reads, night_market).
-#extension GL_EXT_samplerless_texture_functions : require
 layout(binding = kSceneLights) uniform utextureBuffer scene_light_texels;
 GpuLight scene_light(uint index) {
-  int base = int(kGpuLightTexels * index);
-  GpuLight light;
-  light.p0 = uintBitsToFloat(texelFetch(scene_light_texels, base));
-  light.p1 = uintBitsToFloat(texelFetch(scene_light_texels, base + 1));
-  light.p2 = uintBitsToFloat(texelFetch(scene_light_texels, base + 2));
-  light.radiance = uintBitsToFloat(texelFetch(scene_light_texels, base + 3));
-  return light;
+  return gpu_light_fetch(scene_light_texels, kGpuLightTexels * index);
 }
 // The alias table through an rgba32ui texel view (one texel per AliasEntry), as the lights.
 layout(binding = kSceneLightAlias) uniform utextureBuffer light_alias_texels;

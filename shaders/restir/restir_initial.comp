@@ -69,12 +69,9 @@ uint draw_light(float u0, float u1, uint tile_base, out GpuLight light, out floa
   if (push.presample_tiles > 0u) {
     uint slot = min(uint(u0 * float(kRestirPresampleTileSize)), kRestirPresampleTileSize - 1u);
     // PresampledLight through its texel view: the light record, then index and pdf.
-    int base = int(kPresampledLightTexels * (tile_base + slot));
-    light.p0 = uintBitsToFloat(texelFetch(presampled_lights, base));
-    light.p1 = uintBitsToFloat(texelFetch(presampled_lights, base + 1));
-    light.p2 = uintBitsToFloat(texelFetch(presampled_lights, base + 2));
-    light.radiance = uintBitsToFloat(texelFetch(presampled_lights, base + 3));
-    uvec2 index_pdf = texelFetch(presampled_lights, base + 4).xy;
+    uint base = kPresampledLightTexels * (tile_base + slot);
+    light = gpu_light_fetch(presampled_lights, base);
+    uvec2 index_pdf = texelFetch(presampled_lights, int(base + kGpuLightTexels)).xy;
     pdf = uintBitsToFloat(index_pdf.y);
     return index_pdf.x;
   }
