@@ -74,6 +74,14 @@ std::uint32_t RestirIntegrator::presample_tiles(const RestirSettings& s,
       std::clamp<std::uint64_t>(affordable, 1, s.presample_tiles));
 }
 
+std::uint32_t RestirIntegrator::local_candidates(const RestirSettings& s,
+                                                 const FrameInputs& inputs) {
+  // Local lists pay off where lights are many and each lights only its surroundings; with a
+  // presampling tile's worth of lights or fewer, RIS over the power distribution already finds
+  // them (cornell_lights' 89 emitters: local lists raised raw relMSE 1.4-2.1x).
+  return inputs.light_count > gpu::kRestirPresampleTileSize ? s.local_candidates : 0u;
+}
+
 gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const FrameInputs& inputs) {
   if (inputs.light_count >= gpu::kEnvironmentLight) {
     throw InputError(fmt::format("restir: {} lights exceed the {} a packed reservoir can index",
@@ -93,6 +101,7 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   p.m_cap = s.m_cap();
   p.boiling_filter = s.boiling_filter;
   p.presample_tiles = presample_tiles(s, inputs);
+  p.local_candidates = local_candidates(s, inputs);
   p.visibility_reuse = s.temporal ? s.visibility_reuse : 0u;
   p.similarity = {s.depth_threshold, s.normal_threshold, 0.25f, 0.0f};
   return p;

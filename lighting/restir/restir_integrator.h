@@ -59,6 +59,9 @@ class RestirIntegrator final : public Integrator {
   // Presampling tiles this frame gets: 0 when the lights fit in one tile, else the setting,
   // lowered so that the presampled entries stay at most 1/8 of the light candidates drawn.
   static std::uint32_t presample_tiles(const RestirSettings& settings, const FrameInputs& inputs);
+  // Draws per slot of restir.initial's local light lists this frame: the setting where the level
+  // has more lights than one presampling tile, else 0.
+  static std::uint32_t local_candidates(const RestirSettings& settings, const FrameInputs& inputs);
 
  private:
   runtime::graph::BufferHandle confidence_;  // this frame's final reservoirs (add_passes)

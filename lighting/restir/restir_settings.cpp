@@ -117,6 +117,7 @@ RestirSettings restir_preset(std::string_view name) {
   if (name == "balanced") return s;
   if (name == "fast") {
     s.light_candidates = 4;
+    s.local_candidates = 4;
     s.spatial_passes = 1;
     s.neighbours = 2;
     s.disocclusion_boost = 2;
@@ -127,6 +128,7 @@ RestirSettings restir_preset(std::string_view name) {
   }
   if (name == "quality") {
     s.light_candidates = 16;
+    s.local_candidates = 16;
     s.bsdf_candidates = 1;
     s.spatial_passes = 2;
     s.neighbours = 5;
@@ -161,6 +163,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.bias_correction = parse_choice(key, value, kBiasCorrections, "a bias correction");
   } else if (key == "presample_tiles") {
     s.presample_tiles = parse_uint(key, value, 0, gpu::kRestirMaxPresampleTiles);
+  } else if (key == "local_candidates") {
+    s.local_candidates = parse_uint(key, value, 0, gpu::kRestirMaxLocalCandidates);
   } else if (key == "visibility_reuse") {
     s.visibility_reuse = parse_uint(key, value, 0, 64);
   } else if (key == "initial_visibility") {
@@ -209,6 +213,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"disocclusion_boost", std::to_string(s.disocclusion_boost)},
       {"radius", format_float(s.radius)},
       {"presample_tiles", std::to_string(s.presample_tiles)},
+      {"local_candidates", std::to_string(s.local_candidates)},
       {"visibility_reuse", std::to_string(s.visibility_reuse)},
       {"bias_correction", choice_name(kBiasCorrections, s.bias_correction)},
       {"initial_visibility", flag(s.initial_visibility)},

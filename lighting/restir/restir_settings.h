@@ -66,6 +66,13 @@ struct RestirSettings {
   // their reads in cache. 0 turns it off (the alias table directly: fewer correlated candidates,
   // slower with many lights). More tiles decorrelate neighbouring workgroups at more memory.
   std::uint32_t presample_tiles = 32;
+  // Local light lists (shared/restir.h): draws per slot of each 8x8 tile's 64-slot list, picked
+  // by RIS towards lights near the tile's surfaces; the tile's light candidates come from its
+  // slots. Raise where small lights sit close to surfaces among many others (lamps, lanterns,
+  // strips: far less noise next to them); 0 turns it off (candidates by power alone, cheaper per
+  // candidate on scenes where every light is far or alike). Used only where the level has more
+  // lights than one presampling tile (RestirIntegrator::local_candidates).
+  std::uint32_t local_candidates = 8;
   // Visibility reuse: a sample the pixel's history found unoccluded is shaded without a shadow
   // ray, and tested again every this many frames (staggered over pixels). 0 is off (one shadow
   // ray per pixel, unbiased). Exact for a still camera over still geometry; where the camera or
@@ -116,7 +123,7 @@ std::vector<std::string> restir_preset_names();
 
 // Sets one knob by its key (the field names above: light_candidates, bsdf_candidates, temporal,
 // m_cap (alias of m_cap_factor), spatial_passes, neighbours, disocclusion_boost, radius,
-// presample_tiles, visibility_reuse, bias_correction (a name from restir_bias_corrections()),
+// presample_tiles, local_candidates, visibility_reuse, bias_correction (a name from restir_bias_corrections()),
 // initial_visibility, boiling_filter, depth_threshold, normal_threshold, debug_view (a name from
 // restir_debug_views()); the media's volume_candidates, volume_temporal, volume_m_cap,
 // volume_neighbours, volume_radius).

@@ -4,8 +4,10 @@
 // closest-hit ray; an emissive triangle hit, or the environment when the ray escapes, is a
 // candidate), combined by the balance heuristic over the two strategies, with target p̂ =
 // luminance of the unshadowed contribution. Light candidates come from this workgroup's tile of
-// presampled lights when push.presample_tiles > 0 (restir.presample). Optionally shadow-tests the
-// pick (kRestirFlagInitialVisibility).
+// presampled lights when push.presample_tiles > 0 (restir.presample), and through the
+// workgroup's local light list when push.local_candidates > 0 (shared/restir.h: every invocation
+// first fills one slot, by RIS towards lights near its own surface point). Optionally
+// shadow-tests the pick (kRestirFlagInitialVisibility).
 // Reads: gbuffer position/normal/albedo_roughness/emission_metallic/ids, scene materials,
 // instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility),
 // presampled_lights (restir.presample's; a stand-in when presampling is off).
@@ -62,10 +64,98 @@ float light_strategy_pdf(uint index, float p_env) {
   return (1.0 - p_env) * scene_light_alias(index).pdf * light_eval_point_pdf(scene_light(index));
 }
 
-// A light candidate from u0 (in [0,1), after the environment's share) and u1: from this
-// workgroup's presampled tile when presampling is on, else from the alias table. Returns the
-// light's index and record and its light-strategy density (before the (1 - p_env) factor).
-uint draw_light(float u0, float u1, uint tile_base, out GpuLight light, out float pdf) {
+// restir.initial's local light list (shared/restir.h, push.local_candidates > 0): per slot, the
+// presampled entry (or, without presampling, the light index) it holds, the slot's effective
+// density (1 / its unbiased contribution weight, area measure like pdf) and the light strategy's
+// own density of that light (MIS with BSDF candidates).
+const uint kLocalSlots = kRestirTileSize * kRestirTileSize;
+shared uint local_entry[kLocalSlots];
+shared float local_pdf[kLocalSlots];
+shared float local_strategy_pdf[kLocalSlots];
+
+// One light-strategy draw from u0, u1 (in [0,1)): from this workgroup's presampled tile when
+// presampling is on, else from the alias table. Returns the entry (presampled) or light index,
+// the light's first vertex or position (p0) and its density (selection pdf x point density).
+uint draw_strategy_entry(float u0, float u1, uint tile_base, out vec4 p0, out float pdf) {
+  if (push.presample_tiles > 0u) {
+    uint slot = min(uint(u0 * float(kRestirPresampleTileSize)), kRestirPresampleTileSize - 1u);
+    uint base = kPresampledLightTexels * (tile_base + slot);
+    p0 = uintBitsToFloat(texelFetch(presampled_lights, int(base)));
+    pdf = uintBitsToFloat(texelFetch(presampled_lights, int(base + kGpuLightTexels)).y);
+    return tile_base + slot;
+  }
+  uint slot = alias_slot(restir_light_count(), u0);
+  uint index = alias_select(u1, scene_light_alias(slot), slot);
+  p0 = uintBitsToFloat(texelFetch(scene_light_texels, int(kGpuLightTexels * index)));
+  pdf = scene_light_alias(index).pdf *
+        (floatBitsToUint(p0.w) == kLightTriangle ? light_eval_point_pdf(scene_light(index)) : 1.0);
+  return index;
+}
+
+// The light of a draw_strategy_entry result: its index and record.
+uint strategy_entry_light(uint entry, out GpuLight light) {
+  if (push.presample_tiles > 0u) {
+    uint base = kPresampledLightTexels * entry;
+    light = gpu_light_fetch(presampled_lights, base);
+    return texelFetch(presampled_lights, int(base + kGpuLightTexels)).x;
+  }
+  light = scene_light(entry);
+  return entry;
+}
+
+// Fills this invocation's slot of the local light list: RIS over push.local_candidates draws
+// with target pdf(l) x g(l), g = 1 / max(d^2, r^2) from x (1 without a surface point and for a
+// directional light). The slot keeps the pick with density pdf x g x N / sum(g).
+void fill_local_slot(uvec2 pixel, bool has_point, vec3 x, uint tile_base) {
+  uint slot = gl_LocalInvocationIndex;
+  local_entry[slot] = 0u;
+  local_pdf[slot] = 0.0;
+  local_strategy_pdf[slot] = 0.0;
+  if (restir_light_count() == 0u) return;
+  uint rng = frame_rng(pixel, kRestirRngLocalLights);
+  float min_distance = kRestirLocalMinDistance * restir_scene_radius();
+  float min_dist2 = max(min_distance * min_distance, 1e-12);
+  float g_sum = 0.0;
+  float g_pick = 0.0;
+  float pdf_pick = 0.0;
+  uint entry_pick = 0u;
+  for (uint k = 0u; k < push.local_candidates; ++k) {
+    float u0 = rng_next_float(rng);
+    float u1 = rng_next_float(rng);
+    float u_pick = rng_next_float(rng);
+    vec4 p0;
+    float pdf;
+    uint entry = draw_strategy_entry(u0, u1, tile_base, p0, pdf);
+    float g = 1.0;
+    if (has_point && floatBitsToUint(p0.w) != kLightDirectional) {
+      vec3 d = p0.xyz - x;
+      g = 1.0 / max(dot(d, d), min_dist2);
+    }
+    g_sum += g;
+    if (u_pick * g_sum < g) {
+      entry_pick = entry;
+      g_pick = g;
+      pdf_pick = pdf;
+    }
+  }
+  local_entry[slot] = entry_pick;
+  local_pdf[slot] = pdf_pick * g_pick * float(push.local_candidates) / g_sum;
+  local_strategy_pdf[slot] = pdf_pick;
+}
+
+// A light candidate from u0 (in [0,1), after the environment's share) and u1: from the local
+// light list when it is on, else one light-strategy draw. Returns the light's index and record,
+// the candidate's density pdf (1 / its contribution weight, before the (1 - p_env) factor) and
+// the light strategy's own density of that light (equal to pdf without the local list).
+uint draw_light(float u0, float u1, uint tile_base, out GpuLight light, out float pdf,
+                out float strategy_pdf) {
+  if (push.local_candidates > 0u) {
+    uint slot = min(uint(u0 * float(kLocalSlots)), kLocalSlots - 1u);
+    pdf = local_pdf[slot];
+    strategy_pdf = local_strategy_pdf[slot];
+    return strategy_entry_light(local_entry[slot], light);
+  }
+  uint index;
   if (push.presample_tiles > 0u) {
     uint slot = min(uint(u0 * float(kRestirPresampleTileSize)), kRestirPresampleTileSize - 1u);
     // PresampledLight through its texel view: the light record, then index and pdf.
@@ -73,12 +163,14 @@ uint draw_light(float u0, float u1, uint tile_base, out GpuLight light, out floa
     light = gpu_light_fetch(presampled_lights, base);
     uvec2 index_pdf = texelFetch(presampled_lights, int(base + kGpuLightTexels)).xy;
     pdf = uintBitsToFloat(index_pdf.y);
-    return index_pdf.x;
+    index = index_pdf.x;
+  } else {
+    uint slot = alias_slot(restir_light_count(), u0);
+    index = alias_select(u1, scene_light_alias(slot), slot);
+    light = scene_light(index);
+    pdf = scene_light_alias(index).pdf * light_eval_point_pdf(light);
   }
-  uint slot = alias_slot(restir_light_count(), u0);
-  uint index = alias_select(u1, scene_light_alias(slot), slot);
-  light = scene_light(index);
-  pdf = scene_light_alias(index).pdf * light_eval_point_pdf(light);
+  strategy_pdf = pdf;
   return index;
 }
 
@@ -147,15 +239,21 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
     u0 = p_env > 0.0 ? clamp((u0 - p_env) / (1.0 - p_env), 0.0, 0.99999994) : u0;
     GpuLight light;
     float pdf;
-    uint index = draw_light(u0, u1, tile_base, light, pdf);
+    float strategy_pdf;
+    uint index = draw_light(u0, u1, tile_base, light, pdf, strategy_pdf);
     float target = light_eval_target(restir_light_contribution(p, light, uv));
-    float denominator = m_light * (1.0 - p_env) * pdf;
+    float weight = safe_ratio(target, m_light * (1.0 - p_env) * pdf);
     if (push.bsdf_candidates > 0u && target > 0.0) {
+      // Balance heuristic over the light strategy's density q (with the environment's share)
+      // and the BSDF's, times the candidate's contribution weight 1 / pdf:
+      // target q / (pdf (m_light q + m_bsdf p_bsdf)). Without the local list pdf = q: the plain
+      // balance heuristic.
       vec3 y = light_eval_position(light, uv, p.x, restir_scene_radius());
-      denominator += m_bsdf * bsdf_area_pdf(p, light, y);
+      float light_term = m_light * (1.0 - p_env) * strategy_pdf;
+      weight = safe_ratio(target * safe_ratio(strategy_pdf, pdf),
+                          light_term + m_bsdf * bsdf_area_pdf(p, light, y));
     }
-    reservoir_update(r, light_sample_make(index, uv, target), safe_ratio(target, denominator),
-                     u_pick);
+    reservoir_update(r, light_sample_make(index, uv, target), weight, u_pick);
   }
   for (uint j = 0u; j < push.bsdf_candidates; ++j) {
     float u_lobe = rng_next_float(rng);
@@ -198,10 +296,17 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
 
 void main() {
   uvec2 pixel;
-  if (!restir_pixel(pixel)) return;
-  uint index = restir_index(pixel);
+  bool inside = restir_pixel(pixel);
   ivec2 ip = ivec2(pixel);
-  vec4 position = imageLoad(gbuffer_position, ip);
+  vec4 position = inside ? imageLoad(gbuffer_position, ip) : vec4(0.0);
+  if (push.local_candidates > 0u) {
+    // Every invocation fills its slot, inside the image or not, before any reads the list.
+    fill_local_slot(pixel, inside && !gbuffer_is_sky(position.w), position.xyz,
+                    presampled_tile_base());
+    barrier();
+  }
+  if (!inside) return;
+  uint index = restir_index(pixel);
   RestirSurface surface = restir_surface_sky();
   if (!gbuffer_is_sky(position.w)) {
     vec4 normals = imageLoad(gbuffer_normal, ip);

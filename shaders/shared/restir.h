@@ -47,6 +47,7 @@ LANTERN_CONST uint kRestirRngTemporal = 0x52491u;
 LANTERN_CONST uint kRestirRngSpatial = 0x52492u;  // + pass index
 LANTERN_CONST uint kRestirRngPresample = 0x524a0u;
 LANTERN_CONST uint kRestirRngPresampleTile = 0x524a1u;
+LANTERN_CONST uint kRestirRngLocalLights = 0x524a2u;
 LANTERN_CONST uint kRestirRngShadeMedia = 0x524b0u;  // restir.shade's transmittance estimate
 
 // Light presampling (RIS tiles, Wyman and Panteleev, HPG 2021): restir.presample draws
@@ -58,6 +59,21 @@ LANTERN_CONST uint kRestirRngShadeMedia = 0x524b0u;  // restir.shade's transmitt
 // candidates of one tile are correlated, which costs a little variance.
 LANTERN_CONST uint kRestirPresampleTileSize = 1024u;
 LANTERN_CONST uint kRestirMaxPresampleTiles = 1024u;
+
+// Local light lists (push.local_candidates = N > 0): in restir.initial every invocation of an
+// 8x8 workgroup first fills one slot of the workgroup's list (shared memory) by RIS over N
+// light-strategy draws (the presampled tile, else the alias table) with target
+// pdf(l) / max(d^2, r^2): d the distance from its own pixel's surface point to the light's first
+// vertex or position, r = kRestirLocalMinDistance x the scene radius (1 for directional lights and
+// a sky pixel). The workgroup's light candidates are then drawn uniformly from its 64 slots, each
+// with the slot's unbiased contribution weight in place of 1 / pdf. The target is positive for
+// every light, so every slot covers every light and RIS stays unbiased; what changes is that lights
+// near the tile are drawn far more often than their share of the power. (night_market: a stall
+// wall 0.27 m from one of 5760 lanterns read 14,812 against a reference of 70 on the frame a
+// candidate found that lantern, and about 0 on the others.) MIS with BSDF candidates keeps the
+// light strategy's own density as its weight (any weights that sum to one keep RIS unbiased).
+LANTERN_CONST float kRestirLocalMinDistance = 0.005f;
+LANTERN_CONST uint kRestirMaxLocalCandidates = 256u;
 
 struct PresampledLight {
   GpuLight light;  // a copy of scene_light(index) (this frame's)
@@ -93,8 +109,12 @@ struct RestirPush {
   uint tile_bands;        // > 0: workgroups walk interleaved bands of tile rows (CPU devices)
   vec4 similarity;        // restir_surfaces_similar's thresholds: x max relative depth difference;
                           // y min cos between normals; z max roughness difference; w unused
+  uint local_candidates;  // > 0: draws per slot of restir.initial's local light lists (0: off)
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
-LANTERN_STATIC_SIZE(RestirPush, 80);
+LANTERN_STATIC_SIZE(RestirPush, 96);
 
 // The per-pixel surface the passes resample at, packed from the G-buffer by restir.initial
 // (and kept one frame as history for restir.temporal's disocclusion test). 48 bytes: albedo,

@@ -154,6 +154,10 @@ const Mode kModes[] = {
     {"balance", {{"bias_correction", "balance"}}, true, true},
     {"pairwise", {{"bias_correction", "pairwise"}}, true, true},
     {"none", {{"bias_correction", "none"}}, false, true},
+    // One BSDF candidate MIS'd with the light candidates (which come from the local light lists
+    // where a level has more than 1024 lights: the balance heuristic then weighs the light
+    // strategy's own density while a candidate carries its slot's contribution weight).
+    {"bsdf", {{"bsdf_candidates", "1"}}, true, true},
     // Study only (named in LANTERN_BIAS_MODES): each stage alone. Temporal reuse only, one
     // candidate: the longest-lived histories (the empty-history bug read +18% there on the CPU
     // chains); M cap 1; spatial only; no reuse (plain RIS: checks the reference itself).
@@ -163,6 +167,10 @@ const Mode kModes[] = {
     {"spatial", {{"temporal", "off"}, {"bias_correction", "pairwise"}}, true, false},
     {"spatial-b", {{"temporal", "off"}, {"bias_correction", "balance"}}, true, false},
     {"ris", {{"temporal", "off"}, {"spatial_passes", "0"}}, true, false},
+    // Local light lists (on in balanced where a level has > 1024 lights) with many draws per
+    // slot, and off.
+    {"local-32", {{"local_candidates", "32"}}, true, false},
+    {"no-local", {{"local_candidates", "0"}}, true, false},
 };
 
 // LANTERN_BIAS_MODES=balance,none,t-M1 selects modes (default: those marked ci).
@@ -364,6 +372,7 @@ TEST_F(RestirBiasTest, OccludedRoomLitSurfaces) {
   study("occluders", test::level_from_json("bias_occluders", kOccludersJson));
 }
 
+// Presampled tiles and the local light lists (balanced's light candidates there come from them).
 TEST_F(RestirBiasTest, ManyLightsPresampledLitSurfaces) {
   const auto level = test::level_from_json("bias_many_lights", many_lights_json());
   std::size_t triangles = 0;
@@ -372,6 +381,7 @@ TEST_F(RestirBiasTest, ManyLightsPresampledLitSurfaces) {
       triangles += level->meshes[inst.mesh].triangle_count();
   ASSERT_GT(triangles, gpu::kRestirPresampleTileSize) << "presampling must be on";
   ASSERT_GT(lighting::restir_preset("balanced").presample_tiles, 0u);
+  ASSERT_GT(lighting::restir_preset("balanced").local_candidates, 0u) << "local lists must be on";
   study("many_lights", level);
 }
 

@@ -102,6 +102,8 @@ TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
            {"volume_radius", "0"},
            {"volume_m_cap", "nan"},
            {"volume_temporal", "sometimes"},
+           {"local_candidates", "257"},
+           {"local_candidates", "-1"},
        }) {
     const std::string message = error_of(key, value);
     EXPECT_NE(message.find(key), std::string::npos) << key << "=" << value << ": " << message;
@@ -177,6 +179,26 @@ TEST(RestirSettings, PresampleTilesFollowLightsAndResolution) {
   apply_setting(off, "presample_tiles", "0");
   EXPECT_EQ(RestirIntegrator::presample_tiles(off, inputs_of(320, 180, 123000)), 0u);
   EXPECT_EQ(RestirIntegrator::make_push(s, inputs_of(320, 180, 123000)).presample_tiles, 32u);
+}
+
+// Local light lists: the setting where the level has more lights than one presampling tile
+// (night_market), none where RIS over the power distribution finds every light (cornell_lights);
+// more draws per slot in the richer presets; 0 turns them off.
+TEST(RestirSettings, LocalListsFollowTheLightCount) {
+  const RestirSettings s = restir_preset("balanced");
+  ASSERT_GT(s.local_candidates, 0u);
+  EXPECT_LT(restir_preset("fast").local_candidates, s.local_candidates);
+  EXPECT_LT(s.local_candidates, restir_preset("quality").local_candidates);
+  EXPECT_EQ(RestirIntegrator::local_candidates(s, inputs_of(320, 180, 1024)), 0u);
+  EXPECT_EQ(RestirIntegrator::local_candidates(s, inputs_of(320, 180, 1025)), s.local_candidates);
+  EXPECT_EQ(RestirIntegrator::make_push(s, inputs_of(320, 180, 123000)).local_candidates,
+            s.local_candidates);
+  EXPECT_EQ(RestirIntegrator::make_push(s, inputs_of(320, 180, 89)).local_candidates, 0u);
+  RestirSettings off = s;
+  apply_setting(off, "local_candidates", "0");
+  EXPECT_EQ(RestirIntegrator::make_push(off, inputs_of(320, 180, 123000)).local_candidates, 0u);
+  apply_setting(off, "local_candidates", std::to_string(gpu::kRestirMaxLocalCandidates));
+  EXPECT_EQ(off.local_candidates, gpu::kRestirMaxLocalCandidates);
 }
 
 }  // namespace
