@@ -76,10 +76,9 @@ std::uint32_t RestirIntegrator::presample_tiles(const RestirSettings& s,
 
 std::uint32_t RestirIntegrator::local_candidates(const RestirSettings& s,
                                                  const FrameInputs& inputs) {
-  // Local lists pay off where lights are many and each lights only its surroundings; with a
-  // presampling tile's worth of lights or fewer, RIS over the power distribution already finds
-  // them (cornell_lights' 89 emitters: local lists raised raw relMSE 1.4-2.1x).
-  return inputs.light_count > gpu::kRestirPresampleTileSize ? s.local_candidates : 0u;
+  // Local lists pay off where lights are many and each lights only its surroundings
+  // (RestirSettings::local_min_lights).
+  return inputs.light_count >= s.local_min_lights ? s.local_candidates : 0u;
 }
 
 gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const FrameInputs& inputs) {

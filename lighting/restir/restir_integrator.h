@@ -60,7 +60,7 @@ class RestirIntegrator final : public Integrator {
   // lowered so that the presampled entries stay at most 1/8 of the light candidates drawn.
   static std::uint32_t presample_tiles(const RestirSettings& settings, const FrameInputs& inputs);
   // Draws per slot of restir.initial's local light lists this frame: the setting where the level
-  // has more lights than one presampling tile, else 0.
+  // has at least local_min_lights lights, else 0.
   static std::uint32_t local_candidates(const RestirSettings& settings, const FrameInputs& inputs);
 
  private:

@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "engine/core/error.h"
+#include "shared/reservoir.h"
 
 namespace lantern::lighting {
 namespace {
@@ -165,6 +166,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.presample_tiles = parse_uint(key, value, 0, gpu::kRestirMaxPresampleTiles);
   } else if (key == "local_candidates") {
     s.local_candidates = parse_uint(key, value, 0, gpu::kRestirMaxLocalCandidates);
+  } else if (key == "local_min_lights") {
+    s.local_min_lights = parse_uint(key, value, 1, gpu::kEnvironmentLight);
   } else if (key == "visibility_reuse") {
     s.visibility_reuse = parse_uint(key, value, 0, 64);
   } else if (key == "initial_visibility") {
@@ -214,6 +217,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"radius", format_float(s.radius)},
       {"presample_tiles", std::to_string(s.presample_tiles)},
       {"local_candidates", std::to_string(s.local_candidates)},
+      {"local_min_lights", std::to_string(s.local_min_lights)},
       {"visibility_reuse", std::to_string(s.visibility_reuse)},
       {"bias_correction", choice_name(kBiasCorrections, s.bias_correction)},
       {"initial_visibility", flag(s.initial_visibility)},

@@ -33,8 +33,9 @@ std::span<const RestirChoice> restir_debug_views();
 const char* choice_name(std::span<const RestirChoice> choices, std::uint32_t value);
 
 struct RestirSettings {
-  // Light candidates per pixel from the power alias table. Raise for many-light scenes with
-  // little reuse (fast camera, short history); lower when the initial pass dominates frame time.
+  // Light candidates per pixel (by power, through presampled tiles and local light lists where
+  // those are on). Raise for many-light scenes with little reuse (fast camera, short history);
+  // lower when the initial pass dominates frame time.
   std::uint32_t light_candidates = 8;
   // BSDF-sampled candidates (MIS-combined with light candidates): raise for glossy surfaces near
   // large area lights, where light sampling misses the highlight; each one costs a closest-hit ray.
@@ -70,9 +71,14 @@ struct RestirSettings {
   // by RIS towards lights near the tile's surfaces; the tile's light candidates come from its
   // slots. Raise where small lights sit close to surfaces among many others (lamps, lanterns,
   // strips: far less noise next to them); 0 turns it off (candidates by power alone, cheaper per
-  // candidate on scenes where every light is far or alike). Used only where the level has more
-  // lights than one presampling tile (RestirIntegrator::local_candidates).
+  // candidate on scenes where every light is far or alike). Used only where the level has at
+  // least local_min_lights lights (RestirIntegrator::local_candidates).
   std::uint32_t local_candidates = 8;
+  // The light count from which the local lists are used: by default more than one presampling
+  // tile. Below it RIS over the power distribution already finds every light (cornell_lights' 89
+  // emitters: the lists changed its raw relMSE by 0.96-2.1x); lower it for a level of a few
+  // hundred lights spread far apart.
+  std::uint32_t local_min_lights = gpu::kRestirPresampleTileSize + 1;
   // Visibility reuse: a sample the pixel's history found unoccluded is shaded without a shadow
   // ray, and tested again every this many frames (staggered over pixels). 0 is off (one shadow
   // ray per pixel, unbiased). Exact for a still camera over still geometry; where the camera or
@@ -123,10 +129,10 @@ std::vector<std::string> restir_preset_names();
 
 // Sets one knob by its key (the field names above: light_candidates, bsdf_candidates, temporal,
 // m_cap (alias of m_cap_factor), spatial_passes, neighbours, disocclusion_boost, radius,
-// presample_tiles, local_candidates, visibility_reuse, bias_correction (a name from restir_bias_corrections()),
-// initial_visibility, boiling_filter, depth_threshold, normal_threshold, debug_view (a name from
-// restir_debug_views()); the media's volume_candidates, volume_temporal, volume_m_cap,
-// volume_neighbours, volume_radius).
+// presample_tiles, local_candidates, local_min_lights, visibility_reuse, bias_correction (a name
+// from restir_bias_corrections()), initial_visibility, boiling_filter, depth_threshold,
+// normal_threshold, debug_view (a name from restir_debug_views()); the media's volume_candidates,
+// volume_temporal, volume_m_cap, volume_neighbours, volume_radius).
 // lantern::InputError naming the key and the value for unknown keys, unparsable values and
 // values outside the allowed range (e.g. light_candidates = 0 or 10^9).
 void apply_setting(RestirSettings& settings, std::string_view key, std::string_view value);

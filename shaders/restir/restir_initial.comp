@@ -1,13 +1,13 @@
 // restir.initial: per pixel, packs the G-buffer into a RestirSurface and resamples
-// push.light_candidates light candidates (the environment map with its selection probability, else
-// the power alias table x uniform point on the light) plus push.bsdf_candidates BSDF candidates (a
-// closest-hit ray; an emissive triangle hit, or the environment when the ray escapes, is a
-// candidate), combined by the balance heuristic over the two strategies, with target p̂ =
-// luminance of the unshadowed contribution. Light candidates come from this workgroup's tile of
-// presampled lights when push.presample_tiles > 0 (restir.presample), and through the
-// workgroup's local light list when push.local_candidates > 0 (shared/restir.h: every invocation
-// first fills one slot, by RIS towards lights near its own surface point). Optionally
-// shadow-tests the pick (kRestirFlagInitialVisibility).
+// push.light_candidates light candidates (the environment map with its selection probability,
+// else a light by power, or through the local light list, x uniform point on the light) plus
+// push.bsdf_candidates BSDF candidates (a closest-hit ray; an emissive triangle hit, or the
+// environment when the ray escapes, is a candidate), combined by the balance heuristic over the
+// two strategies, with target p̂ = luminance of the unshadowed contribution. Light candidates
+// come from this workgroup's tile of presampled lights when push.presample_tiles > 0
+// (restir.presample), and through the workgroup's local light list when push.local_candidates > 0
+// (shared/restir.h: every invocation first fills one slot, by RIS towards lights near its own
+// surface point). Optionally shadow-tests the pick (kRestirFlagInitialVisibility).
 // Reads: gbuffer position/normal/albedo_roughness/emission_metallic/ids, scene materials,
 // instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility),
 // presampled_lights (restir.presample's; a stand-in when presampling is off).
@@ -104,8 +104,9 @@ uint strategy_entry_light(uint entry, out GpuLight light) {
 }
 
 // Fills this invocation's slot of the local light list: RIS over push.local_candidates draws
-// with target pdf(l) x g(l), g = 1 / max(d^2, r^2) from x (1 without a surface point and for a
-// directional light). The slot keeps the pick with density pdf x g x N / sum(g).
+// with target pdf(l) x g(l), g = 1 / max(d^2, r^2), d from x to the light's first vertex or
+// position (a directional light counts as one scene radius away; without a surface point g = 1).
+// The slot keeps the pick with density pdf x g x N / sum(g).
 void fill_local_slot(uvec2 pixel, bool has_point, vec3 x, uint tile_base) {
   uint slot = gl_LocalInvocationIndex;
   local_entry[slot] = 0u;
@@ -115,6 +116,7 @@ void fill_local_slot(uvec2 pixel, bool has_point, vec3 x, uint tile_base) {
   uint rng = frame_rng(pixel, kRestirRngLocalLights);
   float min_distance = kRestirLocalMinDistance * restir_scene_radius();
   float min_dist2 = max(min_distance * min_distance, 1e-12);
+  float far_dist2 = max(restir_scene_radius() * restir_scene_radius(), min_dist2);
   float g_sum = 0.0;
   float g_pick = 0.0;
   float pdf_pick = 0.0;
@@ -127,9 +129,10 @@ void fill_local_slot(uvec2 pixel, bool has_point, vec3 x, uint tile_base) {
     float pdf;
     uint entry = draw_strategy_entry(u0, u1, tile_base, p0, pdf);
     float g = 1.0;
-    if (has_point && floatBitsToUint(p0.w) != kLightDirectional) {
+    if (has_point) {
       vec3 d = p0.xyz - x;
-      g = 1.0 / max(dot(d, d), min_dist2);
+      g = 1.0 / (floatBitsToUint(p0.w) == kLightDirectional ? far_dist2
+                                                             : max(dot(d, d), min_dist2));
     }
     g_sum += g;
     if (u_pick * g_sum < g) {
@@ -139,7 +142,7 @@ void fill_local_slot(uvec2 pixel, bool has_point, vec3 x, uint tile_base) {
     }
   }
   local_entry[slot] = entry_pick;
-  local_pdf[slot] = pdf_pick * g_pick * float(push.local_candidates) / g_sum;
+  local_pdf[slot] = g_sum > 0.0 ? pdf_pick * g_pick * float(push.local_candidates) / g_sum : 0.0;
   local_strategy_pdf[slot] = pdf_pick;
 }
 
@@ -250,7 +253,8 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
       // balance heuristic.
       vec3 y = light_eval_position(light, uv, p.x, restir_scene_radius());
       float light_term = m_light * (1.0 - p_env) * strategy_pdf;
-      weight = safe_ratio(target * safe_ratio(strategy_pdf, pdf),
+      float contribution_ratio = push.local_candidates > 0u ? safe_ratio(strategy_pdf, pdf) : 1.0;
+      weight = safe_ratio(target * contribution_ratio,
                           light_term + m_bsdf * bsdf_area_pdf(p, light, y));
     }
     reservoir_update(r, light_sample_make(index, uv, target), weight, u_pick);

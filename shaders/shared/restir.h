@@ -60,18 +60,19 @@ LANTERN_CONST uint kRestirRngShadeMedia = 0x524b0u;  // restir.shade's transmitt
 LANTERN_CONST uint kRestirPresampleTileSize = 1024u;
 LANTERN_CONST uint kRestirMaxPresampleTiles = 1024u;
 
-// Local light lists (push.local_candidates = N > 0): in restir.initial every invocation of an
-// 8x8 workgroup first fills one slot of the workgroup's list (shared memory) by RIS over N
+// Local light lists (push.local_candidates = N > 0): in restir.initial every invocation of an 8x8
+// workgroup first fills one slot of the workgroup's list (shared memory) by RIS over N
 // light-strategy draws (the presampled tile, else the alias table) with target
-// pdf(l) / max(d^2, r^2): d the distance from its own pixel's surface point to the light's first
-// vertex or position, r = kRestirLocalMinDistance x the scene radius (1 for directional lights and
-// a sky pixel). The workgroup's light candidates are then drawn uniformly from its 64 slots, each
-// with the slot's unbiased contribution weight in place of 1 / pdf. The target is positive for
-// every light, so every slot covers every light and RIS stays unbiased; what changes is that lights
-// near the tile are drawn far more often than their share of the power. (night_market: a stall
-// wall 0.27 m from one of 5760 lanterns read 14,812 against a reference of 70 on the frame a
-// candidate found that lantern, and about 0 on the others.) MIS with BSDF candidates keeps the
-// light strategy's own density as its weight (any weights that sum to one keep RIS unbiased).
+// pdf(l) / max(d^2, r^2): d the distance from its own pixel's surface point to the light's first vertex or position (one
+// scene radius for a directional light), r = kRestirLocalMinDistance x the scene radius; a sky
+// pixel's slot uses pdf(l) alone. The workgroup's light candidates are then drawn uniformly from
+// its 64 slots, each with the slot's unbiased contribution weight in place of 1 / pdf. The target
+// is positive for every light, so every slot covers every light and RIS stays unbiased; what
+// changes is that lights near the tile are drawn far more often than their share of the power.
+// (night_market: a stall wall 0.27 m from one of 5760 lanterns read 14,812 against a reference of
+// 70 on the frame a candidate found that lantern, and about 0 on the others.) MIS with BSDF
+// candidates keeps the light strategy's own density as its weight (any weights that sum to one keep
+// RIS unbiased).
 LANTERN_CONST float kRestirLocalMinDistance = 0.005f;
 LANTERN_CONST uint kRestirMaxLocalCandidates = 256u;
 
@@ -104,7 +105,7 @@ struct RestirPush {
   float radius;           // spatial radius in pixels
   float m_cap;            // temporal M cap (absolute)
   float boiling_filter;   // boiling filter strength 0..1
-  uint presample_tiles;   // light presampling tiles (0: candidates from the alias table directly)
+  uint presample_tiles;   // light presampling tiles (0: draws from the alias table directly)
   uint visibility_reuse;  // re-test a reused visible sample every this many frames (0: off)
   uint tile_bands;        // > 0: workgroups walk interleaved bands of tile rows (CPU devices)
   vec4 similarity;        // restir_surfaces_similar's thresholds: x max relative depth difference;

@@ -154,10 +154,13 @@ const Mode kModes[] = {
     {"balance", {{"bias_correction", "balance"}}, true, true},
     {"pairwise", {{"bias_correction", "pairwise"}}, true, true},
     {"none", {{"bias_correction", "none"}}, false, true},
-    // One BSDF candidate MIS'd with the light candidates (which come from the local light lists
-    // where a level has more than 1024 lights: the balance heuristic then weighs the light
-    // strategy's own density while a candidate carries its slot's contribution weight).
+    // One BSDF candidate MIS'd with the light candidates; then the same with the local light
+    // lists on whatever the light count (local_min_lights 1: cornell_lights and the room draw
+    // their slots from the alias table, many_lights from presampled tiles), where the balance
+    // heuristic weighs the light strategy's own density while a candidate carries its slot's
+    // contribution weight.
     {"bsdf", {{"bsdf_candidates", "1"}}, true, true},
+    {"local-bsdf", {{"bsdf_candidates", "1"}, {"local_min_lights", "1"}}, true, true},
     // Study only (named in LANTERN_BIAS_MODES): each stage alone. Temporal reuse only, one
     // candidate: the longest-lived histories (the empty-history bug read +18% there on the CPU
     // chains); M cap 1; spatial only; no reuse (plain RIS: checks the reference itself).

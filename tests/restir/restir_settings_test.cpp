@@ -104,6 +104,7 @@ TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
            {"volume_temporal", "sometimes"},
            {"local_candidates", "257"},
            {"local_candidates", "-1"},
+           {"local_min_lights", "0"},
        }) {
     const std::string message = error_of(key, value);
     EXPECT_NE(message.find(key), std::string::npos) << key << "=" << value << ": " << message;
@@ -182,8 +183,8 @@ TEST(RestirSettings, PresampleTilesFollowLightsAndResolution) {
 }
 
 // Local light lists: the setting where the level has more lights than one presampling tile
-// (night_market), none where RIS over the power distribution finds every light (cornell_lights);
-// more draws per slot in the richer presets; 0 turns them off.
+// (night_market), none where RIS over the power distribution finds every light (cornell_lights),
+// or from local_min_lights lights; more draws per slot in the richer presets; 0 turns them off.
 TEST(RestirSettings, LocalListsFollowTheLightCount) {
   const RestirSettings s = restir_preset("balanced");
   ASSERT_GT(s.local_candidates, 0u);
@@ -199,6 +200,10 @@ TEST(RestirSettings, LocalListsFollowTheLightCount) {
   EXPECT_EQ(RestirIntegrator::make_push(off, inputs_of(320, 180, 123000)).local_candidates, 0u);
   apply_setting(off, "local_candidates", std::to_string(gpu::kRestirMaxLocalCandidates));
   EXPECT_EQ(off.local_candidates, gpu::kRestirMaxLocalCandidates);
+  RestirSettings few = s;
+  apply_setting(few, "local_min_lights", "64");
+  EXPECT_EQ(RestirIntegrator::local_candidates(few, inputs_of(320, 180, 89)), s.local_candidates);
+  EXPECT_EQ(RestirIntegrator::local_candidates(few, inputs_of(320, 180, 63)), 0u);
 }
 
 }  // namespace
