@@ -43,7 +43,7 @@ const Row kRows[] = {
     {{"phi_luminance", "luminance edge stop in standard deviations: higher blurs across "
                        "shadow edges, lower leaves more noise",
       0.1f, 100, false},
-     DENOISE_FIELD(phi_luminance), 4, 4, 4},
+     DENOISE_FIELD(phi_luminance), 2, 2, 2},
     {{"phi_normal", "normal edge stop exponent: lower blurs across creases", 1, 1024, false},
      DENOISE_FIELD(phi_normal), 64, 64, 64},
     {{"phi_depth", "depth-plane edge stop (relative to view depth): raise if grazing surfaces "

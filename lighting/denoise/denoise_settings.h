@@ -21,7 +21,7 @@ struct DenoiseSettings {
   std::uint32_t atrous_iterations = 4;
   float color_alpha = 0.1f;
   float moments_alpha = 0.2f;
-  float phi_luminance = 4.0f;
+  float phi_luminance = 2.0f;
   float phi_normal = 64.0f;
   float phi_depth = 0.02f;
   float firefly = 4.0f;
