@@ -8,7 +8,7 @@
 #include <iterator>
 
 #include "engine/core/error.h"
-#include "shared/reservoir.h"
+#include "shared/reservoir_pack.h"
 
 namespace lantern::lighting {
 namespace {
@@ -167,7 +167,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
   } else if (key == "local_candidates") {
     s.local_candidates = parse_uint(key, value, 0, gpu::kRestirMaxLocalCandidates);
   } else if (key == "local_min_lights") {
-    s.local_min_lights = parse_uint(key, value, 1, gpu::kEnvironmentLight);
+    // Up to the most lights a packed reservoir can index (local_candidates = 0 is the off switch).
+    s.local_min_lights = parse_uint(key, value, 1, gpu::kPackedMaxLights - 1);
   } else if (key == "visibility_reuse") {
     s.visibility_reuse = parse_uint(key, value, 0, 64);
   } else if (key == "initial_visibility") {

@@ -116,7 +116,7 @@ void fill_local_slot(uvec2 pixel, bool has_point, vec3 x, uint tile_base) {
   uint rng = frame_rng(pixel, kRestirRngLocalLights);
   float min_distance = kRestirLocalMinDistance * restir_scene_radius();
   float min_dist2 = max(min_distance * min_distance, 1e-12);
-  float far_dist2 = max(restir_scene_radius() * restir_scene_radius(), min_dist2);
+  float far_dist2 = restir_scene_radius() * restir_scene_radius();
   float g_sum = 0.0;
   float g_pick = 0.0;
   float pdf_pick = 0.0;
@@ -131,8 +131,9 @@ void fill_local_slot(uvec2 pixel, bool has_point, vec3 x, uint tile_base) {
     float g = 1.0;
     if (has_point) {
       vec3 d = p0.xyz - x;
-      g = 1.0 / (floatBitsToUint(p0.w) == kLightDirectional ? far_dist2
-                                                             : max(dot(d, d), min_dist2));
+      float dist2 = floatBitsToUint(p0.w) == kLightDirectional ? far_dist2 : dot(d, d);
+      // Clamped below float's overflow too: g stays positive for every light.
+      g = 1.0 / min(max(dist2, min_dist2), 1e30);
     }
     g_sum += g;
     if (u_pick * g_sum < g) {

@@ -9,14 +9,14 @@
 // same in every integrator and would swamp the lighting), not sky, and whose reference radiance
 // is positive.
 //
-// Asserted for balance and pairwise: the run resolves the tolerance (3 sigma < tolerance, else the
-// test fails saying so) and the bias is within 3 sigma of zero. A 1% gain injected into
+// Asserted for balance, pairwise, bsdf and local-bsdf (kModes): the run resolves the tolerance
+// (3 sigma < tolerance, else the test fails saying so) and the bias is within 3 sigma of zero. A 1% gain injected into
 // restir.shade reads +0.9..+1.1% against 3 sigma of 0.24..0.41% and fails both tests. `none` is
 // known to be biased dark where a neighbour's target is zero and the canonical pixel's is not (its
 // 1/M weights ignore that); its bias is printed and only what is true of it asserted: it never
 // exceeds the reference by more than 3 sigma.
 //
-// CI: 1% at 96x54 (kCi below, ~15 s a test). The resolving study (0.5%, kStudy: more runs, longer
+// CI: 1% at 96x54 (kCi below, ~25 s a scene). The resolving study (0.5%, kStudy: more runs, longer
 // chains, a larger image) is scripts/bias_study.sh: LANTERN_BIAS_STUDY=1 plus the LANTERN_BIAS_*
 // overrides of study_params(); LANTERN_BIAS_MODES picks configurations (t-M1 only when named),
 // LANTERN_BIAS_TRACE=1 prints every frame's error.

@@ -139,6 +139,11 @@ void draw_panel(PanelState& s) {
     constexpr int kMaxNeighbours = static_cast<int>(gpu::kRestirMaxNeighbours);
     slider_u("light candidates", r.light_candidates, 1, 64);
     slider_u("BSDF candidates", r.bsdf_candidates, 0, 8);
+    slider_u("local candidates", r.local_candidates, 0,
+             static_cast<int>(gpu::kRestirMaxLocalCandidates));
+    slider_u("presample tiles", r.presample_tiles, 0,
+             static_cast<int>(gpu::kRestirMaxPresampleTiles));
+    slider_u("visibility reuse", r.visibility_reuse, 0, 64);
     c |= ImGui::Checkbox("temporal reuse", &r.temporal);
     slider_f("M cap factor", r.m_cap_factor, 1.0f, 100.0f, "%.1f");
     slider_u("spatial passes", r.spatial_passes, 0, static_cast<int>(gpu::kRestirMaxSpatialPasses));
