@@ -73,34 +73,44 @@ shared uint local_entry[kLocalSlots];
 shared float local_pdf[kLocalSlots];
 shared float local_strategy_pdf[kLocalSlots];
 
-// One light-strategy draw from u0, u1 (in [0,1)): from this workgroup's presampled tile when
-// presampling is on, else from the alias table. Returns the entry (presampled) or light index,
-// the light's first vertex or position (p0) and its density (selection pdf x point density).
-uint draw_strategy_entry(float u0, float u1, uint tile_base, out vec4 p0, out float pdf) {
+// One light-strategy draw from u0, u1 (in [0,1)): an entry of this workgroup's presampled tile
+// when presampling is on, else a light index from the alias table.
+uint draw_strategy_entry(float u0, float u1, uint tile_base) {
   if (push.presample_tiles > 0u) {
     uint slot = min(uint(u0 * float(kRestirPresampleTileSize)), kRestirPresampleTileSize - 1u);
-    uint base = kPresampledLightTexels * (tile_base + slot);
-    p0 = uintBitsToFloat(texelFetch(presampled_lights, int(base)));
-    pdf = uintBitsToFloat(texelFetch(presampled_lights, int(base + kGpuLightTexels)).y);
     return tile_base + slot;
   }
   uint slot = alias_slot(restir_light_count(), u0);
-  uint index = alias_select(u1, scene_light_alias(slot), slot);
-  p0 = uintBitsToFloat(texelFetch(scene_light_texels, int(kGpuLightTexels * index)));
-  pdf = scene_light_alias(index).pdf *
-        (floatBitsToUint(p0.w) == kLightTriangle ? light_eval_point_pdf(scene_light(index)) : 1.0);
-  return index;
+  return alias_select(u1, scene_light_alias(slot), slot);
 }
 
-// The light of a draw_strategy_entry result: its index and record.
-uint strategy_entry_light(uint entry, out GpuLight light) {
+// A draw_strategy_entry result's light index, record and density (selection pdf x point density).
+uint strategy_entry_light(uint entry, out GpuLight light, out float pdf) {
   if (push.presample_tiles > 0u) {
+    // PresampledLight through its texel view: the light record, then index and pdf.
     uint base = kPresampledLightTexels * entry;
     light = gpu_light_fetch(presampled_lights, base);
-    return texelFetch(presampled_lights, int(base + kGpuLightTexels)).x;
+    uvec2 index_pdf = texelFetch(presampled_lights, int(base + kGpuLightTexels)).xy;
+    pdf = uintBitsToFloat(index_pdf.y);
+    return index_pdf.x;
   }
   light = scene_light(entry);
+  pdf = scene_light_alias(entry).pdf * light_eval_point_pdf(light);
   return entry;
+}
+
+// The same entry's first vertex or position (p0) and density, without the rest of the record
+// unless the density needs it (a triangle from the alias table): what a local slot's draws read.
+vec4 strategy_entry_position(uint entry, out float pdf) {
+  if (push.presample_tiles > 0u) {
+    uint base = kPresampledLightTexels * entry;
+    pdf = uintBitsToFloat(texelFetch(presampled_lights, int(base + kGpuLightTexels)).y);
+    return uintBitsToFloat(texelFetch(presampled_lights, int(base)));
+  }
+  vec4 p0 = uintBitsToFloat(texelFetch(scene_light_texels, int(kGpuLightTexels * entry)));
+  pdf = scene_light_alias(entry).pdf *
+        (floatBitsToUint(p0.w) == kLightTriangle ? light_eval_point_pdf(scene_light(entry)) : 1.0);
+  return p0;
 }
 
 // Fills this invocation's slot of the local light list: RIS over push.local_candidates draws
@@ -125,9 +135,9 @@ void fill_local_slot(uvec2 pixel, bool has_point, vec3 x, uint tile_base) {
     float u0 = rng_next_float(rng);
     float u1 = rng_next_float(rng);
     float u_pick = rng_next_float(rng);
-    vec4 p0;
+    uint entry = draw_strategy_entry(u0, u1, tile_base);
     float pdf;
-    uint entry = draw_strategy_entry(u0, u1, tile_base, p0, pdf);
+    vec4 p0 = strategy_entry_position(entry, pdf);
     float g = 1.0;
     if (has_point) {
       vec3 d = p0.xyz - x;
@@ -157,23 +167,10 @@ uint draw_light(float u0, float u1, uint tile_base, out GpuLight light, out floa
     uint slot = min(uint(u0 * float(kLocalSlots)), kLocalSlots - 1u);
     pdf = local_pdf[slot];
     strategy_pdf = local_strategy_pdf[slot];
-    return strategy_entry_light(local_entry[slot], light);
+    float entry_pdf;
+    return strategy_entry_light(local_entry[slot], light, entry_pdf);
   }
-  uint index;
-  if (push.presample_tiles > 0u) {
-    uint slot = min(uint(u0 * float(kRestirPresampleTileSize)), kRestirPresampleTileSize - 1u);
-    // PresampledLight through its texel view: the light record, then index and pdf.
-    uint base = kPresampledLightTexels * (tile_base + slot);
-    light = gpu_light_fetch(presampled_lights, base);
-    uvec2 index_pdf = texelFetch(presampled_lights, int(base + kGpuLightTexels)).xy;
-    pdf = uintBitsToFloat(index_pdf.y);
-    index = index_pdf.x;
-  } else {
-    uint slot = alias_slot(restir_light_count(), u0);
-    index = alias_select(u1, scene_light_alias(slot), slot);
-    light = scene_light(index);
-    pdf = scene_light_alias(index).pdf * light_eval_point_pdf(light);
-  }
+  uint index = strategy_entry_light(draw_strategy_entry(u0, u1, tile_base), light, pdf);
   strategy_pdf = pdf;
   return index;
 }
@@ -213,7 +210,7 @@ float env_candidate(ShadingPoint p, vec3 l, float p_env, float m_light, float m_
   return safe_ratio(target, denominator);
 }
 
-Reservoir resample(ShadingPoint p, inout uint rng) {
+Reservoir resample(ShadingPoint p, uint tile_base, inout uint rng) {
   Reservoir r = reservoir_empty();
   uint light_count = restir_light_count();
   float p_env = restir_env_probability();
@@ -223,7 +220,6 @@ Reservoir resample(ShadingPoint p, inout uint rng) {
     r.M = m_light + m_bsdf;
     return r;
   }
-  uint tile_base = presampled_tile_base();
   for (uint i = 0u; i < push.light_candidates; ++i) {
     float u0 = rng_next_float(rng);
     float u1 = rng_next_float(rng);
@@ -304,10 +300,10 @@ void main() {
   bool inside = restir_pixel(pixel);
   ivec2 ip = ivec2(pixel);
   vec4 position = inside ? imageLoad(gbuffer_position, ip) : vec4(0.0);
+  uint tile_base = presampled_tile_base();
   if (push.local_candidates > 0u) {
     // Every invocation fills its slot, inside the image or not, before any reads the list.
-    fill_local_slot(pixel, inside && !gbuffer_is_sky(position.w), position.xyz,
-                    presampled_tile_base());
+    fill_local_slot(pixel, inside && !gbuffer_is_sky(position.w), position.xyz, tile_base);
     barrier();
   }
   if (!inside) return;
@@ -329,7 +325,7 @@ void main() {
   Reservoir r = reservoir_empty();
   if (p.valid) {
     uint rng = frame_rng(pixel, kRestirRngInitial);
-    r = resample(p, rng);
+    r = resample(p, tile_base, rng);
     if ((push.flags & kRestirFlagInitialVisibility) != 0u && reservoir_has_sample(r)) {
       vec3 y = restir_light_position(p, r.selected.light_index, vec2(r.selected.u, r.selected.v));
       if (!vis_visible(p.x, y)) {

@@ -63,8 +63,8 @@ LANTERN_CONST uint kRestirMaxPresampleTiles = 1024u;
 // Local light lists (push.local_candidates = N > 0): in restir.initial every invocation of an 8x8
 // workgroup first fills one slot of the workgroup's list (shared memory) by RIS over N
 // light-strategy draws (the presampled tile, else the alias table) with target
-// pdf(l) / max(d^2, r^2): d the distance from its own pixel's surface point to the light's first vertex or position (one
-// scene radius for a directional light), r = kRestirLocalMinDistance x the scene radius; a sky
+// pdf(l) / max(d^2, r^2): d the distance from its own pixel's surface point to the light's first vertex or position
+// (one scene radius for a directional light), r = kRestirLocalMinDistance x the scene radius; a sky
 // pixel's slot uses pdf(l) alone. The workgroup's light candidates are then drawn uniformly from
 // its 64 slots, each with the slot's unbiased contribution weight in place of 1 / pdf. The target
 // is positive for every light, so every slot covers every light and RIS stays unbiased; what
