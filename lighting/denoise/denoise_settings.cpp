@@ -28,10 +28,10 @@ const Row kRows[] = {
     {{"enabled", "off to see the raw ReSTIR image (what trade's raw error and EXR output measure)",
       0, 1, true},
      DENOISE_FIELD(enabled), 1, 1, 1},
-    {{"atrous", "à-trous iterations (5x5 taps 2^i px apart): more smooths wider noise, blurs "
+    {{"atrous", "à-trous iterations (3x3 taps 2^i px apart): more smooths wider noise, blurs "
                 "more detail; 0 keeps only temporal accumulation",
       0, gpu::kDenoiseMaxAtrousIterations, true},
-     DENOISE_FIELD(atrous_iterations), 3, 4, 5},
+     DENOISE_FIELD(atrous_iterations), 3, 3, 5},
     {{"color_alpha", "temporal blend floor: lower for smoother still images, higher when lights "
                      "change fast and the image lags",
       0.01f, 1, false},
@@ -54,6 +54,12 @@ const Row kRows[] = {
                  "more fireflies, and some energy",
       0, 100, false},
      DENOISE_FIELD(firefly), 4, 4, 4},
+    {{"neighbour_clamp", "where a pixel has no history to judge a new sample by (new, "
+                         "disoccluded, short or all black), clamp the sample to k x the brightest "
+                         "of its 8 neighbours (0 off): lower removes more lone fireflies, and "
+                         "some energy",
+      0, 100, false},
+     DENOISE_FIELD(neighbour_clamp), 2, 2, 2},
     {{"max_history", "history length cap in frames (with confidence on, frames of the history's "
                      "mean confidence): lower when stale light lingers", 1, 256,
       false},

@@ -18,13 +18,14 @@ namespace lantern::lighting {
 
 struct DenoiseSettings {
   bool enabled = true;                // off: the player sees the raw image
-  std::uint32_t atrous_iterations = 4;
+  std::uint32_t atrous_iterations = 3;
   float color_alpha = 0.1f;
   float moments_alpha = 0.2f;
   float phi_luminance = 2.0f;
   float phi_normal = 64.0f;
   float phi_depth = 0.02f;
   float firefly = 4.0f;
+  float neighbour_clamp = 2.0f;
   float max_history = 32.0f;
   bool confidence = true;  // weigh each frame by the integrator's confidence (ReSTIR's M)
 };

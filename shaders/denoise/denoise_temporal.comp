@@ -2,7 +2,8 @@
 // passes through), reprojects last frame's denoised illumination and luminance moments along the
 // motion vector (bilinear over the 2x2 previous pixels, each kept only when it passes ReSTIR's
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
-// history), clamps a firefly against the history's mean + firefly x sigma, and blends
+// history), clamps a firefly against the history's mean + firefly x sigma (where the history
+// cannot judge, against push.neighbour_clamp x the brightest of its 8 neighbours), and blends
 // (alpha = max(c / (c + (length - 1) x the history's mean confidence), push.color_alpha): 1 /
 // history length when every frame is worth the same, else each weighs by the integrator's M;
 // the luminance moments keep 1 / length). Emitters pass through
@@ -46,6 +47,29 @@ layout(std430, binding = PASS_BINDING(13)) writeonly buffer GuideOut { vec4 p[];
 layout(std430, binding = PASS_BINDING(14)) readonly buffer ConfidenceIn {
   PackedReservoir r[];
 } confidence_in;
+
+// This frame's demodulated luminance at pixel q, for the neighbour clamp; -1 where a neighbour
+// does not count (outside the image, the sky, an emitter).
+float filtered_luminance(ivec2 q) {
+  if (!denoise_inside(q)) return -1.0;
+  if (denoise_passthrough(imageLoad(gbuffer_position, q).w,
+                          imageLoad(gbuffer_emission_metallic, q).rgb)) {
+    return -1.0;
+  }
+  vec3 albedo = imageLoad(gbuffer_albedo_roughness, q).rgb;
+  return luminance(denoise_finite(hdr_in.p[denoise_index(q)].rgb) / denoise_demodulation(albedo));
+}
+
+// The brightest of the 8 neighbours' luminance; negative when none counts. Read only where the
+// history cannot judge (few pixels once the history has settled; every pixel after a cut).
+float brightest_neighbour(ivec2 pixel) {
+  float m = -1.0;
+  for (int t = 0; t < 9; ++t) {
+    if (t == 4) continue;
+    m = max(m, filtered_luminance(pixel + ivec2(t % 3 - 1, t / 3 - 1)));
+  }
+  return m;
+}
 
 void main() {
   ivec2 pixel;
@@ -117,6 +141,32 @@ void main() {
     }
   }
 
+  if (weight_sum > 1e-3) {
+    history_color /= weight_sum;
+    history_moments /= weight_sum;
+  }
+  // Anti-firefly (biased, bounded): a new sample far above what this pixel has seen is clamped to
+  // the history's mean + firefly x sigma. A history that is missing, short or has seen nothing
+  // but black is no evidence (clamping to its mean of 0 would keep the pixel black for as long
+  // as its history lasts: a light switched on in a dark room, a penumbra pixel whose first
+  // samples were all shadowed); there the sample is clamped to neighbour_clamp x its brightest
+  // neighbour in this frame instead, which a lit region passes and a lone heavy-tailed sample
+  // (ReSTIR's, next to a small bright light) does not.
+  bool history_judges = weight_sum > 1e-3 && history_moments.z >= kDenoiseShortHistory &&
+                        history_moments.x > 0.0;
+  float limit = uintBitsToFloat(0x7f800000u);
+  if (history_judges && push.firefly > 0.0) {
+    float sigma = sqrt(max(history_moments.y - history_moments.x * history_moments.x, 0.0));
+    limit = history_moments.x + push.firefly * sigma;
+  } else if (!history_judges && push.neighbour_clamp > 0.0) {
+    float neighbour = brightest_neighbour(pixel);
+    if (neighbour >= 0.0) limit = push.neighbour_clamp * neighbour;
+  }
+  if (l > limit) {
+    illumination = limit > 0.0 ? illumination * (limit / l) : vec3(0.0);
+    l = limit;
+  }
+
   // This frame's confidence: the integrator's M (ReSTIR: the candidates behind the pixel's
   // sample, 8 in a first frame, hundreds once temporal reuse has settled), else 1 per frame.
   float confidence = (push.flags & kDenoiseFlagConfidence) != 0u
@@ -127,22 +177,7 @@ void main() {
   float frames = 1.0;
   float mean_confidence = confidence;
   if (weight_sum > 1e-3) {
-    history_color /= weight_sum;
-    history_moments /= weight_sum;
     float history_length = history_moments.z;
-    // Anti-firefly: a new sample far above what this pixel has seen is clamped (biased, bounded).
-    // A history that has seen nothing but black (mean 0, so limit 0) is no evidence: clamping
-    // there would keep the pixel black for as long as its history lasts (a light switched on in
-    // a dark room, a penumbra pixel whose first samples were all shadowed).
-    if (push.firefly > 0.0 && history_length >= kDenoiseShortHistory && l > 0.0 &&
-        history_moments.x > 0.0) {
-      float sigma = sqrt(max(history_moments.y - history_moments.x * history_moments.x, 0.0));
-      float limit = history_moments.x + push.firefly * sigma;
-      if (l > limit) {
-        illumination *= limit / l;
-        l = limit;
-      }
-    }
     frames = min(history_length + 1.0, push.max_history);
     // Each frame's pixel weighs by its confidence: a = c / (c + (frames - 1) x the history's mean
     // confidence), floored by color_alpha; the mean follows c over the same frames. With equal

@@ -40,8 +40,14 @@ struct DenoisePush {
                          // are denoised as a surface this far along their view ray, facing the
                          // camera, albedo 1; 0: the sky passes through unfiltered
   vec4 similarity;       // restir_surfaces_similar's thresholds (shared/restir.h) for reprojection
+  float neighbour_clamp;  // where the history cannot judge a new sample (none, shorter than
+                          // kDenoiseShortHistory or all black): clamp it to this x the brightest
+                          // of its 8 neighbours in this frame (0: off)
+  float pad0;
+  float pad1;
+  float pad2;
 };
-LANTERN_STATIC_SIZE(DenoisePush, 64);
+LANTERN_STATIC_SIZE(DenoisePush, 80);
 
 // What illumination is divided by: the surface's albedo (base colour), floored. Radiance =
 // factor x illumination; emitters are not filtered, nor is the sky unless sky_distance > 0.

@@ -449,6 +449,60 @@ TEST_F(DenoiseGpuTest, LightAfterDarknessIsNotHeldBlack) {
   EXPECT_NEAR(test::masked_mean(out, mask) / c, 1.0, 0.05);
 }
 
+// A lone heavy sample on a pixel with no history to judge it (the first frame, temporal only) is
+// clamped to neighbour_clamp x its brightest neighbour: one surface pixel at 100 c among pixels
+// of c comes out at exactly 2 c (the balanced preset's 2), every other pixel at c; with the
+// clamp off it stays 100 c. Once the history is long (6 frames of c), the history's own clamp
+// (mean + firefly sigma = c) judges the same spike instead.
+TEST_F(DenoiseGpuTest, LoneSampleWithoutHistoryIsClampedToItsNeighbours) {
+  const float c = 0.3f;
+  std::vector<std::uint8_t> mask;
+  {
+    Run probe = make_run();
+    (void)black_frames(probe, 1, mask);
+  }
+  // A surface pixel whose 8 neighbours are surfaces too, near the image's centre.
+  std::size_t spike = 0;
+  for (std::uint32_t y = kH / 2; y < kH - 1 && spike == 0; ++y) {
+    for (std::uint32_t x = kW / 2; x < kW - 1 && spike == 0; ++x) {
+      bool all = true;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) all = all && mask[(y + dy) * kW + (x + dx)];
+      if (all) spike = std::size_t{y} * kW + x;
+    }
+  }
+  ASSERT_NE(spike, 0u);
+  ImageRGBA32F input = constant(c);
+  for (int k = 0; k < 3; ++k) input.pixels[4 * spike + k] = 100.0f * c;
+  struct Case {
+    const char* what;
+    const char* clamp;
+    int history_frames;
+    float expected;
+  };
+  const Case cases[] = {{"first frame, clamp 2", "2", 0, 2.0f * c},
+                        {"first frame, clamp off", "0", 0, 100.0f * c},
+                        {"after 6 frames of c", "2", 6, c}};
+  for (const Case& k : cases) {
+    Run run = make_run({{"atrous", "0"}, {"neighbour_clamp", k.clamp}});
+    FrameSnapshot s = test::first_snapshot(level, kW, kH);
+    for (int f = 0; f < k.history_frames; ++f) {
+      (void)render(run, constant(c), s);
+      s = frozen(s);
+    }
+    const ImageRGBA32F out = render(run, input, s);
+    // Away from the spike every surface pixel is c (the blend of c with a history of c).
+    std::vector<std::uint8_t> others = mask;
+    others[spike] = 0;
+    const Range r = masked_range(out, others);
+    std::printf("[denoise neighbour clamp] %s: spike %.5f (expected %.5f), others %.5f..%.5f\n",
+                k.what, out.pixels[4 * spike], k.expected, r.lo, r.hi);
+    EXPECT_NEAR(out.pixels[4 * spike], k.expected, 1e-4f * k.expected) << k.what;
+    EXPECT_NEAR(r.lo, c, 1e-5f) << k.what;
+    EXPECT_NEAR(r.hi, c, 1e-5f) << k.what;
+  }
+}
+
 // The integrator's confidence weighs each frame (static camera, constant images, so every pixel
 // follows the closed form through the à-trous steps): 6 black frames of M = 1, then one of c with
 // M = 100 comes out as 100/106 c, where without the confidence (or with denoise.confidence off)

@@ -17,8 +17,11 @@ TEST(DenoiseSettings, PresetsDifferInFilterStrength) {
 
 TEST(DenoiseSettings, ParsesEveryKindOfKey) {
   const DenoiseSettings s = make_denoise_settings(
-      "balanced", {{"enabled", "off"}, {"atrous", "2"}, {"phi_luminance", "2.5"}});
+      "balanced",
+      {{"enabled", "off"}, {"atrous", "2"}, {"phi_luminance", "2.5"}, {"neighbour_clamp", "0"}});
   EXPECT_FALSE(s.enabled);
+  EXPECT_EQ(s.neighbour_clamp, 0.0f);
+  EXPECT_EQ(make_denoise_settings("balanced", {}).neighbour_clamp, 2.0f);
   EXPECT_EQ(s.atrous_iterations, 2u);
   EXPECT_FLOAT_EQ(s.phi_luminance, 2.5f);
 }
@@ -37,6 +40,8 @@ TEST(DenoiseSettings, RefusesBadInputNamingIt) {
   EXPECT_NE(message({{"atrous", "9"}}).find("outside"), std::string::npos);
   EXPECT_NE(message({{"atrous", "1.5"}}).find("whole number"), std::string::npos);
   EXPECT_NE(message({{"firefly", "nan"}}).find("finite"), std::string::npos);
+  EXPECT_NE(message({{"neighbour_clamp", "-1"}}).find("'neighbour_clamp': -1 is outside"),
+            std::string::npos);
   EXPECT_NE(message({{"enabled", "maybe"}}).find("boolean"), std::string::npos);
   EXPECT_THROW((void)make_denoise_settings("ultra", {}), InputError);
 }
