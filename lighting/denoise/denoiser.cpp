@@ -16,11 +16,13 @@ Denoiser::Denoiser(runtime::Device& device, runtime::ShaderLibrary& shaders)
       temporal_(device, shaders, "temporal"),
       variance_(device, shaders, "variance"),
       atrous_(device, shaders, "atrous"),
+      atrous_modulate_(device, shaders, "atrous_modulate"),
       modulate_(device, shaders, "modulate") {}
 
 void Denoiser::warm_up() {
-  const std::array<const runtime::ComputePipeline*, 4> pipelines{
-      &temporal_.pipeline(), &variance_.pipeline(), &atrous_.pipeline(), &modulate_.pipeline()};
+  const std::array<const runtime::ComputePipeline*, 5> pipelines{
+      &temporal_.pipeline(), &variance_.pipeline(), &atrous_.pipeline(),
+      &atrous_modulate_.pipeline(), &modulate_.pipeline()};
   runtime::warm_up(device_, pipelines);
 }
 
@@ -57,15 +59,15 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
   const VkDeviceSize pixels = VkDeviceSize{inputs.width} * inputs.height;
   const runtime::graph::BufferDesc vec4s{pixels * 4 * sizeof(float)};
 
-  BufferHandle surfaces =
-      graph.create_history_buffer("denoise.surfaces", {pixels * sizeof(gpu::RestirSurface)});
+  BufferHandle surface_keys = graph.create_history_buffer(
+      "denoise.surface_keys", {pixels * sizeof(gpu::RestirSimilarityKey)});
   BufferHandle color = graph.create_history_buffer("denoise.color", vec4s);
   BufferHandle moments = graph.create_history_buffer("denoise.moments", vec4s);
-  const BufferHandle surfaces_history = graph.history(surfaces);
+  const BufferHandle surface_keys_history = graph.history(surface_keys);
   const BufferHandle color_history = graph.history(color);
   const BufferHandle moments_history = graph.history(moments);
   const bool history =
-      surfaces_history.valid() && color_history.valid() && moments_history.valid();
+      surface_keys_history.valid() && color_history.valid() && moments_history.valid();
   if (history) push.flags |= gpu::kDenoiseFlagHistoryValid;
   if (!s.confidence) confidence = {};
   if (confidence.valid()) push.flags |= gpu::kDenoiseFlagConfidence;
@@ -80,9 +82,9 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
     const std::vector<BufferHandle> out = temporal_.add(
         graph, inputs, push,
         {{"hdr_in", raw},
-         {"denoise_surfaces", surfaces, DenoisePass::Buffer::Write},
+         {"surface_keys_out", surface_keys, DenoisePass::Buffer::Write},
          // Without history the shader does not read these: this frame's raw stands in.
-         {"surfaces_history", history ? surfaces_history : raw},
+         {"surface_keys_history", history ? surface_keys_history : raw},
          {"color_history", history ? color_history : raw},
          {"moments_history", history ? moments_history : raw},
          // Without a confidence buffer the shader does not read it: raw stands in.
@@ -95,41 +97,50 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
     guide = out[3];
   }
 
-  if (filter) {
-    // denoise.variance, then the à-trous iterations ping-ponging two scratch buffers.
-    const std::vector<BufferHandle> filtered = variance_.add(
-        graph, inputs, push,
-        {{"accum_in", accum},
-         {"guide", guide},
-         {"moments_in", moments},
-         {"accum_out", graph.create_buffer("denoise.variance", vec4s), DenoisePass::Buffer::Write},
-         {"luminance_out", graph.create_buffer("denoise.luminance", {pixels * sizeof(float)}),
-          DenoisePass::Buffer::Write}});
-    BufferHandle current = filtered[0];
-    const BufferHandle smooth_luminance = filtered[1];
-    BufferHandle scratch[2];
-    for (std::uint32_t i = 0; i < s.atrous_iterations; ++i) {
-      gpu::DenoisePush p = push;
-      p.step = 1u << i;
-      if (i == 0) p.flags |= gpu::kDenoiseFlagSmoothLuminance;
-      BufferHandle& target = scratch[i % 2];
-      if (!target) target = graph.create_buffer(i % 2 ? "denoise.atrous.a" : "denoise.atrous.b", vec4s);
-      target = atrous_.add(graph, inputs, p,
-                           {{"accum_in", current},
-                            {"guide", guide},
-                            {"luminance_in", smooth_luminance},
-                            {"accum_out", target, DenoisePass::Buffer::Write}})[0];
-      current = target;
-    }
-    accum = current;
+  const BufferHandle output = graph.create_buffer("denoise.output", vec4s);
+  if (!filter) {
+    // denoise.modulate: the temporal accumulation back to radiance.
+    return modulate_.add(graph, inputs, push,
+                         {{"accum_in", accum},
+                          {"hdr_in", raw},
+                          {"hdr_out", output, DenoisePass::Buffer::Write}})[0];
   }
-
-  // denoise.modulate: back to radiance.
-  return modulate_.add(graph, inputs, push,
-                       {{"accum_in", accum},
-                        {"hdr_in", raw},
-                        {"hdr_out", graph.create_buffer("denoise.output", vec4s),
-                         DenoisePass::Buffer::Write}})[0];
+  // denoise.variance, then the à-trous iterations ping-ponging two scratch buffers; the last one
+  // (denoise.atrous_modulate) writes radiance.
+  const std::vector<BufferHandle> filtered = variance_.add(
+      graph, inputs, push,
+      {{"accum_in", accum},
+       {"guide", guide},
+       {"moments_in", moments},
+       {"accum_out", graph.create_buffer("denoise.variance", vec4s), DenoisePass::Buffer::Write},
+       {"luminance_out", graph.create_buffer("denoise.luminance", {pixels * sizeof(float)}),
+        DenoisePass::Buffer::Write}});
+  BufferHandle current = filtered[0];
+  const BufferHandle smooth_luminance = filtered[1];
+  BufferHandle scratch[2];
+  auto step_push = [&](std::uint32_t i) {
+    gpu::DenoisePush p = push;
+    p.step = 1u << i;
+    if (i == 0) p.flags |= gpu::kDenoiseFlagSmoothLuminance;
+    return p;
+  };
+  const std::uint32_t last = s.atrous_iterations - 1;
+  for (std::uint32_t i = 0; i < last; ++i) {
+    BufferHandle& target = scratch[i % 2];
+    if (!target) target = graph.create_buffer(i % 2 ? "denoise.atrous.a" : "denoise.atrous.b", vec4s);
+    target = atrous_.add(graph, inputs, step_push(i),
+                         {{"accum_in", current},
+                          {"guide", guide},
+                          {"luminance_in", smooth_luminance},
+                          {"accum_out", target, DenoisePass::Buffer::Write}})[0];
+    current = target;
+  }
+  return atrous_modulate_.add(graph, inputs, step_push(last),
+                              {{"accum_in", current},
+                               {"guide", guide},
+                               {"luminance_in", smooth_luminance},
+                               {"hdr_in", raw},
+                               {"hdr_out", output, DenoisePass::Buffer::Write}})[0];
 }
 
 }  // namespace lantern::lighting

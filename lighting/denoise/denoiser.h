@@ -5,9 +5,11 @@
 //                      reprojected history (motion vectors, ReSTIR's restir_surfaces_similar
 //                      disocclusion test), anti-firefly clamp, blend; luminance moments
 //   denoise.variance   spatial variance where the history is short (< 4 frames)
-//   denoise.atrous xN  variance-guided edge-avoiding à-trous
-//   denoise.modulate   illumination x albedo + emission -> "denoise.output"
-// History ("denoise.surfaces", "denoise.color", "denoise.moments") is the graph's: the frame
+//   denoise.atrous xN-1  variance-guided edge-avoiding à-trous
+//   denoise.atrous_modulate  the last à-trous step, back to radiance (illumination x albedo;
+//                      emitters and the sky raw) -> "denoise.output"
+//   denoise.modulate   the same without à-trous steps (atrous 0: temporal accumulation only)
+// History ("denoise.surface_keys", "denoise.color", "denoise.moments") is the graph's: the frame
 // renderer's invalidate_history() on a cut, a resize or the first frame leaves none, and a frame
 // rendered without the denoiser leaves none for the next.
 #pragma once
@@ -43,6 +45,7 @@ class Denoiser {
   DenoisePass temporal_;
   DenoisePass variance_;
   DenoisePass atrous_;
+  DenoisePass atrous_modulate_;
   DenoisePass modulate_;
 };
 

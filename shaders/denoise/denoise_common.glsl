@@ -50,6 +50,16 @@ vec3 denoise_albedo(float view_depth, vec3 gbuffer_albedo) {
   return gbuffer_is_sky(view_depth) ? vec3(1.0) : gbuffer_albedo;
 }
 
+// A denoised pixel back to radiance (denoise.modulate, denoise.atrous_modulate): the filtered
+// illumination x the demodulation factor denoise.temporal divided by (1 for a filtered sky
+// pixel); a pass-through pixel (an emitter, an unfiltered sky) keeps its raw radiance.
+vec3 denoise_remodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, vec3 raw,
+                        vec3 illumination) {
+  if (denoise_passthrough(view_depth, emission)) return denoise_finite(raw);
+  return denoise_finite(denoise_demodulation(denoise_albedo(view_depth, gbuffer_albedo)) *
+                        illumination);
+}
+
 // The edge-stopping guide denoise.temporal writes once per pixel ("denoise.guide", read by
 // every tap of denoise.variance and denoise.atrous instead of two G-buffer images): xyz world
 // position, w the octahedral shading normal (snorm 2x16) as float bits; kDenoiseSky bits for the

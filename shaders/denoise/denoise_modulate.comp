@@ -1,6 +1,6 @@
-// denoise.modulate: the filtered illumination back to radiance: albedo demodulation x
-// illumination (the same factor denoise.temporal divided by; 1 for a filtered sky pixel);
-// emitters and an unfiltered sky (denoise_passthrough) keep the raw radiance.
+// denoise.modulate (only without à-trous steps; otherwise the last step, denoise.atrous_modulate,
+// does this): the temporal accumulation back to radiance, denoise_remodulate (albedo
+// demodulation x illumination; emitters and an unfiltered sky keep the raw radiance).
 // Reads: accum_in (rgb illumination), hdr_in (raw radiance, for the sky), gbuffer
 // position/albedo_roughness/emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
 // History: none. Dispatch: one thread per pixel, 8x8 groups.
@@ -20,14 +20,9 @@ void main() {
   ivec2 pixel;
   if (!denoise_pixel(pixel)) return;
   uint index = denoise_index(pixel);
-  vec3 rgb;
-  if (denoise_passthrough(imageLoad(gbuffer_position, pixel).w,
-                          imageLoad(gbuffer_emission_metallic, pixel).rgb)) {
-    rgb = denoise_finite(hdr_in.p[index].rgb);
-  } else {
-    vec3 albedo = denoise_albedo(imageLoad(gbuffer_position, pixel).w,
-                                 imageLoad(gbuffer_albedo_roughness, pixel).rgb);
-    rgb = denoise_demodulation(albedo) * accum_in.p[index].rgb;
-  }
-  hdr_out.p[index] = vec4(denoise_finite(rgb), 1.0);
+  vec3 rgb = denoise_remodulate(imageLoad(gbuffer_position, pixel).w,
+                                imageLoad(gbuffer_emission_metallic, pixel).rgb,
+                                imageLoad(gbuffer_albedo_roughness, pixel).rgb,
+                                hdr_in.p[index].rgb, accum_in.p[index].rgb);
+  hdr_out.p[index] = vec4(rgb, 1.0);
 }

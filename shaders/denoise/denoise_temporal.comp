@@ -12,13 +12,14 @@
 // then a sky pixel is a surface that far along its view ray, facing the camera, albedo 1,
 // reprojected as that point.
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
-// surfaces_history, color_history, moments_history, frame constants (prev_view_proj),
+// surface_keys_history, color_history, moments_history, frame constants (prev_view_proj),
 // confidence_in (with kDenoiseFlagConfidence: the integrator's PackedReservoirs, their M).
-// Writes: denoise_surfaces (this frame's "denoise.surfaces"), accum_out (rgb illumination, a:
+// Writes: surface_keys_out (this frame's "denoise.surface_keys": each pixel's RestirSimilarityKey,
+// what the reprojection test reads), accum_out (rgb illumination, a:
 // temporal variance; "denoise.color", next frame's history), moments_out ("denoise.moments": x, y
 // luminance moments, z history length, w mean confidence),
 // guide_out ("denoise.guide", denoise_common.glsl).
-// History: "denoise.surfaces", "denoise.color", "denoise.moments" of last frame; without
+// History: "denoise.surface_keys", "denoise.color", "denoise.moments" of last frame; without
 // kDenoiseFlagHistoryValid the history bindings are stand-ins and are not read.
 // Dispatch: one thread per pixel, 8x8 groups.
 #version 460
@@ -37,8 +38,10 @@ layout(binding = PASS_BINDING(3), rgba32f) readonly uniform image2D gbuffer_emis
 layout(binding = PASS_BINDING(4), rgba32ui) readonly uniform uimage2D gbuffer_ids;
 layout(binding = PASS_BINDING(5), rgba32f) readonly uniform image2D gbuffer_motion;
 layout(std430, binding = PASS_BINDING(6)) readonly buffer HdrIn { vec4 p[]; } hdr_in;
-layout(std430, binding = PASS_BINDING(7)) writeonly buffer SurfacesOut { RestirSurface s[]; } denoise_surfaces;
-layout(binding = PASS_BINDING(8)) uniform utextureBuffer surfaces_history;
+layout(std430, binding = PASS_BINDING(7)) writeonly buffer SurfaceKeysOut {
+  RestirSimilarityKey k[];
+} surface_keys_out;
+layout(binding = PASS_BINDING(8)) uniform utextureBuffer surface_keys_history;
 layout(binding = PASS_BINDING(9)) uniform utextureBuffer color_history;
 layout(binding = PASS_BINDING(10)) uniform utextureBuffer moments_history;
 layout(std430, binding = PASS_BINDING(11)) writeonly buffer AccumOut { vec4 p[]; } accum_out;
@@ -79,7 +82,7 @@ void main() {
   vec3 radiance = denoise_finite(hdr_in.p[index].rgb);
   vec4 emission_metallic = imageLoad(gbuffer_emission_metallic, pixel);
   if (denoise_passthrough(position.w, emission_metallic.rgb)) {
-    denoise_surfaces.s[index] = restir_surface_sky();
+    surface_keys_out.k[index] = restir_similarity_key(restir_surface_sky());
     accum_out.p[index] = vec4(radiance, 0.0);
     moments_out.p[index] = vec4(0.0);
     guide_out.p[index] = denoise_guide_passthrough();
@@ -112,7 +115,8 @@ void main() {
   RestirSurface surface = restir_surface_pack(position, n, ng, albedo_roughness.rgb,
                                               albedo_roughness.a, sky ? 0.0 : emission_metallic.a,
                                               0.0, material);
-  denoise_surfaces.s[index] = surface;
+  RestirSimilarityKey key = restir_similarity_key(surface);
+  surface_keys_out.k[index] = key;
   guide_out.p[index] = denoise_guide(position, n);
   vec3 illumination = radiance / denoise_demodulation(albedo_roughness.rgb);
   float l = luminance(illumination);
@@ -132,7 +136,8 @@ void main() {
       ivec2 q = base + o;
       if (w <= 0.0 || !denoise_inside(q)) continue;
       uint qi = denoise_index(q);
-      if (!restir_surfaces_similar(surface, expected_depth, restir_surface_fetch(surfaces_history, qi), push.similarity)) {
+      if (!restir_keys_similar(key, expected_depth, restir_similarity_key_fetch(surface_keys_history, qi),
+                               push.similarity)) {
         continue;
       }
       history_color += w * vec4_fetch(color_history, qi).rgb;

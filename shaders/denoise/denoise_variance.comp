@@ -1,6 +1,6 @@
 // denoise.variance: where the temporal history is short (< kDenoiseShortHistory frames: just
 // disoccluded, the first frame, after a cut) the temporal variance means nothing yet; estimate it
-// from the luminance of similar neighbours in a 7x7 window instead (depth-plane and normal edge
+// from the luminance of similar neighbours in a 5x5 window instead (depth-plane and normal edge
 // stops as in denoise.atrous), so the first à-trous iterations still know how noisy the pixel is.
 // Also the 3x3 mean luminance of similar neighbours, which the first à-trous iteration's
 // luminance edge stop compares.
@@ -57,8 +57,8 @@ void main() {
   }
   float sum_w = 0.0;
   vec2 moments = vec2(0.0);
-  [[unroll]] for (int dy = -3; dy <= 3; ++dy) {
-    [[unroll]] for (int dx = -3; dx <= 3; ++dx) {
+  [[unroll]] for (int dy = -2; dy <= 2; ++dy) {
+    [[unroll]] for (int dx = -2; dx <= 2; ++dx) {
       ivec2 q = pixel + ivec2(dx, dy);
       if (!denoise_inside(q)) continue;
       uint qi = denoise_index(q);

@@ -40,6 +40,11 @@ RestirSurface restir_surface_fetch(utextureBuffer texels, uint index) {
   return s;
 }
 
+RestirSimilarityKey restir_similarity_key_fetch(utextureBuffer texels, uint index) {
+  uvec4 t = texelFetch(texels, int(index));
+  return RestirSimilarityKey(uintBitsToFloat(t.x), t.y, t.z, uintBitsToFloat(t.w));
+}
+
 PackedReservoir reservoir_fetch(utextureBuffer texels, uint index) {
   uvec4 t = texelFetch(texels, int(index));
   return PackedReservoir(t.x, t.y, uintBitsToFloat(t.z), t.w);

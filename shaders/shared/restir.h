@@ -179,26 +179,55 @@ LANTERN_FUNC float restir_surface_metallic(RestirSurface s) { return unpackUnorm
 LANTERN_FUNC float restir_surface_specular(RestirSurface s) { return unpackUnorm2x16(s.material.x).y; }
 LANTERN_FUNC uint restir_surface_material(RestirSurface s) { return s.material.y; }
 
-// Whether `other` is close enough to `s` to reuse its reservoir: both are surfaces, the view depth
-// differs by at most similarity.x relative (`expected_depth` is s's depth as `other`'s camera saw
-// it: its own depth for spatial neighbours, its reprojected depth for history), normals within
+// What the reuse test (restir_surfaces_similar) reads of a surface, 16 bytes: a pass that keeps a
+// surface only to test reuse against it later (the denoiser's history) keeps this instead of the
+// 48-byte RestirSurface. Values exactly as the surface's accessors return them.
+struct RestirSimilarityKey {
+  float depth;      // linear view depth (0: sky, no surface)
+  uint normal;      // shading normal, oct snorm 2x16 (RestirSurface.packed.x)
+  uint material;    // material id
+  float roughness;  // unorm16-quantised, as restir_surface_roughness
+};
+LANTERN_STATIC_SIZE(RestirSimilarityKey, 16);
+
+LANTERN_FUNC RestirSimilarityKey restir_similarity_key(RestirSurface s) {
+  RestirSimilarityKey k;
+  k.depth = restir_surface_depth(s);
+  k.normal = s.packed.x;
+  k.material = restir_surface_material(s);
+  k.roughness = restir_surface_roughness(s);
+  return k;
+}
+
+// Whether a surface with key `other` is close enough to one with key `s` to reuse its
+// reservoir (or, in the denoiser, its history): both are surfaces, the view depth differs by at
+// most similarity.x relative (`expected_depth` is s's depth as `other`'s camera saw it: its own
+// depth for spatial neighbours, its reprojected depth for history), normals within
 // acos(similarity.y), same material id and roughness within similarity.z.
-LANTERN_FUNC bool restir_surfaces_similar(RestirSurface s, float expected_depth,
-                                          RestirSurface other, vec4 similarity) {
-  if (!restir_surface_valid(s) || !restir_surface_valid(other)) {
+LANTERN_FUNC bool restir_keys_similar(RestirSimilarityKey s, float expected_depth,
+                                      RestirSimilarityKey other, vec4 similarity) {
+  if (gbuffer_is_sky(s.depth) || gbuffer_is_sky(other.depth)) {
     return false;
   }
-  float d_other = restir_surface_depth(other);
+  float d_other = other.depth;
   if (!(abs(expected_depth - d_other) <= similarity.x * max(expected_depth, d_other))) {
     return false;
   }
-  if (dot(restir_surface_normal(s), restir_surface_normal(other)) < similarity.y) {
+  if (dot(oct_decode(unpackSnorm2x16(s.normal)), oct_decode(unpackSnorm2x16(other.normal))) <
+      similarity.y) {
     return false;
   }
-  if (restir_surface_material(s) != restir_surface_material(other)) {
+  if (s.material != other.material) {
     return false;
   }
-  return abs(restir_surface_roughness(s) - restir_surface_roughness(other)) <= similarity.z;
+  return abs(s.roughness - other.roughness) <= similarity.z;
+}
+
+// The same test on two surfaces.
+LANTERN_FUNC bool restir_surfaces_similar(RestirSurface s, float expected_depth,
+                                          RestirSurface other, vec4 similarity) {
+  return restir_keys_similar(restir_similarity_key(s), expected_depth,
+                             restir_similarity_key(other), similarity);
 }
 
 // 8x8 tile g of the dispatch -> top-left pixel (see kRestirTileSize). With bands > 0 (CPU

@@ -65,11 +65,13 @@ layout(std430, binding = 26) buffer VolumePushProbe { VolumePush volume_pushes[]
 layout(std430, binding = 27) buffer VolumeReservoirProbe { VolumeReservoir volume_reservoirs[]; };
 layout(std430, binding = 28) buffer VolumeRestirPushProbe { VolumeRestirPush volume_restir_pushes[]; };
 layout(std430, binding = 29) buffer HostShadowRayProbe { HostShadowRay host_shadow_rays[]; };
+layout(std430, binding = 30) buffer RestirSimilarityKeyProbe { RestirSimilarityKey restir_similarity_keys[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
   alias_entries[0] = alias_entries[1];
   denoise_pushes[0] = denoise_pushes[1];
+  restir_similarity_keys[0] = restir_similarity_keys[1];
   upscale_pushes[0] = upscale_pushes[1];
   gpu_lights[0] = gpu_lights[1];
   light_samples[0] = light_samples[1];

@@ -1,0 +1,28 @@
+// denoise.atrous_modulate: the last à-trous step (denoise_atrous.comp) and the result back to
+// radiance in the same pass (denoise_remodulate, as denoise.modulate), so the filtered
+// illumination is not written out and read back.
+// Reads: accum_in (rgb illumination, a variance), guide, luminance_in (with a single step),
+// hdr_in (raw radiance, for pass-through pixels), gbuffer position/albedo_roughness/
+// emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
+// History: none. Dispatch: one thread per pixel, 8x8 groups.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "denoise/denoise_atrous.glsl"
+
+layout(binding = 3, rgba16f) readonly uniform image2D gbuffer_albedo_roughness;
+layout(binding = 5, rgba32f) readonly uniform image2D gbuffer_emission_metallic;
+layout(std430, binding = 6) readonly buffer HdrIn { vec4 p[]; } hdr_in;
+layout(std430, binding = 7) writeonly buffer HdrOut { vec4 p[]; } hdr_out;
+
+void main() {
+  ivec2 pixel;
+  if (!denoise_pixel(pixel)) return;
+  uint index = denoise_index(pixel);
+  vec3 illumination = atrous_step(pixel, index).rgb;
+  vec3 rgb = denoise_remodulate(imageLoad(gbuffer_position, pixel).w,
+                                imageLoad(gbuffer_emission_metallic, pixel).rgb,
+                                imageLoad(gbuffer_albedo_roughness, pixel).rgb,
+                                hdr_in.p[index].rgb, illumination);
+  hdr_out.p[index] = vec4(rgb, 1.0);
+}
