@@ -1,4 +1,5 @@
-// denoise.atrous (iteration i of N): one edge-avoiding à-trous wavelet step (Dammertz et al. 2010;
+// denoise.atrous (iteration i of the first N - 1; the last is denoise.atrous_modulate, the same
+// step written back as radiance): one edge-avoiding à-trous wavelet step (Dammertz et al. 2010;
 // SVGF, Schied et al. 2017) with a 3x3 B-spline kernel (1/4, 1/2, 1/4 per axis) whose taps are
 // 2^i pixels apart, each tap weighted by the depth plane (distance from the centre's tangent plane
 // relative to its view depth), the normals, and the luminance difference in units of the centre's

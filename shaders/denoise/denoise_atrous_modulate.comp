@@ -1,9 +1,9 @@
 // denoise.atrous_modulate: the last à-trous step (denoise_atrous.comp) and the result back to
 // radiance in the same pass (denoise_remodulate, as denoise.modulate), so the filtered
 // illumination is not written out and read back.
-// Reads: accum_in (rgb illumination, a variance), guide, luminance_in (with a single step),
-// hdr_in (raw radiance, for pass-through pixels), gbuffer position/albedo_roughness/
-// emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
+// Reads: accum_in (rgb illumination, a variance), guide, luminance_in (when it is also the first
+// step: atrous 1), hdr_in (raw radiance, for pass-through pixels), gbuffer
+// position/albedo_roughness/emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
 // History: none. Dispatch: one thread per pixel, 8x8 groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
