@@ -657,52 +657,61 @@ TEST_F(DenoiseGpuTest, HalfInternalSizeUpscalesAConstantImageUnchanged) {
 
 // upscale.temporal resamples this frame's jittered samples bilinearly: a linear ramp over the
 // internal pixels comes out as the ramp at each output pixel's position in internal pixels,
-// (o + 0.5) / 2 - 0.5 - jitter, where its bilinear footprint lies inside the image, and as the
-// bilinear blend of the edge texels repeated outward at the borders (the first frame: no history
-// to blend; raw output, so no filter touches the ramp).
-TEST_F(DenoiseGpuTest, HalfInternalSizeResamplesALinearRampExactly) {
-  Run run = make_run();
-  run.harness->renderer().set_output(lighting::FrameOutput::Raw);
-  constexpr std::uint32_t kInW = kW / 2, kInH = kH / 2;
-  run.harness->renderer().set_internal_size(kInW, kInH);
+// (o + 0.5) x in / out - 0.5 - jitter, where its bilinear footprint lies inside the image, and as
+// the bilinear blend of the edge texels repeated outward at the borders (the first frame: no
+// history to blend; raw output, so no filter touches the ramp). At half size, at a scale that is
+// no simple fraction and one pixel short of the output (dynamic resolution's sizes).
+TEST_F(DenoiseGpuTest, InternalSizesBelowTheOutputResampleALinearRampExactly) {
   const auto ramp = [](float x, float y) { return 0.1f + 0.01f * x + 0.02f * y; };
-  ImageRGBA32F in(kW, kH);  // the first kInW x kInH pixels, rows of kInW, are read
-  for (std::uint32_t y = 0; y < kInH; ++y) {
-    for (std::uint32_t x = 0; x < kInW; ++x) {
-      const float v = ramp(static_cast<float>(x), static_cast<float>(y));
-      for (int c = 0; c < 4; ++c) in.pixels[4 * (std::size_t{y} * kInW + x) + c] = c == 3 ? 1.0f : v;
-    }
-  }
-  const ImageRGBA32F out = render(run, in, test::first_snapshot(level, kW, kH));
-  const glm::vec2 jitter = run.harness->renderer().jitter();
-  ASSERT_GT(glm::length(jitter), 0.0f) << "upscaling jitters the samples";
-  const auto texel = [&](int x, int y) {  // clamped to the image, as the shader reads
-    return ramp(static_cast<float>(std::clamp(x, 0, static_cast<int>(kInW) - 1)),
-                static_cast<float>(std::clamp(y, 0, static_cast<int>(kInH) - 1)));
-  };
-  std::size_t inside = 0;
-  float worst_inside = 0.0f, worst_border = 0.0f;
-  for (std::uint32_t y = 0; y < kH; ++y) {
-    for (std::uint32_t x = 0; x < kW; ++x) {
-      const glm::vec2 u = (glm::vec2(x, y) + 0.5f) * 0.5f - 0.5f - jitter;
-      const glm::ivec2 b(std::floor(u.x), std::floor(u.y));
-      const glm::vec2 f = u - glm::vec2(b);
-      const float bilinear =
-          (1 - f.y) * ((1 - f.x) * texel(b.x, b.y) + f.x * texel(b.x + 1, b.y)) +
-          f.y * ((1 - f.x) * texel(b.x, b.y + 1) + f.x * texel(b.x + 1, b.y + 1));
-      const bool interior =
-          u.x >= 0.0f && u.y >= 0.0f && u.x <= kInW - 1.0f && u.y <= kInH - 1.0f;
-      inside += interior;
-      const float* p = &out.pixels[4 * (std::size_t{y} * kW + x)];
-      for (int c = 0; c < 3; ++c) {
-        float& worst = interior ? worst_inside : worst_border;
-        worst = std::max(worst, std::abs(p[c] - (interior ? ramp(u.x, u.y) : bilinear)));
+  for (const glm::uvec2 internal :
+       {glm::uvec2(kW / 2, kH / 2), glm::uvec2(71, 40), glm::uvec2(kW - 1, kH - 1)}) {
+    const std::uint32_t kInW = internal.x, kInH = internal.y;
+    Run run = make_run();
+    run.harness->renderer().set_output(lighting::FrameOutput::Raw);
+    run.harness->renderer().set_internal_size(kInW, kInH);
+    ImageRGBA32F in(kW, kH);  // the first kInW x kInH pixels, rows of kInW, are read
+    for (std::uint32_t y = 0; y < kInH; ++y) {
+      for (std::uint32_t x = 0; x < kInW; ++x) {
+        const float v = ramp(static_cast<float>(x), static_cast<float>(y));
+        for (int c = 0; c < 4; ++c) {
+          in.pixels[4 * (std::size_t{y} * kInW + x) + c] = c == 3 ? 1.0f : v;
+        }
       }
     }
+    const ImageRGBA32F out = render(run, in, test::first_snapshot(level, kW, kH));
+    const glm::vec2 jitter = run.harness->renderer().jitter();
+    ASSERT_GT(glm::length(jitter), 0.0f) << "upscaling jitters the samples";
+    const auto texel = [&](int x, int y) {  // clamped to the image, as the shader reads
+      return ramp(static_cast<float>(std::clamp(x, 0, static_cast<int>(kInW) - 1)),
+                  static_cast<float>(std::clamp(y, 0, static_cast<int>(kInH) - 1)));
+    };
+    const glm::vec2 scale(static_cast<float>(kInW) / kW, static_cast<float>(kInH) / kH);
+    std::size_t inside = 0;
+    float worst_inside = 0.0f, worst_border = 0.0f;
+    for (std::uint32_t y = 0; y < kH; ++y) {
+      for (std::uint32_t x = 0; x < kW; ++x) {
+        const glm::vec2 u = (glm::vec2(x, y) + 0.5f) * scale - 0.5f - jitter;
+        const glm::ivec2 b(std::floor(u.x), std::floor(u.y));
+        const glm::vec2 f = u - glm::vec2(b);
+        const float bilinear =
+            (1 - f.y) * ((1 - f.x) * texel(b.x, b.y) + f.x * texel(b.x + 1, b.y)) +
+            f.y * ((1 - f.x) * texel(b.x, b.y + 1) + f.x * texel(b.x + 1, b.y + 1));
+        const bool interior = u.x >= 0.0f && u.y >= 0.0f && u.x <= kInW - 1.0f &&
+                              u.y <= kInH - 1.0f;
+        inside += interior;
+        const float* p = &out.pixels[4 * (std::size_t{y} * kW + x)];
+        for (int c = 0; c < 3; ++c) {
+          float& worst = interior ? worst_inside : worst_border;
+          worst = std::max(worst, std::abs(p[c] - (interior ? ramp(u.x, u.y) : bilinear)));
+        }
+      }
+    }
+    std::printf("[upscale ramp] internal %ux%u: worst inside %.3g, at the borders %.3g\n", kInW,
+                kInH, worst_inside, worst_border);
+    EXPECT_GT(inside, std::size_t{kW} * kH * 3 / 4);
+    EXPECT_LT(worst_inside, 1e-5f) << kInW << "x" << kInH << ": largest difference inside";
+    EXPECT_LT(worst_border, 1e-5f) << kInW << "x" << kInH << ": largest difference at the borders";
   }
-  EXPECT_GT(inside, std::size_t{kW} * kH * 3 / 4);
-  EXPECT_LT(worst_inside, 1e-5f) << "largest difference from the ramp inside";
-  EXPECT_LT(worst_border, 1e-5f) << "largest difference from the clamped bilinear at the borders";
 }
 
 // With the sample jitter on, a still scene's motion vectors are exactly the jitter step (this
