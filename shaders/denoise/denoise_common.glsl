@@ -50,9 +50,15 @@ vec3 denoise_albedo(float view_depth, vec3 gbuffer_albedo) {
   return gbuffer_is_sky(view_depth) ? vec3(1.0) : gbuffer_albedo;
 }
 
+// A filtered pixel's raw radiance as illumination (denoise.temporal, for the pixel and for the
+// neighbours its clamp compares): radiance / the demodulation factor (1 for a filtered sky pixel).
+vec3 denoise_demodulate(float view_depth, vec3 gbuffer_albedo, vec3 raw) {
+  return denoise_finite(raw) / denoise_demodulation(denoise_albedo(view_depth, gbuffer_albedo));
+}
+
 // A denoised pixel back to radiance (denoise.modulate, denoise.atrous_modulate): the filtered
-// illumination x the demodulation factor denoise.temporal divided by (1 for a filtered sky
-// pixel); a pass-through pixel (an emitter, an unfiltered sky) keeps its raw radiance.
+// illumination x the demodulation factor denoise_demodulate divided by; a pass-through pixel (an
+// emitter, an unfiltered sky) keeps its raw radiance.
 vec3 denoise_remodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, vec3 raw,
                         vec3 illumination) {
   if (denoise_passthrough(view_depth, emission)) return denoise_finite(raw);

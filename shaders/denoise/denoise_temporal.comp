@@ -55,12 +55,10 @@ layout(std430, binding = PASS_BINDING(14)) readonly buffer ConfidenceIn {
 // does not count (outside the image, the sky, an emitter).
 float filtered_luminance(ivec2 q) {
   if (!denoise_inside(q)) return -1.0;
-  if (denoise_passthrough(imageLoad(gbuffer_position, q).w,
-                          imageLoad(gbuffer_emission_metallic, q).rgb)) {
-    return -1.0;
-  }
-  vec3 albedo = imageLoad(gbuffer_albedo_roughness, q).rgb;
-  return luminance(denoise_finite(hdr_in.p[denoise_index(q)].rgb) / denoise_demodulation(albedo));
+  float view_depth = imageLoad(gbuffer_position, q).w;
+  if (denoise_passthrough(view_depth, imageLoad(gbuffer_emission_metallic, q).rgb)) return -1.0;
+  return luminance(denoise_demodulate(view_depth, imageLoad(gbuffer_albedo_roughness, q).rgb,
+                                      hdr_in.p[denoise_index(q)].rgb));
 }
 
 // The brightest of the 8 neighbours' luminance; negative when none counts. Read only where the
@@ -94,6 +92,8 @@ void main() {
   vec3 n = oct_decode(normals.xy);
   vec3 ng = oct_decode(normals.zw);
   vec2 motion = imageLoad(gbuffer_motion, pixel).xy;
+  // Before a filtered sky pixel takes its stand-in surface below (albedo 1, as demodulated here).
+  vec3 illumination = denoise_demodulate(position.w, albedo_roughness.rgb, radiance);
   bool sky = gbuffer_is_sky(position.w);
   if (sky) {
     // A filtered sky pixel (levels with volumes): a surface push.sky_distance along the view
@@ -118,7 +118,6 @@ void main() {
   RestirSimilarityKey key = restir_similarity_key(surface);
   surface_keys_out.k[index] = key;
   guide_out.p[index] = denoise_guide(position, n);
-  vec3 illumination = radiance / denoise_demodulation(albedo_roughness.rgb);
   float l = luminance(illumination);
 
   // Last frame's history at the reprojected position: bilinear weights of the similar taps.
