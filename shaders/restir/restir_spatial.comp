@@ -12,7 +12,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
-#define RESTIR_REUSE_PASS_DOMAINS
 #include "restir/restir_common.glsl"
 
 layout(binding = PASS_BINDING(0)) uniform utextureBuffer restir_surfaces;
