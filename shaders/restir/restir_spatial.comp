@@ -33,10 +33,22 @@ Reservoir combine_domain_reservoir(uint j) {
   reservoir_set_visibility(r, false, false);  // its visibility was seen from another surface
   return r;
 }
-float combine_domain_target(uint j, LightSample y) {
-  ShadingPoint p = j == 0u ? g_canonical_point
-                           : restir_shading_point(restir_surface_fetch(restir_surfaces, g_domain_pixel[j]), g_camera);
-  return restir_target(p, y);
+ShadingPoint domain_point(uint j) {
+  return j == 0u ? g_canonical_point
+                 : restir_shading_point(restir_surface_fetch(restir_surfaces, g_domain_pixel[j]),
+                                        g_camera);
+}
+float combine_domain_target(uint j, LightSample y) { return restir_target(domain_point(j), y); }
+// Pairwise MIS's three evaluations for neighbour j: its point decoded once, the canonical
+// sample's light fetched once per pixel (g_canonical_light), neighbour j's once for both points.
+GpuLight g_canonical_light;
+#define LANTERN_COMBINE_PAIRWISE_TARGETS
+vec3 combine_pairwise_targets(uint j, LightSample y_c, LightSample y_j) {
+  ShadingPoint p = domain_point(j);
+  GpuLight light_j = restir_sample_light(y_j);
+  return vec3(restir_target_with_light(p, y_c, g_canonical_light),
+              restir_target_with_light(p, y_j, light_j),
+              restir_target_with_light(g_canonical_point, y_j, light_j));
 }
 #include "restir/restir_reuse.glsl"
 
@@ -54,6 +66,7 @@ void main() {
   g_camera = camera;
   g_canonical = r;
   g_canonical_point = restir_shading_point(surface, camera);
+  g_canonical_light = restir_sample_light(r.selected);
   g_domain_pixel[0] = index;
   uint rng = frame_rng(pixel, kRestirRngSpatial + push.spatial_pass);
   uint tries = push.neighbours + (r.M < float(push.short_history_m) ? push.boost_neighbours : 0u);

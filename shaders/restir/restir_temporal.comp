@@ -28,6 +28,15 @@ Reservoir combine_domain_reservoir(uint j) { return j == 0u ? g_canonical : g_hi
 float combine_domain_target(uint j, LightSample y) {
   return restir_target(j == 0u ? g_canonical_point : g_history_point, y);
 }
+// Pairwise MIS's three evaluations with each sample's light fetched once.
+#define LANTERN_COMBINE_PAIRWISE_TARGETS
+vec3 combine_pairwise_targets(uint j, LightSample y_c, LightSample y_h) {
+  GpuLight light_c = restir_sample_light(y_c);
+  GpuLight light_h = restir_sample_light(y_h);
+  return vec3(restir_target_with_light(g_history_point, y_c, light_c),
+              restir_target_with_light(g_history_point, y_h, light_h),
+              restir_target_with_light(g_canonical_point, y_h, light_h));
+}
 #include "restir/restir_reuse.glsl"
 
 layout(binding = PASS_BINDING(0), rgba32f) readonly uniform image2D gbuffer_motion;

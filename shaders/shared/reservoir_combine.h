@@ -5,6 +5,10 @@
 // The includer defines, before including this header:
 //   Reservoir combine_domain_reservoir(uint j)           domain j's finalized reservoir
 //   float combine_domain_target(uint j, LightSample y)   p̂ of sample y in domain j
+// and may define, with LANTERN_COMBINE_PAIRWISE_TARGETS, a version of
+//   vec3 combine_pairwise_targets(uint j, LightSample y_c, LightSample y_j)
+//       p̂_j(y_c), p̂_j(y_j) and p̂_c(y_j): pairwise MIS's three evaluations for neighbour j
+// that decodes domain j and fetches each light once (else three combine_domain_target calls).
 #ifndef LANTERN_SHARED_RESERVOIR_COMBINE_H
 #define LANTERN_SHARED_RESERVOIR_COMBINE_H
 
@@ -49,9 +53,45 @@ LANTERN_FUNC float reservoir_combine_weight(uint j, uint count, uint mode, float
   return mis_pairwise_neighbour(r_j.M, combine_domain_target(j, y), m_c, p_c, k);
 }
 
+#ifndef LANTERN_COMBINE_PAIRWISE_TARGETS
+LANTERN_FUNC vec3 combine_pairwise_targets(uint j, LightSample y_c, LightSample y_j) {
+  return vec3(combine_domain_target(j, y_c), combine_domain_target(j, y_j),
+              combine_domain_target(0u, y_j));
+}
+#endif
+
+// Pairwise MIS in one sweep over the neighbours: each neighbour's reservoir is read once and its
+// three evaluations made together (combine_pairwise_targets), where the general loop below reads
+// the reservoir four times and decodes the domain twice. The canonical sample is
+// merged last, when its weight m_c(y_c) is complete; its random number is still the first drawn.
+LANTERN_FUNC Reservoir reservoir_combine_pairwise(uint count, LANTERN_INOUT(uint) rng) {
+  Reservoir canonical = combine_domain_reservoir(0u);
+  float u_canonical = rng_next_float(rng);
+  float k = float(count - 1u);
+  float p_cc = reservoir_has_sample(canonical) ? combine_domain_target(0u, canonical.selected)
+                                               : 0.0f;
+  float m_canonical = mis_pairwise_canonical_init(k);
+  Reservoir out_r = reservoir_empty();
+  for (uint j = 1u; j < count; ++j) {
+    float u = rng_next_float(rng);
+    Reservoir r_j = combine_domain_reservoir(j);
+    vec3 p = combine_pairwise_targets(j, canonical.selected, r_j.selected);
+    m_canonical += mis_pairwise_canonical_term(r_j.M, p.x, canonical.M, p_cc, k);
+    float p_c = reservoir_has_sample(r_j) ? p.z : 0.0f;
+    float m = p_c > 0.0f ? mis_pairwise_neighbour(r_j.M, p.y, canonical.M, p_c, k) : 0.0f;
+    reservoir_merge(out_r, r_j, m, p_c, u);
+  }
+  reservoir_merge(out_r, canonical, p_cc > 0.0f ? m_canonical : 0.0f, p_cc, u_canonical);
+  reservoir_finalize(out_r);
+  return out_r;
+}
+
 // Resamples the `count` domains into one finalized reservoir for domain 0 (one random number per
 // domain, in domain order).
 LANTERN_FUNC Reservoir reservoir_combine(uint count, uint mode, LANTERN_INOUT(uint) rng) {
+  if (mode == kBiasCorrectionPairwise) {
+    return reservoir_combine_pairwise(count, rng);
+  }
   float m_total = 0.0f;
   for (uint j = 0u; j < count; ++j) {
     m_total += combine_domain_reservoir(j).M;
