@@ -1,6 +1,8 @@
 // DenoisePass: one denoise.* compute pass, a ShaderPass (lighting/frame/shader_pass.h) of
 // shaders/denoise/denoise_<stage>.comp named "denoise.<stage>", with DenoisePush and one thread
-// per pixel. What each stage reads and writes is listed
+// per pixel, or, for the à-trous stages (Threads::PixelPairs), one per pair of pixels
+// push.step apart (denoise_atrous_pair_columns, shared/denoise.h). What each stage reads and
+// writes is listed
 // where Denoiser adds it (denoiser.cpp) and in its shader's header.
 #pragma once
 
@@ -20,7 +22,10 @@ class DenoisePass {
  public:
   using Buffer = ShaderPassBuffer;
 
-  DenoisePass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& stage);
+  enum class Threads { Pixels, PixelPairs };
+
+  DenoisePass(runtime::Device& device, runtime::ShaderLibrary& shaders, const std::string& stage,
+              Threads threads = Threads::Pixels);
 
   // Adds the pass; returns the new version of each Write buffer, in `buffers` order.
   std::vector<runtime::graph::BufferHandle> add(runtime::graph::RenderGraph& graph,
@@ -32,6 +37,7 @@ class DenoisePass {
 
  private:
   ShaderPass pass_;
+  Threads threads_;
 };
 
 }  // namespace lantern::lighting

@@ -15,8 +15,8 @@ Denoiser::Denoiser(runtime::Device& device, runtime::ShaderLibrary& shaders)
     : device_(device),
       temporal_(device, shaders, "temporal"),
       variance_(device, shaders, "variance"),
-      atrous_(device, shaders, "atrous"),
-      atrous_modulate_(device, shaders, "atrous_modulate"),
+      atrous_(device, shaders, "atrous", DenoisePass::Threads::PixelPairs),
+      atrous_modulate_(device, shaders, "atrous_modulate", DenoisePass::Threads::PixelPairs),
       modulate_(device, shaders, "modulate") {}
 
 void Denoiser::warm_up() {

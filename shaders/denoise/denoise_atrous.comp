@@ -9,7 +9,7 @@
 // Reads: accum_in (rgb illumination, a variance), guide, luminance_in (denoise.variance's 3x3
 // means, iteration 0), gbuffer position (the centre's depth).
 // Writes: accum_out.
-// History: none. Dispatch: one thread per pixel, 8x8 groups.
+// History: none. Dispatch: one thread per pixel pair (atrous_pair), 8x8 groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -18,8 +18,11 @@
 layout(std430, binding = 3) writeonly buffer AccumOut { vec4 p[]; } accum_out;
 
 void main() {
-  ivec2 pixel;
-  if (!denoise_pixel(pixel)) return;
-  uint index = denoise_index(pixel);
-  accum_out.p[index] = atrous_step(pixel, index);
+  ivec2 p0;
+  bool has_second;
+  if (!atrous_pair(p0, has_second)) return;
+  vec4 result[2];
+  atrous_step_pair(p0, has_second, result);
+  accum_out.p[denoise_index(p0)] = result[0];
+  if (has_second) accum_out.p[denoise_index(p0 + ivec2(push.step, 0))] = result[1];
 }

@@ -4,7 +4,7 @@
 // Reads: accum_in (rgb illumination, a variance), guide, luminance_in (when it is also the first
 // step: atrous 1), hdr_in (raw radiance, for pass-through pixels), gbuffer
 // position/albedo_roughness/emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
-// History: none. Dispatch: one thread per pixel, 8x8 groups.
+// History: none. Dispatch: one thread per pixel pair (atrous_pair), 8x8 groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -16,13 +16,19 @@ layout(std430, binding = 6) readonly buffer HdrIn { vec4 p[]; } hdr_in;
 layout(std430, binding = 7) writeonly buffer HdrOut { vec4 p[]; } hdr_out;
 
 void main() {
-  ivec2 pixel;
-  if (!denoise_pixel(pixel)) return;
-  uint index = denoise_index(pixel);
-  vec3 illumination = atrous_step(pixel, index).rgb;
-  vec3 rgb = denoise_remodulate(imageLoad(gbuffer_position, pixel).w,
-                                imageLoad(gbuffer_emission_metallic, pixel).rgb,
-                                imageLoad(gbuffer_albedo_roughness, pixel).rgb,
-                                hdr_in.p[index].rgb, illumination);
-  hdr_out.p[index] = vec4(rgb, 1.0);
+  ivec2 p0;
+  bool has_second;
+  if (!atrous_pair(p0, has_second)) return;
+  vec4 result[2];
+  atrous_step_pair(p0, has_second, result);
+  [[unroll]] for (int k = 0; k < 2; ++k) {
+    if (k == 1 && !has_second) break;
+    ivec2 pixel = p0 + ivec2(k * int(push.step), 0);
+    uint index = denoise_index(pixel);
+    vec3 rgb = denoise_remodulate(imageLoad(gbuffer_position, pixel).w,
+                                  imageLoad(gbuffer_emission_metallic, pixel).rgb,
+                                  imageLoad(gbuffer_albedo_roughness, pixel).rgb,
+                                  hdr_in.p[index].rgb, result[k].rgb);
+    hdr_out.p[index] = vec4(rgb, 1.0);
+  }
 }

@@ -24,6 +24,18 @@ LANTERN_CONST uint kDenoiseFlagHistoryValid = 1u;  // the graph handed last fram
 LANTERN_CONST uint kDenoiseFlagSmoothLuminance = 2u;  // denoise.atrous: stop on 3x3 luminance
 LANTERN_CONST uint kDenoiseFlagConfidence = 4u;  // denoise.temporal: weigh pixels by their M
 
+// denoise.atrous and denoise.atrous_modulate filter pixel pairs: thread column c of a step with
+// tap spacing `step` takes pixels x0 = denoise_atrous_pair_first(c, step) and x0 + step, which
+// share 6 of their 9 taps (the columns run in blocks of 2 step: the first `step` of each block
+// pair with the next `step`). denoise_atrous_pair_columns threads per row cover every pixel of a
+// `width`-pixel row once; an x0 or x0 + step at or past `width` is skipped.
+LANTERN_FUNC uint denoise_atrous_pair_columns(uint width, uint step) {
+  return (width + 2u * step - 1u) / (2u * step) * step;
+}
+LANTERN_FUNC uint denoise_atrous_pair_first(uint column, uint step) {
+  return (column / step) * 2u * step + column % step;
+}
+
 struct DenoisePush {
   uint width;
   uint height;

@@ -120,8 +120,8 @@ std::size_t instance_index(const Level& level, const std::string& name) {
 }
 
 // Radiance c on every pixel (sky included).
-ImageRGBA32F constant(float c) {
-  ImageRGBA32F image(kW, kH);
+ImageRGBA32F constant(float c, std::uint32_t w = kW, std::uint32_t h = kH) {
+  ImageRGBA32F image(w, h);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = i % 4 == 3 ? 1.0f : c;
   return image;
 }
@@ -154,11 +154,12 @@ class DenoiseGpuTest : public runtime::test::GpuTest {
     ImageIntegrator* input;  // owned by the harness's renderer
     std::unique_ptr<RenderHarness> harness;
   };
-  Run make_run(const std::vector<std::pair<std::string, std::string>>& denoise = {}) {
-    auto integrator = std::make_unique<ImageIntegrator>(device, kW, kH);
+  Run make_run(const std::vector<std::pair<std::string, std::string>>& denoise = {},
+               std::uint32_t w = kW, std::uint32_t h = kH) {
+    auto integrator = std::make_unique<ImageIntegrator>(device, w, h);
     Run run{integrator.get(), nullptr};
     run.harness = std::make_unique<RenderHarness>(device, shaders, level, std::move(integrator),
-                                                  kW, kH);
+                                                  w, h);
     run.harness->renderer().set_output(lighting::FrameOutput::Denoised);
     run.harness->renderer().set_denoise_settings(lighting::make_denoise_settings("balanced", denoise));
     return run;
@@ -212,6 +213,24 @@ TEST_F(DenoiseGpuTest, ConstantImageStaysConstant) {
       worst = std::max(worst, std::abs(out.pixels[i] - c) / c);
     }
     EXPECT_LT(worst, 1e-5f) << "frame " << f << ": a constant image must come out unchanged";
+  }
+}
+
+// The à-trous steps filter pixel pairs (shared/denoise.h): at sizes whose rows end in a partial
+// pair block, with every tap spacing up to 16 pixels, a first frame of constant radiance comes
+// out unchanged on every pixel (a pixel no thread wrote would hold a fresh buffer's content).
+TEST_F(DenoiseGpuTest, EveryPixelIsFilteredAtOddSizes) {
+  const float c = 0.37f;
+  for (const auto& [w, h] : {std::pair{95u, 53u}, std::pair{37u, 21u}, std::pair{20u, 11u}}) {
+    for (const char* atrous : {"1", "3", "5"}) {
+      Run run = make_run({{"atrous", atrous}}, w, h);
+      const ImageRGBA32F out = render(run, constant(c, w, h), test::first_snapshot(level, w, h));
+      std::size_t wrong = 0;
+      for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+        if (i % 4 != 3 && !(std::abs(out.pixels[i] - c) <= 1e-5f * c)) ++wrong;
+      }
+      EXPECT_EQ(wrong, 0u) << w << "x" << h << ", atrous " << atrous;
+    }
   }
 }
 
