@@ -2,8 +2,7 @@
 // shaders/denoise/denoise_<stage>.comp named "denoise.<stage>", with DenoisePush and one thread
 // per pixel, or, for the à-trous stages (Threads::PixelPairs), one per pair of pixels
 // push.step apart (denoise_atrous_pair_columns, shared/denoise.h). What each stage reads and
-// writes is listed
-// where Denoiser adds it (denoiser.cpp) and in its shader's header.
+// writes is listed where Denoiser adds it (denoiser.cpp) and in its shader's header.
 #pragma once
 
 #include <initializer_list>

@@ -33,8 +33,8 @@ bool atrous_pair(out ivec2 p0, out bool has_second) {
 // illumination and its variance; a pass-through pixel (sky, emitter) keeps its input. The 4x3
 // taps (columns p0.x - step .. p0.x + 2 step, rows p0.y - step .. p0.y + step) are read once for
 // both: 12 reads for two pixels instead of 18 (night_market 320x180, with one exp per tap in
-// denoise_geometry_weight: the denoiser 0.9x, 23.7-24.8% of the ReSTIR frame against
-// 25.8-26.9%; images equal to the per-pixel step's to 4 digits of trade's relMSE).
+// denoise_geometry_weight: the denoiser 0.85-0.9x, 23.3-24.8% of the ReSTIR frame against
+// 25.8-27.5%; images equal to the per-pixel step's to 4 digits of trade's relMSE).
 void atrous_step_pair(ivec2 p0, bool has_second, out vec4 result[2]) {
   int step = int(push.step);
   vec4 tap_guide[12];

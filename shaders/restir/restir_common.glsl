@@ -108,12 +108,6 @@ vec3 restir_light_position(ShadingPoint p, uint light, vec2 uv) {
   return light_eval_position(scene_light(light), uv, p.x, restir_scene_radius());
 }
 
-// p̂ of sample s at p.
-float restir_target(ShadingPoint p, LightSample s) {
-  if (s.light_index == kInvalidLight) return 0.0;
-  return light_eval_target(restir_contribution(p, s.light_index, vec2(s.u, s.v)));
-}
-
 // Sample s's light record, for evaluating s at several points with one fetch
 // (restir_target_with_light); undefined, and unread there, unless s names a scene light.
 GpuLight restir_sample_light(LightSample s) {
@@ -122,13 +116,18 @@ GpuLight restir_sample_light(LightSample s) {
   return light;
 }
 
-// restir_target with s's light record already fetched (restir_sample_light(s)).
+// p̂ of sample s at p, with s's light record already fetched (restir_sample_light(s)).
 float restir_target_with_light(ShadingPoint p, LightSample s, GpuLight light) {
   if (!p.valid || s.light_index == kInvalidLight) return 0.0;
   vec2 uv = vec2(s.u, s.v);
   if (s.light_index == kEnvironmentLight) return light_eval_target(restir_env_contribution(p, uv));
   if (s.light_index >= restir_light_count()) return 0.0;
   return light_eval_target(restir_light_contribution(p, light, uv));
+}
+
+// p̂ of sample s at p.
+float restir_target(ShadingPoint p, LightSample s) {
+  return restir_target_with_light(p, s, restir_sample_light(s));
 }
 
 #endif
