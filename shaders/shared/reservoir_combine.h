@@ -19,38 +19,24 @@
 
 LANTERN_BEGIN_SHARED
 
-// m_j(y_j) for domain j's own sample y_j; p_c = p̂ of y_j in the canonical domain.
+// m_j(y_j) for domain j's own sample y_j under `none` or `balance` (pairwise MIS has its own
+// sweep, reservoir_combine_pairwise); p_c = p̂ of y_j in the canonical domain.
 LANTERN_FUNC float reservoir_combine_weight(uint j, uint count, uint mode, float p_c,
                                             float m_total) {
   Reservoir r_j = combine_domain_reservoir(j);
-  LightSample y = r_j.selected;
-  float k = float(count - 1u);
   if (mode == kBiasCorrectionNone) {
     return mis_weight_none(r_j.M, m_total);
   }
-  if (mode == kBiasCorrectionBalance) {
-    float denominator = 0.0f;
-    float p_j = 0.0f;
-    for (uint l = 0u; l < count; ++l) {
-      float p_l = l == 0u ? p_c : combine_domain_target(l, y);
-      if (l == j) {
-        p_j = p_l;
-      }
-      denominator += mis_balance_term(combine_domain_reservoir(l).M, p_l);
+  float denominator = 0.0f;
+  float p_j = 0.0f;
+  for (uint l = 0u; l < count; ++l) {
+    float p_l = l == 0u ? p_c : combine_domain_target(l, r_j.selected);
+    if (l == j) {
+      p_j = p_l;
     }
-    return mis_weight_balance(r_j.M, p_j, denominator);
+    denominator += mis_balance_term(combine_domain_reservoir(l).M, p_l);
   }
-  // Pairwise.
-  float m_c = combine_domain_reservoir(0u).M;
-  if (j == 0u) {
-    float m = mis_pairwise_canonical_init(k);
-    for (uint i = 1u; i < count; ++i) {
-      m += mis_pairwise_canonical_term(combine_domain_reservoir(i).M,
-                                       combine_domain_target(i, y), m_c, p_c, k);
-    }
-    return m;
-  }
-  return mis_pairwise_neighbour(r_j.M, combine_domain_target(j, y), m_c, p_c, k);
+  return mis_weight_balance(r_j.M, p_j, denominator);
 }
 
 #ifndef LANTERN_COMBINE_PAIRWISE_TARGETS
@@ -61,9 +47,10 @@ LANTERN_FUNC vec3 combine_pairwise_targets(uint j, LightSample y_c, LightSample 
 #endif
 
 // Pairwise MIS in one sweep over the neighbours: each neighbour's reservoir is read once and its
-// three evaluations made together (combine_pairwise_targets), where the general loop below reads
-// the reservoir four times and decodes the domain twice. The canonical sample is
-// merged last, when its weight m_c(y_c) is complete; its random number is still the first drawn.
+// three evaluations made together (combine_pairwise_targets), where a per-domain loop (as the one
+// below for `none` and `balance`) read the reservoir four times and decoded the domain twice.
+// The canonical sample is merged last, when its weight m_c(y_c) is complete; its random number
+// is still the first drawn.
 LANTERN_FUNC Reservoir reservoir_combine_pairwise(uint count, LANTERN_INOUT(uint) rng) {
   Reservoir canonical = combine_domain_reservoir(0u);
   float u_canonical = rng_next_float(rng);
