@@ -1,13 +1,12 @@
-// gbuffer (fragment stage): writes the G-buffer of shaders/shared/gbuffer.h for the closest
-// surface (depth test LESS). Both normals are flipped to face the camera (the geometric one by
-// the side the camera is on, the shading one into the geometric one's hemisphere); emission
-// only where the camera sees the front face (counter-clockwise winding, GpuMaterial.emission is
-// one-sided). Motion = previous pixel position - current pixel centre, in pixels, from the
-// interpolated previous clip position; a point behind the previous camera gets
-// kGBufferNoPreviousPixel (prev far off-screen). No output is NaN or Inf. With kTextured (the
-// scene has material textures) the material's textures apply (gbuffer/gbuffer_material.glsl,
-// level of detail from the raster's texcoord derivatives) and alpha-tested points are discarded;
-// without, the textured path is compiled out.
+// gbuffer (fragment stage): writes the G-buffer of shaders/shared/gbuffer.h for the closest surface
+// (depth test LESS). Both normals are flipped to face the camera (the geometric one by the side the
+// camera is on, the shading one into the geometric one's hemisphere); emission only where the
+// camera sees the front face (counter-clockwise winding, GpuMaterial.emission is one-sided). Motion
+// = gbuffer_point_motion of the interpolated clip positions (this frame's without jitter, last
+// frame's); a point behind the previous camera gets kGBufferNoPreviousPixel (prev far off-screen).
+// No output is NaN or Inf. With kTextured (the scene has material textures) the material's textures
+// apply (gbuffer/gbuffer_material.glsl, level of detail from the raster's texcoord derivatives) and
+// alpha-tested points are discarded; without, the textured path is compiled out.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -26,6 +25,7 @@ layout(location = 3) flat in vec3 in_geometric_normal;
 layout(location = 4) flat in uvec3 in_ids;
 layout(location = 5) in vec2 in_uv;
 layout(location = 6) in vec2 in_uv1;
+layout(location = 7) in vec4 in_clip;
 
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_normal;
@@ -100,15 +100,8 @@ void main() {
   // gl_FragCoord.w = 1 / clip w, and clip w is the linear view depth (w = -z_view).
   float view_depth = max(finite_or_zero(1.0 / gl_FragCoord.w), 1e-30);
 
-  vec2 size = vec2(frame_constants.frame.frame.xy);
-  vec2 current = gl_FragCoord.xy;  // pixel centre, (0,0) top-left (the sample: + jitter)
-  vec2 previous = vec2(kGBufferNoPreviousPixel);
-  if (in_prev_clip.w > 0.0) {
-    vec2 ndc = in_prev_clip.xy / in_prev_clip.w;
-    previous = (ndc * 0.5 + 0.5) * size - frame_constants.frame.jitter.zw;
-  }
-  vec2 motion = previous - current;
-  if (!(is_finite(motion.x) && is_finite(motion.y))) motion = vec2(kGBufferNoPreviousPixel);
+  vec2 motion = gbuffer_point_motion(in_clip, in_prev_clip, frame_constants.frame.jitter,
+                               vec2(frame_constants.frame.frame.xy));
 
   out_position = vec4(position, view_depth);
   out_normal = vec4(oct_encode(ns), oct_encode(ng_facing));

@@ -3,8 +3,9 @@
 // k / 3, whose mesh-relative indices start at geometry.y and vertices at geometry.w (as
 // surface_at in shaders/integrators/baseline.comp). The triangle's geometric normal is computed
 // here from its three world-space corners (winding e1 x e2, mirrored by a negative determinant)
-// and passed flat, with the instance, material and primitive ids. The previous clip position
-// (prev_object_to_world, prev_view_proj) is interpolated for the motion vector, and the
+// and passed flat, with the instance, material and primitive ids. The clip positions without
+// jitter, this frame's and last frame's (prev_object_to_world, prev_view_proj), are interpolated
+// for the motion vector (gbuffer_point_motion), and the
 // texcoords (both sets) for the material's textures.
 #version 460
 #extension GL_GOOGLE_include_directive : require
@@ -23,6 +24,7 @@ layout(location = 3) flat out vec3 out_geometric_normal;  // front face, unit (o
 layout(location = 4) flat out uvec3 out_ids;              // instance, material, primitive
 layout(location = 5) out vec2 out_uv;                     // TEXCOORD_0
 layout(location = 6) out vec2 out_uv1;                    // TEXCOORD_1 (zero without one)
+layout(location = 7) out vec4 out_clip;                   // view_proj x world, no jitter
 
 void main() {
   uint instance = push.instance;
@@ -53,8 +55,8 @@ void main() {
   out_world = world.xyz;
   out_shading_normal = transpose(mat3(scene_instances.i[instance].world_to_object)) * n_object;
   out_prev_clip = frame_constants.frame.prev_view_proj * prev_world;
+  out_clip = frame_constants.frame.view_proj * world;
   out_ids = uvec3(instance, geometry.x, primitive);
-  gl_Position = gbuffer_jitter_clip(frame_constants.frame.view_proj * world,
-                                    frame_constants.frame.jitter.xy,
+  gl_Position = gbuffer_jitter_clip(out_clip, frame_constants.frame.jitter.xy,
                                     vec2(frame_constants.frame.frame.xy));
 }

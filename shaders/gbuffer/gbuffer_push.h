@@ -25,10 +25,6 @@ LANTERN_STATIC_SIZE(GBufferDrawsPush, 8);
 // chunks of this many, and one workgroup culls one chunk of one instance.
 LANTERN_CONST uint kGBufferCullChunk = 128u;
 
-// Motion written where the surface point lies behind the previous camera (no previous pixel):
-// it moves the previous position far off-screen, so temporal passes find no history there.
-LANTERN_CONST float kGBufferNoPreviousPixel = -1.0e6f;
-
 LANTERN_END_SHARED
 
 #endif

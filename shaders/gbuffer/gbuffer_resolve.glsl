@@ -1,17 +1,17 @@
-// gbuffer.resolve: one pixel of the G-buffer (shaders/shared/gbuffer.h) from the closest
-// triangle (instance, triangle), as the forward raster would have interpolated it. The
-// pixel-centre camera ray (baseline.comp's construction from inv_view_proj) meets the triangle's
-// plane at barycentrics (b1, b2) (Moller-Trumbore in world space; the same perspective-correct
-// weights the raster interpolates with); position, shading normal and the previous clip position
-// are barycentric blends of the corners. Shading normals go through the cofactor of
-// object_to_world (= det * inverse transpose: the direction of transpose(world_to_object) n up to
-// sign, which the flip towards the geometric normal removes), so world_to_object is not loaded:
-// on lavapipe every per-pixel load from a storage buffer is a per-lane gather, the cost of this
-// pass. Needs the blocks frame_constants, scene_vertices, scene_indices, scene_materials and
-// scene_instances declared by the includer. When the includer has included
-// gbuffer/gbuffer_material.glsl and declares the specialisation constant kTextured, textured
-// materials apply with the level of detail from ray differentials (the pixel's neighbours' rays
-// against the triangle's plane) and gbuffer_resolve_alpha_cut is available.
+// gbuffer.resolve: one pixel of the G-buffer (shaders/shared/gbuffer.h) from the closest triangle
+// (instance, triangle), as the forward raster would have interpolated it. The pixel-centre camera
+// ray (baseline.comp's construction from inv_view_proj) meets the triangle's plane at barycentrics
+// (b1, b2) (Moller-Trumbore in world space; the same perspective-correct weights the raster
+// interpolates with); position, shading normal and the clip positions of gbuffer_point_motion are
+// barycentric blends of the corners. Shading normals go through the cofactor of object_to_world (=
+// det * inverse transpose: the direction of transpose(world_to_object) n up to sign, which the flip
+// towards the geometric normal removes), so world_to_object is not loaded: on lavapipe every
+// per-pixel load from a storage buffer is a per-lane gather, the cost of this pass. Needs the
+// blocks frame_constants, scene_vertices, scene_indices, scene_materials and scene_instances
+// declared by the includer. When the includer has included gbuffer/gbuffer_material.glsl and
+// declares the specialisation constant kTextured, textured materials apply with the level of detail
+// from ray differentials (the pixel's neighbours' rays against the triangle's plane) and
+// gbuffer_resolve_alpha_cut is available.
 #ifndef LANTERN_GBUFFER_RESOLVE_GLSL
 #define LANTERN_GBUFFER_RESOLVE_GLSL
 
@@ -130,8 +130,7 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
 
   // Pixel-centre camera ray (through the jittered sample position).
   vec2 size = vec2(frame_constants.frame.frame.xy);
-  vec2 centre = vec2(pixel) + 0.5;
-  vec2 sample_position = centre + frame_constants.frame.jitter.xy;
+  vec2 sample_position = vec2(pixel) + 0.5 + frame_constants.frame.jitter.xy;
   vec3 origin = frame_constants.frame.camera_position.xyz;
   vec2 bary = gbuffer_ray_barycentrics(sample_position, w0, e1, e2);
   float b1 = bary.x;
@@ -195,15 +194,13 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
       max(gbuffer_finite_or_zero((frame_constants.frame.view_proj * vec4(position, 1.0)).w),
           1e-30);
 
-  vec3 p_object = b0 * p0 + b1 * p1 + b2 * p2;
+  // Both clip positions from the object-space point, through the same arithmetic
+  // (gbuffer_point_motion: a point that did not move gets exactly 0).
+  vec4 p_object = vec4(b0 * p0 + b1 * p1 + b2 * p2, 1.0);
+  vec4 clip = frame_constants.frame.view_proj * (object_to_world * p_object);
   vec4 prev_clip = frame_constants.frame.prev_view_proj *
-                   (scene_instances.i[instance].prev_object_to_world * vec4(p_object, 1.0));
-  vec2 previous = vec2(kGBufferNoPreviousPixel);
-  if (prev_clip.w > 0.0) {
-    previous = (prev_clip.xy / prev_clip.w * 0.5 + 0.5) * size - frame_constants.frame.jitter.zw;
-  }
-  vec2 motion = previous - centre;
-  if (!(is_finite(motion.x) && is_finite(motion.y))) motion = vec2(kGBufferNoPreviousPixel);
+                   (scene_instances.i[instance].prev_object_to_world * p_object);
+  vec2 motion = gbuffer_point_motion(clip, prev_clip, frame_constants.frame.jitter, size);
 
   GBufferTexel g;
   g.position = vec4(position, view_depth);

@@ -27,6 +27,7 @@
 #ifndef LANTERN_SHARED_GBUFFER_H
 #define LANTERN_SHARED_GBUFFER_H
 
+#include "shared/common_math.h"
 #include "shared/lang.h"
 
 LANTERN_BEGIN_SHARED
@@ -79,6 +80,28 @@ LANTERN_FUNC vec3 gbuffer_camera_ray(mat4 inv_view_proj, vec2 point, vec2 size,
     if (t > 0.0f && t < 3.0e38f) far_t = t;
   }
   return direction;
+}
+
+// Motion written where the surface point lies behind the previous camera (no previous pixel):
+// it moves the previous position far off-screen, so temporal passes find no history there.
+LANTERN_CONST float kGBufferNoPreviousPixel = -1.0e6f;
+
+// gbuffer.motion of a surface point from its clip position this frame (without the jitter) and
+// last frame: the previous position minus last frame's jitter, minus the current one minus this
+// frame's (pixel p + 0.5 where the sample at p + 0.5 + jitter hit). Both sides go through the same
+// arithmetic, so a point that did not move (same camera, same instance transform, no jitter) gets
+// exactly 0, not the ~1e-4 px rounding of re-projecting a hit against its pixel centre: a
+// bilinear history tap of that weight carries a lit neighbour's second moment into a black
+// pixel's variance, and the denoiser's luminance stop then lets the neighbours in.
+LANTERN_FUNC vec2 gbuffer_point_motion(vec4 clip, vec4 prev_clip, vec4 jitter, vec2 size) {
+  vec2 current = (vec2(clip.x, clip.y) / clip.w * 0.5f + 0.5f) * size - vec2(jitter.x, jitter.y);
+  vec2 previous = vec2(kGBufferNoPreviousPixel);
+  if (prev_clip.w > 0.0f) {
+    previous = (vec2(prev_clip.x, prev_clip.y) / prev_clip.w * 0.5f + 0.5f) * size -
+               vec2(jitter.z, jitter.w);
+  }
+  vec2 motion = previous - current;
+  return is_finite(motion.x) && is_finite(motion.y) ? motion : vec2(kGBufferNoPreviousPixel);
 }
 
 // Sky test on gbuffer.position.w.

@@ -251,8 +251,12 @@ TEST_P(GBufferMethodTest, CornellLightsAgreesWithCpuTrace) {
   expect_agreement(a, "cornell_lights");
   EXPECT_GT(a.hits, a.pixels / 2) << "the camera should mostly see geometry";
   EXPECT_GT(a.front_emitters, 10u) << "too few emitter pixels: emission is untested";
-  // Static camera and instances: no motion.
-  for (const glm::vec4& m : g.motion) ASSERT_LE(glm::length(glm::vec2(m)), 0.01f);
+  // Static camera and instances: no motion, exactly (gbuffer_point_motion). The ~1e-4 px a
+  // hit re-projected against its pixel centre used to give is a bilinear history weight that
+  // carries a lit neighbour's second moment into a black pixel's variance in the denoiser.
+  std::size_t moving = 0;
+  for (const glm::vec4& m : g.motion) moving += glm::vec2(m) != glm::vec2(0.0f);
+  EXPECT_EQ(moving, 0u) << "pixels with nonzero motion in a still frame";
   // The method's first pass ran (the host method's is the host pass gbuffer.host).
   EXPECT_GT(harness.last_ms(GetParam() == lighting::GBufferMethod::Host ? "gbuffer.host"
                                                                          : "gbuffer"),
