@@ -18,8 +18,6 @@ float stop_luminance(uint index, vec3 rgb) {
   return (push.flags & kDenoiseFlagSmoothLuminance) != 0u ? luminance_in.l[index] : luminance(rgb);
 }
 
-const float kKernel[2] = float[2](0.5, 0.25);
-
 // The pixel pair of this invocation (shared/denoise.h): p0 and p0 + (step, 0), which share 6 of
 // their 9 taps; false when p0 is outside, has_second false where p0 + step is.
 bool atrous_pair(out ivec2 p0, out bool has_second) {
@@ -73,7 +71,7 @@ void atrous_step_pair(ivec2 p0, bool has_second, out vec4 result[2]) {
         int ox = t % 4 - 1 - k;
         int oy = t / 4 - 1;
         if (ox < -1 || ox > 1 || !tap_inside[t]) continue;
-        float w = kKernel[abs(ox)] * kKernel[abs(oy)];
+        float w = kDenoiseKernel[abs(ox)] * kDenoiseKernel[abs(oy)];
         var_sum += w * tap_accum[t].a;
         var_w += w;
       }
@@ -82,14 +80,14 @@ void atrous_step_pair(ivec2 p0, bool has_second, out vec4 result[2]) {
         ivec2 o = ivec2(t % 3 - 1, t / 3 - 1);
         ivec2 q = pixel + o;
         if (!denoise_inside(q)) continue;
-        float w = kKernel[abs(o.x)] * kKernel[abs(o.y)];
+        float w = kDenoiseKernel[abs(o.x)] * kDenoiseKernel[abs(o.y)];
         var_sum += w * (t == 4 ? centre.a : vec4_fetch(accum_in, denoise_index(q)).a);
         var_w += w;
       }
     }
     float lum_scale =
         push.phi_luminance * sqrt(max(min(var_sum / var_w, centre.a), 0.0)) + 1e-6;
-    float w0 = kKernel[0] * kKernel[0];
+    float w0 = kDenoiseKernel[0] * kDenoiseKernel[0];
     vec3 sum = w0 * centre.rgb;
     float sum_w = w0;
     float sum_var = w0 * w0 * centre.a;
@@ -100,7 +98,7 @@ void atrous_step_pair(ivec2 p0, bool has_second, out vec4 result[2]) {
       vec4 gq = tap_guide[t];
       if (denoise_guide_sky(gq)) continue;
       vec4 c = tap_accum[t];
-      float w = kKernel[abs(ox)] * kKernel[abs(oy)] *
+      float w = kDenoiseKernel[abs(ox)] * kDenoiseKernel[abs(oy)] *
                 denoise_geometry_weight(g, n, depth, gq, float(step),
                                         abs(tap_luminance[t] - l) / lum_scale);
       sum += w * c.rgb;

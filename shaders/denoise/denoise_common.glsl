@@ -50,6 +50,10 @@ vec3 denoise_albedo(float view_depth, vec3 gbuffer_albedo) {
   return gbuffer_is_sky(view_depth) ? vec3(1.0) : gbuffer_albedo;
 }
 
+// The 3x3 tent every step filters with (per axis: centre 1/2, neighbours 1/4): the à-trous
+// steps at their tap spacing, the centre's variance blur, denoise.variance's smoothed luminance.
+const float kDenoiseKernel[2] = float[2](0.5, 0.25);
+
 // A filtered pixel's raw radiance as illumination (denoise.temporal, for the pixel and for the
 // neighbours its clamp compares): radiance / the demodulation factor (1 for a filtered sky pixel).
 vec3 denoise_demodulate(float view_depth, vec3 gbuffer_albedo, vec3 raw) {
