@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <tuple>
 
 #include "lighting/denoise/denoise_settings.h"
 #include "lighting/upscale/upscaler.h"
@@ -728,13 +729,16 @@ TEST_F(DenoiseGpuTest, HalfInternalSizeUpscalesAConstantImageUnchanged) {
 // no simple fraction and one pixel short of the output (dynamic resolution's sizes).
 TEST_F(DenoiseGpuTest, InternalSizesBelowTheOutputResampleALinearRampExactly) {
   const auto ramp = [](float x, float y) { return 0.1f + 0.01f * x + 0.02f * y; };
-  for (const glm::uvec2 internal :
-       {glm::uvec2(kW / 2, kH / 2), glm::uvec2(71, 40), glm::uvec2(kW - 1, kH - 1)}) {
+  // An odd output size too (95x53: the last 8x8 groups run past the last column and row).
+  for (const auto& [w, h, internal] :
+       {std::tuple{kW, kH, glm::uvec2(kW / 2, kH / 2)}, std::tuple{kW, kH, glm::uvec2(71, 40)},
+        std::tuple{kW, kH, glm::uvec2(kW - 1, kH - 1)}, std::tuple{95u, 53u, glm::uvec2(47, 26)},
+        std::tuple{95u, 53u, glm::uvec2(94, 52)}}) {
     const std::uint32_t kInW = internal.x, kInH = internal.y;
-    Run run = make_run();
+    Run run = make_run({}, w, h);
     run.harness->renderer().set_output(lighting::FrameOutput::Raw);
     run.harness->renderer().set_internal_size(kInW, kInH);
-    ImageRGBA32F in(kW, kH);  // the first kInW x kInH pixels, rows of kInW, are read
+    ImageRGBA32F in(w, h);  // the first kInW x kInH pixels, rows of kInW, are read
     for (std::uint32_t y = 0; y < kInH; ++y) {
       for (std::uint32_t x = 0; x < kInW; ++x) {
         const float v = ramp(static_cast<float>(x), static_cast<float>(y));
@@ -743,18 +747,19 @@ TEST_F(DenoiseGpuTest, InternalSizesBelowTheOutputResampleALinearRampExactly) {
         }
       }
     }
-    const ImageRGBA32F out = render(run, in, test::first_snapshot(level, kW, kH));
+    const ImageRGBA32F out = render(run, in, test::first_snapshot(level, w, h));
+    ASSERT_EQ(out.width, w);
     const glm::vec2 jitter = run.harness->renderer().jitter();
     ASSERT_GT(glm::length(jitter), 0.0f) << "upscaling jitters the samples";
     const auto texel = [&](int x, int y) {  // clamped to the image, as the shader reads
       return ramp(static_cast<float>(std::clamp(x, 0, static_cast<int>(kInW) - 1)),
                   static_cast<float>(std::clamp(y, 0, static_cast<int>(kInH) - 1)));
     };
-    const glm::vec2 scale(static_cast<float>(kInW) / kW, static_cast<float>(kInH) / kH);
+    const glm::vec2 scale(static_cast<float>(kInW) / w, static_cast<float>(kInH) / h);
     std::size_t inside = 0;
     float worst_inside = 0.0f, worst_border = 0.0f;
-    for (std::uint32_t y = 0; y < kH; ++y) {
-      for (std::uint32_t x = 0; x < kW; ++x) {
+    for (std::uint32_t y = 0; y < h; ++y) {
+      for (std::uint32_t x = 0; x < w; ++x) {
         const glm::vec2 u = (glm::vec2(x, y) + 0.5f) * scale - 0.5f - jitter;
         const glm::ivec2 b(std::floor(u.x), std::floor(u.y));
         const glm::vec2 f = u - glm::vec2(b);
@@ -764,16 +769,16 @@ TEST_F(DenoiseGpuTest, InternalSizesBelowTheOutputResampleALinearRampExactly) {
         const bool interior = u.x >= 0.0f && u.y >= 0.0f && u.x <= kInW - 1.0f &&
                               u.y <= kInH - 1.0f;
         inside += interior;
-        const float* p = &out.pixels[4 * (std::size_t{y} * kW + x)];
+        const float* p = &out.pixels[4 * (std::size_t{y} * w + x)];
         for (int c = 0; c < 3; ++c) {
           float& worst = interior ? worst_inside : worst_border;
           worst = std::max(worst, std::abs(p[c] - (interior ? ramp(u.x, u.y) : bilinear)));
         }
       }
     }
-    std::printf("[upscale ramp] internal %ux%u: worst inside %.3g, at the borders %.3g\n", kInW,
-                kInH, worst_inside, worst_border);
-    EXPECT_GT(inside, std::size_t{kW} * kH * 3 / 4);
+    std::printf("[upscale ramp] %ux%u from %ux%u: worst inside %.3g, at the borders %.3g\n", w,
+                h, kInW, kInH, worst_inside, worst_border);
+    EXPECT_GT(inside, std::size_t{w} * h * 3 / 4);
     EXPECT_LT(worst_inside, 1e-5f) << kInW << "x" << kInH << ": largest difference inside";
     EXPECT_LT(worst_border, 1e-5f) << kInW << "x" << kInH << ": largest difference at the borders";
   }
