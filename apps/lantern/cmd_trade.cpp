@@ -186,6 +186,9 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
 
   // References first (cached on disk: later runs skip the expensive part).
   std::vector<runtime::ImageRGBA32F> references;
+  // Each evaluated reference's own noise (relative_mse_of_noise; negative when unknown: a
+  // reference of one frame).
+  std::vector<double> reference_noise;
   runtime::ImageRGBA32F flicker_reference;
   lighting::ReferenceRequest ref_request{.width = width,
                                          .height = height,
@@ -198,6 +201,9 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
     ref_request.frame = k;
     lighting::ReferenceImage ref = lighting::reference_image(device, shaders, level, ref_request);
     progress.update(++done, fmt::format("reference frame {}{}", k, ref.cache_hit ? " (cached)" : ""));
+    reference_noise.push_back(ref.standard_error.pixels.empty()
+                                  ? -1.0
+                                  : runtime::relative_mse_of_noise(ref.image, ref.standard_error));
     references.push_back(std::move(ref.image));
   }
   if (flicker) {
@@ -209,6 +215,10 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   }
   const double flicker_ref =
       flicker ? frame_change(references.back(), flicker_reference, references.back()) : 0.0;
+  // The references' noise, over the evaluated frames as the rows' relMSE is (unknown if any is).
+  const bool noise_known = std::none_of(reference_noise.begin(), reference_noise.end(),
+                                        [](double n) { return n < 0.0; });
+  const double noise_ref = noise_known ? mean_of(reference_noise) : -1.0;
 
   std::vector<Row> rows;
   for (const Config& cfg : cfgs) {
@@ -360,7 +370,11 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
       {"reference", {{"integrator", "reference"},
                      {"spp_per_frame", o.reference_spp},
                      {"frames_averaged", o.reference_frames},
-                     {"seed", ref_request.seed}}},
+                     {"seed", ref_request.seed},
+                     // The references' own relMSE against the converged image, from the spread
+                     // of their frames (a lower bound: a heavy tail's rare samples may never have
+                     // come up): no row is resolved below it (null: unknown).
+                     {"noise_relmse", noise_known ? nlohmann::json(noise_ref) : nlohmann::json()}}},
       {"rows", jrows},
       {"equal_time", equal_time},
   };
@@ -399,6 +413,12 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   }
   std::printf("reference flicker %.4g (frames %u-%u)\n", flicker_ref, flicker_frame,
               flicker_frame + 1);
+  if (noise_known) {
+    std::printf("reference noise >= %.4g (its own relMSE from the spread of its %u frames of %u "
+                "spp, more where rare bright samples never came up: errors near it are not "
+                "resolved; raise --reference-spp)\n",
+                noise_ref, o.reference_frames, o.reference_spp);
+  }
   for (const auto& e : equal_time) {
     std::printf("equal time vs %s: baseline x%d frames relMSE %.4g = %.1fx ReSTIR's\n",
                 e["restir"].get<std::string>().c_str(), e["baseline_frames_averaged"].get<int>(),

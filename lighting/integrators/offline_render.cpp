@@ -10,6 +10,7 @@
 #include "engine/world/world.h"
 #include "lighting/frame/frame_renderer.h"
 #include "lighting/frame/headless_session.h"
+#include "runtime/image/image_metrics.h"
 
 namespace lantern::lighting {
 namespace {
@@ -62,9 +63,7 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
   session.skip(request.first_frame);
 
   OfflineRenderResult result;
-  const std::size_t pixel_count = std::size_t{request.width} * request.height;
-  std::vector<double> sum;  // mean in double precision
-  if (request.average) sum.assign(pixel_count * 4, 0.0);
+  runtime::ImageAccumulator mean;
   std::shared_ptr<const FrameSnapshot> snapshot;
   runtime::ImageRGBA32F image;
   for (std::uint32_t frame = 0; frame < request.frames; ++frame) {
@@ -82,17 +81,14 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
     result.frame_ms.push_back(timing.gpu_ms);
     result.pass_ms.push_back(std::move(timing.passes));
     if (request.average) {
-      for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += image.pixels[i];
+      mean.add(image);
     } else {
       result.images.push_back(std::move(image));
     }
   }
   if (request.average) {
-    runtime::ImageRGBA32F mean(request.width, request.height);
-    for (std::size_t i = 0; i < sum.size(); ++i) {
-      mean.pixels[i] = static_cast<float>(sum[i] / request.frames);
-    }
-    result.images.push_back(std::move(mean));
+    result.images.push_back(mean.mean());
+    if (mean.count() >= 2) result.standard_error = mean.standard_error();
   }
   return result;
 }

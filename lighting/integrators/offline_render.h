@@ -40,6 +40,9 @@ struct OfflineRenderRequest {
 
 struct OfflineRenderResult {
   std::vector<runtime::ImageRGBA32F> images;  // one per frame, or one mean image
+  // With `average` and at least 2 frames: the mean's standard error per pixel and channel
+  // (runtime::ImageAccumulator::standard_error); empty otherwise.
+  runtime::ImageRGBA32F standard_error;
   // GPU ms per frame: the sum of the renderer's passes (scene.upload, gbuffer*, the
   // integrator's); frame.output and target.readback are in pass_ms but not here.
   std::vector<double> frame_ms;

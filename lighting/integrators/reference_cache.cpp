@@ -201,19 +201,29 @@ ReferenceImage reference_image(runtime::Device& device, runtime::ShaderLibrary& 
   }
   ReferenceImage out;
   out.path = reference_cache_dir() / reference_cache_name(*level, request);
+  const std::filesystem::path stderr_path =
+      std::filesystem::path(out.path).replace_extension(".stderr.exr");
+  const bool with_stderr = request.frames >= 2;
+  const auto usable = [&](const runtime::ImageRGBA32F& image) {
+    return image.width == request.width && image.height == request.height &&
+           image.count_non_finite() == 0;
+  };
   std::error_code ec;
-  if (std::filesystem::exists(out.path, ec)) {
+  if (std::filesystem::exists(out.path, ec) &&
+      (!with_stderr || std::filesystem::exists(stderr_path, ec))) {
     try {
       runtime::ImageRGBA32F cached = runtime::read_image(out.path);
-      if (cached.width == request.width && cached.height == request.height &&
-          cached.count_non_finite() == 0) {
+      runtime::ImageRGBA32F cached_stderr;
+      if (with_stderr) cached_stderr = runtime::read_image(stderr_path);
+      if (usable(cached) && (!with_stderr || usable(cached_stderr))) {
         out.image = std::move(cached);
+        out.standard_error = std::move(cached_stderr);
         out.cache_hit = true;
         log::debug("reference: cache hit {}", out.path.string());
         return out;
       }
-      log::warn("reference: ignoring cached {} ({}x{}, expected {}x{})", out.path.string(),
-                cached.width, cached.height, request.width, request.height);
+      log::warn("reference: ignoring cached {} (not {}x{} or not finite)", out.path.string(),
+                request.width, request.height);
     } catch (const std::exception& e) {
       log::warn("reference: ignoring unreadable cached {}: {}", out.path.string(), e.what());
     }
@@ -236,11 +246,14 @@ ReferenceImage reference_image(runtime::Device& device, runtime::ShaderLibrary& 
         fmt::format("reference: expected one averaged image, got {}", result.images.size()));
   }
   out.image = std::move(result.images.front());
+  out.standard_error = std::move(result.standard_error);
   std::filesystem::create_directories(out.path.parent_path(), ec);
   if (ec) {
     throw RuntimeError(fmt::format("reference: cannot create cache directory {}: {}",
                                    out.path.parent_path().string(), ec.message()));
   }
+  // The standard error first: the mean's file is what marks a complete entry.
+  if (with_stderr) runtime::write_image(stderr_path, out.standard_error);
   runtime::write_image(out.path, out.image);
   log::debug("reference: rendered and cached {}", out.path.string());
   return out;

@@ -7,7 +7,8 @@
 // and the reference settings, plus a format version bumped when the integrator's output changes.
 // Directory: $LANTERN_CACHE_DIR, else <build dir>/reference-cache. Writes are atomic
 // (runtime/image write_image: temporary file + rename), so concurrent test processes never read a
-// half-written file. Used by tests, and later by `lantern trade` and the bias tests.
+// half-written file; the standard error is written first and an entry without it is rendered
+// again. Used by tests, and later by `lantern trade` and the bias tests.
 #pragma once
 
 #include <cstdint>
@@ -40,7 +41,11 @@ std::filesystem::path reference_cache_dir();
 
 struct ReferenceImage {
   runtime::ImageRGBA32F image;
-  std::filesystem::path path;  // the cache file
+  // The image's standard error per pixel and channel, from the spread of its frames (empty for a
+  // reference of one frame): runtime::relative_mse_of_noise(image, standard_error) is the
+  // reference's own noise, a floor under every relMSE measured against it.
+  runtime::ImageRGBA32F standard_error;
+  std::filesystem::path path;  // the cache file (its standard error beside it: .stderr.exr)
   bool cache_hit = false;
 };
 

@@ -1,5 +1,8 @@
 #include "runtime/image/image_metrics.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "engine/core/error.h"
@@ -64,17 +67,56 @@ double mean_rgb(const ImageRGBA32F& image) {
   return sum / (3.0 * static_cast<double>(n));
 }
 
+double relative_mse_of_noise(const ImageRGBA32F& image, const ImageRGBA32F& standard_error,
+                             double epsilon) {
+  require_same_size(standard_error, image);
+  const std::size_t n = std::size_t{image.width} * image.height;
+  if (n == 0) return 0.0;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double se = standard_error.pixels[4 * i + c];
+      const double x = image.pixels[4 * i + c];
+      sum += se * se / (x * x + epsilon);
+    }
+  }
+  return sum / (3.0 * static_cast<double>(n));
+}
+
 void ImageAccumulator::add(const ImageRGBA32F& image) {
   if (count_ == 0) {
     width_ = image.width;
     height_ = image.height;
     sum_.assign(image.pixels.size(), 0.0);
+    sum_squares_.assign(image.pixels.size(), 0.0);
   } else if (image.width != width_ || image.height != height_) {
     throw InputError(fmt::format("accumulating a {}x{} image into a {}x{} mean", image.width,
                                  image.height, width_, height_));
   }
-  for (std::size_t i = 0; i < sum_.size(); ++i) sum_[i] += image.pixels[i];
+  for (std::size_t i = 0; i < sum_.size(); ++i) {
+    const double x = image.pixels[i];
+    sum_[i] += x;
+    sum_squares_[i] += x * x;
+  }
   ++count_;
+}
+
+ImageRGBA32F ImageAccumulator::standard_error() const {
+  if (count_ < 2) {
+    throw InputError(fmt::format("a standard error needs at least 2 frames, not {}", count_));
+  }
+  ImageRGBA32F out(width_, height_);
+  const double n = count_;
+  for (std::size_t i = 0; i < sum_.size(); ++i) {
+    if (i % 4 == 3) {
+      out.pixels[i] = 1.0f;
+      continue;
+    }
+    const double mean = sum_[i] / n;
+    const double variance = std::max((sum_squares_[i] - n * mean * mean) / (n - 1.0), 0.0);
+    out.pixels[i] = static_cast<float>(std::sqrt(variance / n));
+  }
+  return out;
 }
 
 ImageRGBA32F ImageAccumulator::mean() const {

@@ -22,11 +22,23 @@ double relative_mse(const ImageRGBA32F& image, const ImageRGBA32F& reference,
 // Mean of the RGB channels over all pixels (the "overall mean" of bias tests).
 double mean_rgb(const ImageRGBA32F& image);
 
-// Mean of many frames, pixel by pixel, accumulated in double precision.
+// The relative_mse an image is expected to have against its own expectation when each of its
+// pixels carries the given standard error (per RGB channel): mean over pixels and RGB of
+// se^2 / (image^2 + epsilon). For a reference made by averaging frames (ImageAccumulator) this is
+// its noise: a floor under every relMSE measured against it. Throws InputError on a size mismatch.
+double relative_mse_of_noise(const ImageRGBA32F& image, const ImageRGBA32F& standard_error,
+                             double epsilon = 0.01);
+
+// Mean of many frames, pixel by pixel, accumulated in double precision, and the standard error
+// of that mean from the frames' spread.
 class ImageAccumulator {
  public:
   void add(const ImageRGBA32F& image);
   ImageRGBA32F mean() const;
+  // Per pixel and RGB channel sqrt(s^2 / count), s^2 the frames' sample variance (alpha 1);
+  // needs at least 2 frames (InputError otherwise). Where a heavy-tailed integrand's rare large
+  // values never came up it is an underestimate.
+  ImageRGBA32F standard_error() const;
   std::uint32_t count() const { return count_; }
 
  private:
@@ -34,6 +46,7 @@ class ImageAccumulator {
   std::uint32_t height_ = 0;
   std::uint32_t count_ = 0;
   std::vector<double> sum_;
+  std::vector<double> sum_squares_;
 };
 
 }  // namespace lantern::runtime

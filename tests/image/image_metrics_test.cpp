@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "engine/core/error.h"
 
 namespace lantern::runtime {
@@ -44,6 +46,27 @@ TEST(ImageMetrics, AccumulatorMeansFramesInDouble) {
   EXPECT_FLOAT_EQ(acc.mean().at(2, 2)[1], 3.0f);
   EXPECT_DOUBLE_EQ(mean_rgb(acc.mean()), 3.0);
   EXPECT_THROW(acc.add(constant(2, 3, 1.0f)), InputError);
+}
+
+// Frames 1, 2, 6: mean 3, sample variance ((-2)^2 + (-1)^2 + 3^2) / 2 = 7, so the mean's
+// standard error is sqrt(7 / 3); its relative noise against the mean is (7 / 3) / (9 + epsilon).
+TEST(ImageMetrics, AccumulatorStandardErrorOfTheMean) {
+  ImageAccumulator acc;
+  acc.add(constant(2, 2, 1.0f));
+  EXPECT_THROW((void)acc.standard_error(), InputError) << "one frame has no spread";
+  acc.add(constant(2, 2, 2.0f));
+  acc.add(constant(2, 2, 6.0f));
+  const ImageRGBA32F se = acc.standard_error();
+  EXPECT_NEAR(se.at(1, 1)[0], std::sqrt(7.0 / 3.0), 1e-6);
+  EXPECT_EQ(se.at(1, 1)[3], 1.0f);
+  EXPECT_NEAR(relative_mse_of_noise(acc.mean(), se), (7.0 / 3.0) / (9.0 + 0.01), 1e-6);
+  EXPECT_NEAR(relative_mse_of_noise(acc.mean(), se, 0.0), 7.0 / 27.0, 1e-6);
+  // Equal frames: no noise.
+  ImageAccumulator still;
+  still.add(constant(2, 2, 5.0f));
+  still.add(constant(2, 2, 5.0f));
+  EXPECT_EQ(relative_mse_of_noise(still.mean(), still.standard_error()), 0.0);
+  EXPECT_THROW(relative_mse_of_noise(constant(2, 2, 1.0f), constant(3, 2, 1.0f)), InputError);
 }
 
 }  // namespace
