@@ -81,10 +81,11 @@ std::optional<runtime::TargetFrame> FrameSession::begin_frame(FrameTiming* finis
 void FrameSession::render(const runtime::TargetFrame& frame, const FrameSnapshot& snapshot,
                           const FrameHooks& hooks, FrameTiming* timing) {
   const auto start = Clock::now();
-  runtime::GpuTimer& timer = *timers_.at(frame.slot);
+  const bool timed = frames_++ % timing_interval_ == 0;
+  runtime::GpuTimer* timer = timed ? timers_.at(frame.slot).get() : nullptr;
   // On the host: a frame with host passes is submitted in parts before frame.cmd.
-  timer.reset_on_host();
-  timer_used_[frame.slot] = true;
+  if (timer != nullptr) timer->reset_on_host();
+  timer_used_.at(frame.slot) = timed;
   graph_.begin_frame();
   runtime::graph::BufferHandle hdr = renderer_->add_frame(graph_, snapshot);
   if (hooks.hdr) hdr = hooks.hdr(graph_, hdr);
@@ -93,14 +94,14 @@ void FrameSession::render(const runtime::TargetFrame& frame, const FrameSnapshot
   if (hooks.output) output = hooks.output(graph_, output, frame);
   target_.add_delivery(graph_, frame, output);
   graph_.bake(executor_->compile_options());
-  executor_->record(graph_, frame.cmd, &timer);
+  executor_->record(graph_, frame.cmd, timer);
   graph_.end_frame();
   target_.end_frame(frame);
 
   if (timing != nullptr) {
     timing->scene_update_ms = renderer_->scene().last_update().cpu_ms;
     timing->wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    if (target_.frames_in_flight() == 1) read_gpu_times(timer, *timing);
+    if (target_.frames_in_flight() == 1 && timer != nullptr) read_gpu_times(*timer, *timing);
   }
 }
 

@@ -30,8 +30,11 @@ class FrameHarness {
     session_.render(snapshot);
     return target_.read_output();
   }
+  // The last frame's output (after rendering through session() directly).
+  runtime::ImageRGBA32F output() { return target_.read_output(); }
 
   lighting::FrameRenderer& renderer() { return renderer_; }
+  lighting::FrameSession& session() { return session_; }
 
  private:
   lighting::FrameRenderer renderer_;

@@ -59,6 +59,34 @@ TEST_F(FrameRendererTest, CornellLightsAlongTheCameraPathIsFiniteAndLit) {
   }
 }
 
+// With a timing interval of 3 the session times frames 0, 3, 6 (their GPU times come back, the
+// others' do not) and renders the same images as when it times every frame (play times one in 8:
+// a pass's timestamps cost lavapipe ~60 us of wall time).
+TEST_F(FrameRendererTest, TimingIntervalTimesOneFrameInN) {
+  auto level = std::make_shared<const Level>(load_level_argument("cornell_lights"));
+  World world(level, {.threads = 1, .seed = 3, .fixed_dt = 1.0 / 10.0, .aspect = 16.0f / 9.0f});
+  test::FrameHarness every(device, shaders, level, 64, 36);
+  test::FrameHarness third(device, shaders, level, 64, 36);
+  third.session().set_timing_interval(3);
+  for (int frame = 0; frame < 7; ++frame) {
+    const FrameSnapshot& snapshot = world.step();
+    lighting::FrameTiming timing;
+    ASSERT_TRUE(third.session().render(snapshot, {}, &timing));
+    EXPECT_EQ(timing.gpu_valid, frame % 3 == 0) << "frame " << frame;
+    EXPECT_EQ(timing.passes.empty(), frame % 3 != 0) << "frame " << frame;
+    if (frame % 3 == 0) {
+      EXPECT_GT(timing.gpu_ms, 0.0) << "frame " << frame;
+    }
+    const runtime::ImageRGBA32F timed = every.render(snapshot);
+    const runtime::ImageRGBA32F image = third.output();
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+      differ += image.pixels[i] != timed.pixels[i];
+    }
+    EXPECT_EQ(differ, 0u) << "frame " << frame;
+  }
+}
+
 TEST_F(FrameRendererTest, MovingInstanceCarriesLastFramesTransformAsPrevious) {
   auto level = std::make_shared<const Level>(load_level_argument("cornell_lights"));
   std::uint32_t moving = 0;

@@ -57,6 +57,10 @@ constexpr float kLookRadiansPerUnit = 0.004f;
 // Frames before play's frame-interval report counts (pipelines settle, dynamic resolution finds
 // its size).
 constexpr std::size_t kWarmUpFrames = 30;
+// GPU timestamps on one frame in this many (FrameSession::set_timing_interval): the panel's
+// per-pass times are samples anyway, and on lavapipe each pass's timestamp pair costs ~60 us of
+// every frame it is recorded in.
+constexpr std::uint32_t kPlayTimingInterval = 8;
 
 // The renderer and everything built from one ShaderLibrary: replaced as a whole on an integrator
 // switch or a shader reload (the library outlives what was built from it).
@@ -221,6 +225,7 @@ PlayReport run_play(const PlayConfig& config) {
   PlayLights lights(world, slots);
 
   lighting::FrameSession session(device, target, *bundle.renderer);
+  session.set_timing_interval(kPlayTimingInterval);
 
   InputScript script = config.script;
   PlayInput before;
