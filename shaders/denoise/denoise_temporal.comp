@@ -2,7 +2,7 @@
 // passes through), reprojects last frame's denoised illumination and luminance moments along the
 // motion vector (bilinear over the 2x2 previous pixels, each kept only when it passes ReSTIR's
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
-// history), clamps a firefly against the history's mean + firefly x sigma (where the history
+// history; so does a footprint less than kDenoiseMinHistoryFootprint of which passes), clamps a firefly against the history's mean + firefly x sigma (where the history
 // cannot judge, against push.neighbour_clamp x the brightest of its 8 neighbours), and blends
 // (alpha = max(c / (c + (length - 1) x the history's mean confidence), push.color_alpha): 1 /
 // history length when every frame is worth the same, else each weighs by the integrator's M;
@@ -145,7 +145,9 @@ void main() {
     }
   }
 
-  if (weight_sum > 1e-3) {
+  // Mostly hidden last frame: a disocclusion, no history (kDenoiseMinHistoryFootprint).
+  const bool has_history = weight_sum >= kDenoiseMinHistoryFootprint;
+  if (has_history) {
     history_color /= weight_sum;
     history_moments /= weight_sum;
   }
@@ -156,7 +158,7 @@ void main() {
   // samples were all shadowed); there the sample is clamped to neighbour_clamp x its brightest
   // neighbour in this frame instead, which a lit region passes and a lone heavy-tailed sample
   // (ReSTIR's, next to a small bright light) does not.
-  bool history_judges = weight_sum > 1e-3 && history_moments.z >= kDenoiseShortHistory &&
+  bool history_judges = has_history && history_moments.z >= kDenoiseShortHistory &&
                         history_moments.x > 0.0;
   float limit = uintBitsToFloat(0x7f800000u);
   if (history_judges && push.firefly > 0.0) {
@@ -180,7 +182,7 @@ void main() {
   vec2 moments = vec2(l, l * l);
   float frames = 1.0;
   float mean_confidence = confidence;
-  if (weight_sum > 1e-3) {
+  if (has_history) {
     float history_length = history_moments.z;
     frames = min(history_length + 1.0, push.max_history);
     // Each frame's pixel weighs by its confidence: a = c / (c + (frames - 1) x the history's mean
