@@ -42,8 +42,8 @@ std::filesystem::path reference_cache_dir();
 struct ReferenceImage {
   runtime::ImageRGBA32F image;
   // The image's standard error per pixel and channel, from the spread of its frames (empty for a
-  // reference of one frame): runtime::relative_mse_of_noise(image, standard_error) is the
-  // reference's own noise, a floor under every relMSE measured against it.
+  // reference of one frame): runtime::relative_mse_of_noise(image, standard_error) is a lower
+  // bound on the reference's own noise, which every relMSE measured against it carries.
   runtime::ImageRGBA32F standard_error;
   std::filesystem::path path;  // the cache file (its standard error beside it: .stderr.exr)
   bool cache_hit = false;

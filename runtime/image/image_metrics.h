@@ -25,7 +25,9 @@ double mean_rgb(const ImageRGBA32F& image);
 // The relative_mse an image is expected to have against its own expectation when each of its
 // pixels carries the given standard error (per RGB channel): mean over pixels and RGB of
 // se^2 / (image^2 + epsilon). For a reference made by averaging frames (ImageAccumulator) this is
-// its noise: a floor under every relMSE measured against it. Throws InputError on a size mismatch.
+// its own noise, which every relMSE measured against it carries (no less: with standard errors
+// from the frames' spread it is an underestimate where a heavy tail's rare values never came
+// up). Throws InputError on a size mismatch.
 double relative_mse_of_noise(const ImageRGBA32F& image, const ImageRGBA32F& standard_error,
                              double epsilon = 0.01);
 

@@ -2,15 +2,14 @@
 // passes through), reprojects last frame's denoised illumination and luminance moments along the
 // motion vector (bilinear over the 2x2 previous pixels, each kept only when it passes ReSTIR's
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
-// history; so does a footprint less than kDenoiseMinHistoryFootprint of which passes), clamps a firefly against the history's mean + firefly x sigma (where the history
-// cannot judge, against push.neighbour_clamp x the brightest of its 8 neighbours), and blends
-// (alpha = max(c / (c + (length - 1) x the history's mean confidence), push.color_alpha): 1 /
-// history length when every frame is worth the same, else each weighs by the integrator's M;
-// the luminance moments keep 1 / length). Emitters pass through
-// unfiltered (denoise_passthrough), and so does the sky unless push.sky_distance > 0 (levels with
-// volumes):
-// then a sky pixel is a surface that far along its view ray, facing the camera, albedo 1,
-// reprojected as that point.
+// history; so does a footprint less than kDenoiseMinHistoryFootprint of which passes), clamps a
+// firefly against the history's mean + firefly x sigma (where the history cannot judge, against
+// push.neighbour_clamp x the brightest of its 8 neighbours), and blends (alpha = max(c / (c +
+// (length - 1) x the history's mean confidence), push.color_alpha): 1 / history length when every
+// frame is worth the same, else each weighs by the integrator's M; the luminance moments keep 1 /
+// length). Emitters pass through unfiltered (denoise_passthrough), and so does the sky unless
+// push.sky_distance > 0 (levels with volumes): then a sky pixel is a surface that far along its
+// view ray, facing the camera, albedo 1, reprojected as that point.
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
 // surface_keys_history, color_history, moments_history, frame constants (prev_view_proj),
 // confidence_in (with kDenoiseFlagConfidence: the integrator's PackedReservoirs, their M).

@@ -101,7 +101,7 @@ void main() {
   float view_depth = max(finite_or_zero(1.0 / gl_FragCoord.w), 1e-30);
 
   vec2 motion = gbuffer_point_motion(in_clip, in_prev_clip, frame_constants.frame.jitter,
-                               vec2(frame_constants.frame.frame.xy));
+                                     vec2(frame_constants.frame.frame.xy));
 
   out_position = vec4(position, view_depth);
   out_normal = vec4(oct_encode(ns), oct_encode(ng_facing));

@@ -3,10 +3,10 @@
 // ray (baseline.comp's construction from inv_view_proj) meets the triangle's plane at barycentrics
 // (b1, b2) (Moller-Trumbore in world space; the same perspective-correct weights the raster
 // interpolates with); position, shading normal and the clip positions of gbuffer_point_motion are
-// barycentric blends of the corners. Shading normals go through the cofactor of object_to_world (=
-// det * inverse transpose: the direction of transpose(world_to_object) n up to sign, which the flip
-// towards the geometric normal removes), so world_to_object is not loaded: on lavapipe every
-// per-pixel load from a storage buffer is a per-lane gather, the cost of this pass. Needs the
+// barycentric blends of the corners. Shading normals go through the cofactor of object_to_world
+// (det times the inverse transpose: the direction of transpose(world_to_object) n up to sign, which
+// the flip towards the geometric normal removes), so world_to_object is not loaded: on lavapipe
+// every per-pixel load from a storage buffer is a per-lane gather, the cost of this pass. Needs the
 // blocks frame_constants, scene_vertices, scene_indices, scene_materials and scene_instances
 // declared by the includer. When the includer has included gbuffer/gbuffer_material.glsl and
 // declares the specialisation constant kTextured, textured materials apply with the level of detail
