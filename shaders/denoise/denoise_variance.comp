@@ -42,28 +42,34 @@ void main() {
   // and one in shadow, had the same mean, and the stop let the lit one into the dark one
   // (cornell_lights: a steady 0.2-0.3 on pixels that are black; trade's denoised relMSE 6-16%
   // lower with the tent).
+  // The 3x3 taps also start the short-history moments below (geometry weights only), so the
+  // 5x5 window reads just its outer ring of 16 on top.
   float smooth_sum = 0.0;
   float smooth_w = 0.0;
+  float sum_w = 0.0;
+  vec2 moments = vec2(0.0);
   [[unroll]] for (int t = 0; t < 9; ++t) {
     ivec2 q = pixel + ivec2(t % 3 - 1, t / 3 - 1);
     if (!denoise_inside(q)) continue;
     uint qi = denoise_index(q);
     vec4 gq = vec4_fetch(guide, qi);
     if (denoise_guide_sky(gq)) continue;
-    float w = kDenoiseKernel[abs(t % 3 - 1)] * kDenoiseKernel[abs(t / 3 - 1)] *
-              denoise_geometry_weight(g, n, depth, gq, 1.0, 0.0);
-    smooth_sum += w * luminance(vec4_fetch(accum_in, qi).rgb);
+    float wg = denoise_geometry_weight(g, n, depth, gq, 1.0, 0.0);
+    float w = kDenoiseKernel[abs(t % 3 - 1)] * kDenoiseKernel[abs(t / 3 - 1)] * wg;
+    float l = luminance(vec4_fetch(accum_in, qi).rgb);
+    smooth_sum += w * l;
     smooth_w += w;
+    moments += wg * vec2(l, l * l);
+    sum_w += wg;
   }
   luminance_out.l[index] = smooth_sum / max(smooth_w, 1e-6);
   if (frames >= kDenoiseShortHistory) {
     accum_out.p[index] = centre;
     return;
   }
-  float sum_w = 0.0;
-  vec2 moments = vec2(0.0);
   [[unroll]] for (int dy = -2; dy <= 2; ++dy) {
     [[unroll]] for (int dx = -2; dx <= 2; ++dx) {
+      if (abs(dx) < 2 && abs(dy) < 2) continue;  // the 3x3 above
       ivec2 q = pixel + ivec2(dx, dy);
       if (!denoise_inside(q)) continue;
       uint qi = denoise_index(q);
