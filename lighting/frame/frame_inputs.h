@@ -48,6 +48,10 @@ struct FrameInputs {
   // camera cut and after a resize (FrameRenderer invalidates it), so passes ask the graph.
   std::uint32_t light_count = 0;           // current lights (alias table size)
   std::uint32_t previous_light_count = 0;  // entries of light_previous_to_current
+  // The denoiser consumes this frame's radiance (FrameOutput::Denoised with the denoiser on):
+  // an integrator may then trade raw noise for errors a denoiser averages better
+  // (RestirSettings::temporal_permutation).
+  bool denoised = false;
 };
 
 // Samples per pixel per frame of volume.camera (transmittance and in-scattering, >= 1), and

@@ -89,6 +89,10 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   gpu::RestirPush p{};
   p.tile_stride = tile_stride(tile_count(inputs.width, inputs.height, gpu::kRestirTileSize));
   p.flags = s.initial_visibility ? gpu::kRestirFlagInitialVisibility : 0u;
+  if (s.temporal_permutation == kTemporalPermutationOn ||
+      (s.temporal_permutation == kTemporalPermutationDenoised && inputs.denoised)) {
+    p.flags |= gpu::kRestirFlagTemporalPermutation;
+  }
   p.light_candidates = s.light_candidates;
   p.bsdf_candidates = s.bsdf_candidates;
   p.bias_correction = s.bias_correction;

@@ -75,6 +75,16 @@ constexpr RestirChoice kDebugViews[] = {
     {"motion", gpu::kRestirDebugMotion,
      "the G-buffer's motion vectors: check reprojection when history smears"},
 };
+constexpr RestirChoice kTemporalPermutations[] = {
+    {"off", kTemporalPermutationOff,
+     "every pixel continues its own history: the least raw noise (bias studies, raw EXRs)"},
+    {"on", kTemporalPermutationOn,
+     "every pixel takes a neighbour's history, a different one each frame: noisier raw frames "
+     "whose errors differ from frame to frame"},
+    {"denoised", kTemporalPermutationDenoised,
+     "on where the denoiser consumes the frame (play, PNG, video), off for raw output: the "
+     "default"},
+};
 // Row i names constant i: every constant named once, and "next view" is the next row.
 constexpr bool rows_follow_constants(std::span<const RestirChoice> choices) {
   for (std::size_t i = 0; i < choices.size(); ++i) {
@@ -84,6 +94,7 @@ constexpr bool rows_follow_constants(std::span<const RestirChoice> choices) {
 }
 static_assert(rows_follow_constants(kBiasCorrections));
 static_assert(rows_follow_constants(kDebugViews));
+static_assert(rows_follow_constants(kTemporalPermutations));
 static_assert(std::size(kDebugViews) == gpu::kRestirDebugCount, "a debug view lacks a name");
 
 std::uint32_t parse_choice(std::string_view key, std::string_view value,
@@ -103,6 +114,7 @@ std::string format_float(float f) { return fmt::format("{}", f); }
 
 std::span<const RestirChoice> restir_bias_corrections() { return kBiasCorrections; }
 std::span<const RestirChoice> restir_debug_views() { return kDebugViews; }
+std::span<const RestirChoice> restir_temporal_permutations() { return kTemporalPermutations; }
 
 const char* choice_name(std::span<const RestirChoice> choices, std::uint32_t value) {
   for (const RestirChoice& c : choices) {
@@ -150,6 +162,9 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.bsdf_candidates = parse_uint(key, value, 0, gpu::kRestirMaxBsdfCandidates);
   } else if (key == "temporal") {
     s.temporal = parse_bool(key, value);
+  } else if (key == "temporal_permutation") {
+    s.temporal_permutation =
+        parse_choice(key, value, kTemporalPermutations, "a temporal permutation mode");
   } else if (key == "m_cap" || key == "m_cap_factor") {
     s.m_cap_factor = parse_float(key, value, 1.0f, 1000.0f);
   } else if (key == "spatial_passes") {
@@ -211,6 +226,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"light_candidates", std::to_string(s.light_candidates)},
       {"bsdf_candidates", std::to_string(s.bsdf_candidates)},
       {"temporal", flag(s.temporal)},
+      {"temporal_permutation", choice_name(kTemporalPermutations, s.temporal_permutation)},
       {"m_cap", format_float(s.m_cap_factor)},
       {"spatial_passes", std::to_string(s.spatial_passes)},
       {"neighbours", std::to_string(s.neighbours)},

@@ -16,9 +16,10 @@
 
 namespace lantern::lighting {
 
-// One value of an enumerated setting (bias_correction, debug_view): its `--set` name, the shared
-// constant the shaders test, and when to choose it. The constants have one owner, the header
-// under shaders/shared/; these tables only name them.
+// One value of an enumerated setting (bias_correction, debug_view, temporal_permutation): its
+// `--set` name, its constant, and when to choose it. The constants the shaders test have one
+// owner, the header under shaders/shared/; these tables only name them. temporal_permutation's
+// are host-side (below): the shaders see only kRestirFlagTemporalPermutation.
 struct RestirChoice {
   const char* name;
   std::uint32_t value;
@@ -29,6 +30,11 @@ struct RestirChoice {
 std::span<const RestirChoice> restir_bias_corrections();
 // debug_view: the kRestirDebug* constants (shaders/shared/restir.h), in their order.
 std::span<const RestirChoice> restir_debug_views();
+// temporal_permutation: when restir.temporal permutes its history (RestirSettings).
+inline constexpr std::uint32_t kTemporalPermutationOff = 0;
+inline constexpr std::uint32_t kTemporalPermutationOn = 1;
+inline constexpr std::uint32_t kTemporalPermutationDenoised = 2;  // on where the denoiser reads
+std::span<const RestirChoice> restir_temporal_permutations();
 // The choice whose value is `value` ("?" when there is none).
 const char* choice_name(std::span<const RestirChoice> choices, std::uint32_t value);
 
@@ -43,6 +49,14 @@ struct RestirSettings {
   // Reuse last frame's reservoirs along motion vectors. Turn off to see the spatial-only result
   // or when history is worthless (every frame a cut).
   bool temporal = true;
+  // Temporal permutation (restir_permuted_history_pixel, shaders/shared/restir.h): temporal
+  // reuse takes last frame's reservoir from a neighbour of the reprojected pixel, a different
+  // neighbour each frame, so a sample (an occluded one, say) no longer sticks to one pixel for up
+  // to m_cap frames. Unbiased; the raw image is noisier and flickers more, the denoised one is
+  // cleaner (the denoiser averages frames, and their errors are now less alike). `denoised` (the
+  // default) turns it on exactly for frames the denoiser consumes (FrameInputs::denoised: play,
+  // PNG, video); `on` / `off` force it. One of restir_temporal_permutations().
+  std::uint32_t temporal_permutation = kTemporalPermutationDenoised;
   // History confidence cap as a multiple of the current M (light + BSDF candidates). Lower it
   // when lights move or flicker and stale samples linger; raise it for static scenes.
   float m_cap_factor = 20.0f;
@@ -131,7 +145,8 @@ std::vector<std::string> restir_preset_names();
 // m_cap (alias of m_cap_factor), spatial_passes, neighbours, disocclusion_boost, radius,
 // presample_tiles, local_candidates, local_min_lights, visibility_reuse, bias_correction (a name
 // from restir_bias_corrections()), initial_visibility, boiling_filter, depth_threshold,
-// normal_threshold, debug_view (a name from restir_debug_views()); the media's volume_candidates,
+// normal_threshold, debug_view (a name from restir_debug_views()), temporal_permutation (a name
+// from restir_temporal_permutations()); the media's volume_candidates,
 // volume_temporal, volume_m_cap, volume_neighbours, volume_radius).
 // lantern::InputError naming the key and the value for unknown keys, unparsable values and
 // values outside the allowed range (e.g. light_candidates = 0 or 10^9).

@@ -1,5 +1,6 @@
 // restir.temporal: merges each pixel's initial reservoir with last frame's final reservoir at the
-// reprojected pixel (motion vector; then up to 3 jittered retries within 1.5 px), when the
+// reprojected pixel (motion vector; with kRestirFlagTemporalPermutation a neighbour of it,
+// restir_permuted_history_pixel; then up to 3 jittered retries within 1.5 px), when the
 // surface there passes the disocclusion test (relative view depth against the depth the previous
 // camera saw this point at, normal, material, roughness). The history sample's light is remapped
 // through light_previous_to_current (an environment sample stays one); a removed light drops the
@@ -65,6 +66,10 @@ ivec2 find_history(uvec2 pixel, RestirSurface surface, inout uint rng, out uint 
   for (uint t = 0u; t < kRestirTemporalTries; ++t) {
     vec2 jitter = t == 0u ? vec2(0.0) : (rng_next_vec2(rng) - 0.5) * 3.0;
     ivec2 q = ivec2(floor(previous + jitter));
+    if (t == 0u && (push.flags & kRestirFlagTemporalPermutation) != 0u) {
+      uint frame_rng_state = frame_rng(uvec2(0u), kRestirRngTemporalPermutation);
+      q = restir_permuted_history_pixel(q, rng_next_uint(frame_rng_state));
+    }
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
     RestirSurface old = restir_surface_fetch(surfaces_history, q.y * size.x + q.x);
     if (restir_surfaces_similar(surface, expected_depth, old, push.similarity)) {
@@ -91,8 +96,12 @@ void main() {
         uint q_index = uint(q.y) * restir_size().x + uint(q.x);
         Reservoir history = reservoir_unpack(reservoir_fetch(reservoirs_history, q_index));
         reservoir_age_one_frame(history);
-        // Visibility reuse only along a direct reprojection (a jittered retry is another point).
-        if (status != kRestirStatusReprojected) reservoir_set_visibility(history, false, false);
+        // Visibility reuse only along a direct reprojection (a jittered retry or a permuted
+        // pixel is another point).
+        if (status != kRestirStatusReprojected ||
+            (push.flags & kRestirFlagTemporalPermutation) != 0u) {
+          reservoir_set_visibility(history, false, false);
+        }
         // A removed light (or an empty history reservoir) leaves no sample but keeps M: the
         // history domain produced "nothing" this time, and the canonical sample's MIS weight must
         // not depend on that outcome. (Zeroing M here skipped the merge exactly when the history

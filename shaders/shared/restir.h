@@ -23,9 +23,12 @@ LANTERN_CONST uint kRestirMaxNeighbours = 8u;   // spatial neighbours per pass, 
 LANTERN_CONST uint kRestirMaxSpatialPasses = 4u;
 LANTERN_CONST uint kRestirTemporalTries = 4u;   // reprojected pixel, then 3 jittered retries
 
-// RestirPush.lights.w flags.
+// RestirPush.flags bits.
 LANTERN_CONST uint kRestirFlagHistoryValid = 1u;       // last frame's reservoirs may be reused
 LANTERN_CONST uint kRestirFlagInitialVisibility = 2u;  // shadow-test the initial pick
+// restir.temporal reads last frame's reservoir at a neighbour of the reprojected pixel
+// (restir_permuted_history_pixel) instead of the pixel itself.
+LANTERN_CONST uint kRestirFlagTemporalPermutation = 4u;
 
 // Debug views (`debug_view` setting): written into hdr instead of radiance.
 LANTERN_CONST uint kRestirDebugNone = 0u;
@@ -49,6 +52,28 @@ LANTERN_CONST uint kRestirRngPresample = 0x524a0u;
 LANTERN_CONST uint kRestirRngPresampleTile = 0x524a1u;
 LANTERN_CONST uint kRestirRngLocalLights = 0x524a2u;
 LANTERN_CONST uint kRestirRngShadeMedia = 0x524b0u;  // restir.shade's transmittance estimate
+LANTERN_CONST uint kRestirRngTemporalPermutation = 0x524c0u;  // one draw per frame, every pixel's
+
+// Temporal permutation (kRestirFlagTemporalPermutation): the previous pixel restir.temporal first
+// tries for reprojected pixel q, given one random word `frame_bits` per frame (the same for every
+// pixel). The grid is shifted by 0 or 1 pixel per axis and each coordinate XORed with 1 where the
+// mask (one of (1,0), (0,1), (1,1)) says: a bijection of the pixel grid onto itself that moves
+// every pixel by one pixel horizontally, vertically or diagonally, a different way each frame.
+// Being a permutation, each history reservoir still seeds exactly one pixel (no reservoir is
+// copied twice, which would correlate neighbours); moving, a pixel no longer inherits its own
+// history frame after frame, so a sample (an occluded one, say) no longer sticks to one pixel
+// for up to m_cap frames: the temporal correlation a denoiser cannot average away. The history
+// surface is a neighbour's, which the MIS weights see (as for a jittered retry), so the estimate
+// stays unbiased; the raw image is noisier next to sharp changes in the target (lights close to
+// a surface).
+LANTERN_FUNC ivec2 restir_permuted_history_pixel(ivec2 q, uint frame_bits) {
+  int shift_x = int(frame_bits & 1u);
+  int shift_y = int((frame_bits >> 1u) & 1u);
+  uint mask = 1u + (frame_bits >> 2u) % 3u;  // 1, 2 or 3: x, y or both
+  int flip_x = int(mask & 1u);
+  int flip_y = int(mask >> 1u);
+  return ivec2(((q.x + shift_x) ^ flip_x) - shift_x, ((q.y + shift_y) ^ flip_y) - shift_y);
+}
 
 // Light presampling (RIS tiles, Wyman and Panteleev, HPG 2021): restir.presample draws
 // kRestirPresampleTileSize lights per tile from the power alias table into push.presample_tiles

@@ -1,7 +1,8 @@
 // The tile orders of the per-pixel passes (lighting/frame/tile_order.h, shared/restir.h's
 // restir_tile_origin): g -> g * stride mod count, and the interleaved bands of tile rows the
 // reuse passes walk on CPU devices, visit every tile exactly once for every frame size; each
-// thread's contiguous run of workgroups walks its own band of rows.
+// thread's contiguous run of workgroups walks its own band of rows. And restir.temporal's history
+// permutation (restir_permuted_history_pixel): a one-pixel move that is its own inverse.
 #include <gtest/gtest.h>
 #include <sched.h>
 
@@ -17,6 +18,30 @@
 
 namespace lantern::lighting {
 namespace {
+
+// Every frame word moves every pixel by one pixel (horizontally, vertically or diagonally, the
+// same way within a frame's 2x2 blocks) and is an involution, hence a permutation of the grid:
+// no history reservoir seeds two pixels. Over frames all three directions come up.
+TEST(TileOrder, HistoryPermutationMovesEveryPixelOnceByOnePixel) {
+  std::set<std::pair<int, int>> directions;
+  for (std::uint32_t f = 0; f < 64; ++f) {
+    const std::uint32_t word = f * 0x9e3779b9u + (f >> 3);
+    for (int y = -3; y < 13; ++y) {
+      for (int x = -3; x < 13; ++x) {
+        const glm::ivec2 p(x, y);
+        const glm::ivec2 q = gpu::restir_permuted_history_pixel(p, word);
+        const glm::ivec2 d = q - p;
+        ASSERT_LE(std::abs(d.x), 1) << "word " << word << " pixel " << x << "," << y;
+        ASSERT_LE(std::abs(d.y), 1) << "word " << word << " pixel " << x << "," << y;
+        ASSERT_NE(d, glm::ivec2(0)) << "word " << word << " pixel " << x << "," << y;
+        ASSERT_EQ(gpu::restir_permuted_history_pixel(q, word), p)
+            << "word " << word << " pixel " << x << "," << y << ": not its own inverse";
+        directions.insert({std::abs(d.x), std::abs(d.y)});
+      }
+    }
+  }
+  EXPECT_EQ(directions, (std::set<std::pair<int, int>>{{1, 0}, {0, 1}, {1, 1}}));
+}
 
 TEST(TileOrder, CountCoversTheImage) {
   EXPECT_EQ(tile_count(160, 90, 8), 20u * 12u);

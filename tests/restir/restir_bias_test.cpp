@@ -9,7 +9,7 @@
 // same in every integrator and would swamp the lighting), not sky, and whose reference radiance
 // is positive.
 //
-// Asserted for balance, pairwise, bsdf and local-bsdf (kModes): the run resolves the tolerance (3
+// Asserted for balance, pairwise, bsdf, local-bsdf and permuted (kModes): the run resolves the tolerance (3
 // sigma < tolerance, else the test fails saying so) and the bias is within 3 sigma of zero. A 1%
 // gain injected into restir.shade reads +0.9..+1.1% against 3 sigma of 0.24..0.41% and fails both
 // tests. `none` is known to be biased dark where a neighbour's target is zero and the canonical
@@ -161,6 +161,11 @@ const Mode kModes[] = {
     // contribution weight.
     {"bsdf", {{"bsdf_candidates", "1"}}, true, true},
     {"local-bsdf", {{"bsdf_candidates", "1"}, {"local_min_lights", "1"}}, true, true},
+    // Temporal permutation (what the denoiser's frames use): each pixel's history comes from a
+    // neighbour, which pairwise MIS weighs as such. The balance heuristic's: study only.
+    {"permuted", {{"temporal_permutation", "on"}}, true, true},
+    {"balance-permuted", {{"bias_correction", "balance"}, {"temporal_permutation", "on"}}, true,
+     false},
     // Study only (named in LANTERN_BIAS_MODES): each stage alone. Temporal reuse only, one
     // candidate: the longest-lived histories (the empty-history bug read +18% there on the CPU
     // chains); M cap 1; spatial only; no reuse (plain RIS: checks the reference itself).

@@ -130,6 +130,9 @@ TEST(RestirSettings, ChoiceTablesNameEverySharedConstantOnce) {
        restir_debug_views(),
        {gpu::kRestirDebugNone, gpu::kRestirDebugW, gpu::kRestirDebugM, gpu::kRestirDebugAge,
         gpu::kRestirDebugLight, gpu::kRestirDebugDisocclusion, gpu::kRestirDebugMotion}},
+      {"temporal_permutation",
+       restir_temporal_permutations(),
+       {kTemporalPermutationOff, kTemporalPermutationOn, kTemporalPermutationDenoised}},
   };
   EXPECT_EQ(tables[1].constants.size(), gpu::kRestirDebugCount);
   for (const Table& t : tables) {
@@ -139,7 +142,10 @@ TEST(RestirSettings, ChoiceTablesNameEverySharedConstantOnce) {
       EXPECT_GT(std::string_view(row.when).size(), 20u) << t.key << "=" << row.name;
       RestirSettings s;
       apply_setting(s, t.key, row.name);
-      EXPECT_EQ(std::string_view(t.key) == "debug_view" ? s.debug_view : s.bias_correction,
+      const std::string_view table = t.key;
+      EXPECT_EQ(table == "debug_view"             ? s.debug_view
+                : table == "temporal_permutation" ? s.temporal_permutation
+                                                  : s.bias_correction,
                 row.value)
           << t.key << "=" << row.name;
       bool described = false;
@@ -204,6 +210,31 @@ TEST(RestirSettings, LocalListsFollowTheLightCount) {
   apply_setting(few, "local_min_lights", "64");
   EXPECT_EQ(RestirIntegrator::local_candidates(few, inputs_of(320, 180, 89)), s.local_candidates);
   EXPECT_EQ(RestirIntegrator::local_candidates(few, inputs_of(320, 180, 63)), 0u);
+}
+
+// Temporal permutation: `denoised` (the default, every preset) sets the shaders' flag exactly
+// for frames the denoiser consumes; `on` and `off` whatever the output.
+TEST(RestirSettings, TemporalPermutationFollowsTheDenoiser) {
+  FrameInputs raw = inputs_of(320, 180, 89);
+  FrameInputs denoised = raw;
+  denoised.denoised = true;
+  auto permuted = [](const RestirSettings& s, const FrameInputs& in) {
+    return (RestirIntegrator::make_push(s, in).flags & gpu::kRestirFlagTemporalPermutation) != 0u;
+  };
+  for (const std::string& preset : restir_preset_names()) {
+    const RestirSettings s = restir_preset(preset);
+    EXPECT_EQ(s.temporal_permutation, kTemporalPermutationDenoised) << preset;
+    EXPECT_FALSE(permuted(s, raw)) << preset;
+    EXPECT_TRUE(permuted(s, denoised)) << preset;
+  }
+  RestirSettings s = restir_preset("balanced");
+  apply_setting(s, "temporal_permutation", "on");
+  EXPECT_TRUE(permuted(s, raw));
+  EXPECT_TRUE(permuted(s, denoised));
+  apply_setting(s, "temporal_permutation", "off");
+  EXPECT_FALSE(permuted(s, raw));
+  EXPECT_FALSE(permuted(s, denoised));
+  EXPECT_THROW(apply_setting(s, "temporal_permutation", "sometimes"), InputError);
 }
 
 }  // namespace

@@ -151,6 +151,8 @@ void draw_panel(PanelState& s) {
     slider_u("disocclusion boost", r.disocclusion_boost, 0, kMaxNeighbours);
     slider_f("radius (px)", r.radius, 1.0f, 64.0f, "%.1f");
     choice("bias correction", r.bias_correction, lighting::restir_bias_corrections());
+    choice("temporal permutation", r.temporal_permutation,
+           lighting::restir_temporal_permutations());
     c |= ImGui::Checkbox("initial visibility", &r.initial_visibility);
     slider_f("boiling filter", r.boiling_filter, 0.0f, 1.0f, "%.2f");
     slider_f("depth threshold", r.depth_threshold, 0.001f, 1.0f, "%.3f");
