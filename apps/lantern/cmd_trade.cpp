@@ -181,7 +181,8 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   const std::uint32_t flicker_frame = frames - 2;
   runtime::Device device({.selector = common.device});
   runtime::ShaderLibrary shaders;
-  Progress progress("trade", ks.size() + (flicker ? 1 : 0) + cfgs.size() * frames, common.quiet);
+  Progress progress("trade", ks.size() + (flicker ? 1 : 0) + 2 * cfgs.size() * frames,
+                    common.quiet);
   std::uint64_t done = 0;
 
   // References first (cached on disk: later runs skip the expensive part).
@@ -223,56 +224,63 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   std::vector<Row> rows;
   for (const Config& cfg : cfgs) {
     Row row{cfg};
-    // Denoised output, the raw image read back beside it: both errors from the same frames.
-    lighting::HeadlessSession session(device, shaders, level,
-                                      {.integrator = cfg.integrator,
-                                       .width = width,
-                                       .height = height,
-                                       .seed = common.seed,
-                                       .output = lighting::FrameOutput::Denoised});
-    session.warm_up();
-    std::vector<double> gpu, wall, denoise;
-    std::size_t next = 0;
-    runtime::ImageRGBA32F previous_raw, previous_denoised;
-    for (std::uint32_t k = 0; k < frames; ++k) {
-      const bool evaluate = next < ks.size() && ks[next] == k;
-      const bool keep = evaluate || (flicker && k == flicker_frame);
-      runtime::ImageRGBA32F image, raw;
-      const lighting::FrameTiming t =
-          session.render(session.step_world(), keep ? &image : nullptr, keep ? &raw : nullptr);
-      double denoise_ms = 0.0;
-      for (const auto& [name, ms] : t.passes) {
-        if (name.rfind("denoise.", 0) == 0) denoise_ms += ms;
-      }
-      gpu.push_back(t.gpu_ms - denoise_ms);
-      denoise.push_back(denoise_ms);
-      wall.push_back(t.wall_ms);
-      if (flicker && k == flicker_frame + 1) {
-        row.flicker_raw = frame_change(raw, previous_raw, references.back());
-        row.flicker_denoised = frame_change(image, previous_denoised, references.back());
-      }
-      if (evaluate) {
-        const runtime::ImageRGBA32F& ref = references[next++];
-        row.relmse.push_back(runtime::relative_mse(raw, ref));
-        row.relmse_denoised.push_back(runtime::relative_mse(image, ref));
-        const double ref_mean = runtime::mean_rgb(ref);
-        row.mean_ratio_denoised.push_back(ref_mean > 0.0 ? runtime::mean_rgb(image) / ref_mean
-                                                         : 0.0);
-        row.mean_ratio_raw.push_back(ref_mean > 0.0 ? runtime::mean_rgb(raw) / ref_mean : 0.0);
-        if (o.images && next == ks.size()) {
-          row.last_raw = raw;
-          row.last_denoised = image;
+    // The same frames twice: the raw output (what `render` writes: the raw columns and the frame
+    // time) and the denoised output (its columns and the denoiser's time). An integrator may
+    // render the denoiser's input differently (RestirSettings::temporal_permutation), so the
+    // raw columns are not read from the denoiser's input.
+    for (const lighting::FrameOutput output :
+         {lighting::FrameOutput::Raw, lighting::FrameOutput::Denoised}) {
+      const bool denoised = output == lighting::FrameOutput::Denoised;
+      lighting::HeadlessSession session(device, shaders, level,
+                                        {.integrator = cfg.integrator,
+                                         .width = width,
+                                         .height = height,
+                                         .seed = common.seed,
+                                         .output = output});
+      session.warm_up();
+      std::vector<double> gpu, wall, denoise;
+      std::size_t next = 0;
+      runtime::ImageRGBA32F previous;
+      for (std::uint32_t k = 0; k < frames; ++k) {
+        const bool evaluate = next < ks.size() && ks[next] == k;
+        const bool keep = evaluate || (flicker && k == flicker_frame);
+        runtime::ImageRGBA32F image;
+        const lighting::FrameTiming t =
+            session.render(session.step_world(), keep ? &image : nullptr, nullptr);
+        if (denoised) {
+          double denoise_ms = 0.0;
+          for (const auto& [name, ms] : t.passes) {
+            if (name.rfind("denoise.", 0) == 0) denoise_ms += ms;
+          }
+          denoise.push_back(denoise_ms);
+        } else {
+          gpu.push_back(t.gpu_ms);
+          wall.push_back(t.wall_ms);
         }
+        if (flicker && k == flicker_frame + 1) {
+          (denoised ? row.flicker_denoised : row.flicker_raw) =
+              frame_change(image, previous, references.back());
+        }
+        if (evaluate) {
+          const runtime::ImageRGBA32F& ref = references[next++];
+          (denoised ? row.relmse_denoised : row.relmse)
+              .push_back(runtime::relative_mse(image, ref));
+          const double ref_mean = runtime::mean_rgb(ref);
+          (denoised ? row.mean_ratio_denoised : row.mean_ratio_raw)
+              .push_back(ref_mean > 0.0 ? runtime::mean_rgb(image) / ref_mean : 0.0);
+          if (o.images && next == ks.size()) (denoised ? row.last_denoised : row.last_raw) = image;
+        }
+        if (keep) previous = std::move(image);
+        progress.update(++done, fmt::format("{} frame {} ({})", cfg.name, k,
+                                            lighting::frame_output_name(output)));
       }
-      if (keep) {
-        previous_raw = std::move(raw);
-        previous_denoised = std::move(image);
+      if (denoised) {
+        row.denoise_ms = perf::summarize(denoise).median;
+      } else {
+        row.frame_ms = perf::summarize(gpu).median;
+        row.frame_wall_ms = perf::summarize(wall).median;
       }
-      progress.update(++done, fmt::format("{} frame {}", cfg.name, k));
     }
-    row.denoise_ms = perf::summarize(denoise).median;
-    row.frame_ms = perf::summarize(gpu).median;
-    row.frame_wall_ms = perf::summarize(wall).median;
     rows.push_back(std::move(row));
   }
   progress.finish();
