@@ -79,7 +79,7 @@ constexpr RestirChoice kTemporalPermutations[] = {
     {"off", kTemporalPermutationOff,
      "every pixel continues its own history: the least raw noise (bias studies, raw EXRs)"},
     {"on", kTemporalPermutationOn,
-     "every pixel takes a neighbour's history, a different one each frame: noisier raw frames "
+     "every pixel takes a neighbour's history, drawn anew each frame: noisier raw frames "
      "whose errors differ from frame to frame"},
     {"denoised", kTemporalPermutationDenoised,
      "on where the denoiser consumes the frame (play, PNG, video), off for raw output: the "

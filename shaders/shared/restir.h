@@ -58,7 +58,7 @@ LANTERN_CONST uint kRestirRngTemporalPermutation = 0x524c0u;  // one draw per fr
 // tries for reprojected pixel q, given one random word `frame_bits` per frame (the same for every
 // pixel). The grid is shifted by 0 or 1 pixel per axis and each coordinate XORed with 1 where the
 // mask (one of (1,0), (0,1), (1,1)) says: a bijection of the pixel grid onto itself that moves
-// every pixel by one pixel horizontally, vertically or diagonally, a different way each frame.
+// every pixel by one pixel horizontally, vertically or diagonally, the way drawn anew each frame.
 // Being a permutation, each history reservoir still seeds exactly one pixel (no reservoir is
 // copied twice, which would correlate neighbours); moving, a pixel no longer inherits its own
 // history frame after frame, so a sample (an occluded one, say) no longer sticks to one pixel
