@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace lantern {
 
 LevelSummary summarize(const Level& level) {
@@ -89,12 +91,15 @@ std::string to_text(const LevelSummary& s) {
   for (const auto& [section, value] : s.enabled) {
     out += fmt::format("  {}\n", section);
     if (value.is_object()) {
+      // Values in one column per section, a space after the longest key at least.
+      std::size_t width = 16;
+      for (const auto& [key, field] : value.items()) width = std::max(width, key.size() + 1);
       for (const auto& [key, field] : value.items()) {
         if (field.is_array() && !field.empty() && field.front().is_object()) {  // one per line
           out += fmt::format("    {}\n", key);
           for (const auto& item : field) out += fmt::format("      {}\n", text(item));
         } else {
-          out += fmt::format("    {:<16}{}\n", key, text(field));
+          out += fmt::format("    {:<{}}{}\n", key, width, text(field));
         }
       }
     } else if (value.is_array()) {

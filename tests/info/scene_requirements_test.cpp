@@ -45,5 +45,18 @@ TEST(SceneRequirements, PerFrameMemoryFollowsTheSize) {
   EXPECT_NE(to_text(describe(level)).find("enabled for this level"), std::string::npos);
 }
 
+// The text puts each section's values in one column after its longest key (a 16-character key,
+// "merged_instances", ran into its value).
+TEST(SceneRequirements, TextSeparatesLongKeysFromValues) {
+  LevelSummary s = describe(load_level_argument("cornell_lights"));
+  s.enabled["visibility"]["merged_instances"] = 48;
+  s.enabled["visibility"]["a_key_longer_than_the_column"] = "x";
+  const std::string text = to_text(s);
+  EXPECT_NE(text.find("merged_instances"), std::string::npos);
+  EXPECT_EQ(text.find("merged_instances48"), std::string::npos) << text;
+  EXPECT_NE(text.find("a_key_longer_than_the_column x"), std::string::npos) << text;
+  EXPECT_NE(text.find("merged_instances             48"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace lantern::lighting
