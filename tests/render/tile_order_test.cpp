@@ -21,8 +21,8 @@ namespace {
 
 // Every frame word moves every pixel by one pixel (horizontally, vertically or diagonally: one of
 // the three for the whole frame, the sign by the pixel's place in its 2x2 block) and is an
-// involution, hence a permutation of the grid:
-// no history reservoir seeds two pixels. Over frames all three directions come up.
+// involution, hence a permutation of the grid: no history reservoir seeds two pixels. Over
+// frames all three directions come up.
 TEST(TileOrder, HistoryPermutationMovesEveryPixelOnceByOnePixel) {
   std::set<std::pair<int, int>> directions;
   for (std::uint32_t f = 0; f < 64; ++f) {
