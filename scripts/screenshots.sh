@@ -2,7 +2,8 @@
 # The README's raw-vs-denoised pairs (issue 13): for each level (default: every level under
 # content/levels), `lantern capture` of ReSTIR at the preset along the level's path, the last
 # frame kept twice: denoised (automatic exposure) and raw at the denoised run's exposure (read
-# from its capture.json), so the two differ only by the denoiser. Writes
+# from its capture.json), so the two differ only by the denoiser and what ReSTIR renders for it
+# (temporal_permutation=denoised: the raw run is what EXR output shows). Writes
 # docs/levels/LEVEL_denoised.png and docs/levels/LEVEL_raw.png.
 # Usage: scripts/screenshots.sh [LEVEL ...] [--size WxH] [--frames N] [--preset P]
 set -euo pipefail
