@@ -50,9 +50,9 @@ struct RestirSettings {
   // or when history is worthless (every frame a cut).
   bool temporal = true;
   // Temporal permutation (restir_permuted_history_pixel, shaders/shared/restir.h): temporal
-  // reuse takes last frame's reservoir from a neighbour of the reprojected pixel, a different
-  // neighbour each frame, so a sample (an occluded one, say) no longer sticks to one pixel for up
-  // to m_cap frames. Unbiased; the raw image is noisier and flickers more, the denoised one is
+  // reuse takes last frame's reservoir from a neighbour of the reprojected pixel, the direction
+  // drawn anew each frame, so a sample (an occluded one, say) no longer sticks to one pixel for
+  // up to m_cap frames. Unbiased; the raw image is noisier and flickers more, the denoised one is
   // cleaner (the denoiser averages frames, and their errors are now less alike). `denoised` (the
   // default) turns it on exactly for frames the denoiser consumes (FrameInputs::denoised: play,
   // PNG, video); `on` / `off` force it. One of restir_temporal_permutations().
