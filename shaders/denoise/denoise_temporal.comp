@@ -4,7 +4,8 @@
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
 // history; so does a footprint less than kDenoiseMinHistoryFootprint of which passes), clamps a
 // firefly against the history's mean + firefly x sigma (where the history cannot judge, against
-// push.neighbour_clamp x the brightest of its 8 neighbours), and blends (alpha = max(c / (c +
+// push.neighbour_clamp x the brightest of its 8 neighbours; a long history that has seen only
+// black takes the sample unclamped into its luminance moments), and blends (alpha = max(c / (c +
 // (length - 1) x the history's mean confidence), push.color_alpha): 1 / history length when every
 // frame is worth the same, else each weighs by the integrator's M; the luminance moments keep 1 /
 // length). Emitters pass through unfiltered (denoise_passthrough), and so does the sky unless
@@ -167,10 +168,20 @@ void main() {
     float neighbour = brightest_neighbour(pixel);
     if (neighbour >= 0.0) limit = push.neighbour_clamp * neighbour;
   }
+  // What the luminance moments take: the clamped sample, except on a long history that has seen
+  // only black, whose moments take it unclamped. There a lone sample is still clamped in the
+  // colour, but one that comes back finds a history that judges it (mean + firefly x sigma)
+  // instead of the neighbours again: a lit pixel among dark ones (a thin lit edge, a penumbra
+  // pixel that ReSTIR keeps lighting) was held black for as long as it stayed lit
+  // (cornell_lights: a pixel lit 12 frames in a row stayed 0.000).
+  const bool black_history = has_history && history_moments.z >= kDenoiseShortHistory &&
+                             !(history_moments.x > 0.0);
+  float l_moments = l;
   if (l > limit) {
     illumination = limit > 0.0 ? illumination * (limit / l) : vec3(0.0);
     l = limit;
   }
+  if (!black_history) l_moments = l;
 
   // This frame's confidence: the integrator's M (ReSTIR: the candidates behind the pixel's
   // sample, 8 in a first frame, hundreds once temporal reuse has settled), else 1 per frame.
@@ -195,7 +206,7 @@ void main() {
     mean_confidence = mix(history_confidence, confidence, 1.0 / frames);
     float am = max(1.0 / frames, push.moments_alpha);
     color = mix(history_color, illumination, a);
-    moments = mix(history_moments.xy, vec2(l, l * l), am);
+    moments = mix(history_moments.xy, vec2(l_moments, l_moments * l_moments), am);
   }
   float variance = max(moments.y - moments.x * moments.x, 0.0);
   accum_out.p[index] = vec4(color, variance);

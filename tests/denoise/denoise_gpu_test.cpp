@@ -640,6 +640,45 @@ TEST_F(DenoiseGpuTest, LoneSampleWithoutHistoryIsClampedToItsNeighbours) {
   }
 }
 
+// A pixel that stays lit among dark neighbours is not held black (static camera, temporal only):
+// after 6 black frames one surface pixel gets c every frame while its neighbours stay black. Its
+// history is long and all black, so the first lit frame is judged by the neighbours and clamped
+// to 0, as a lone firefly is; but the moments keep the sample, so from the second lit frame the
+// history judges it (mean + firefly sigma lets it in) and the pixel climbs to c. Before, every
+// frame met the neighbour clamp again and the pixel stayed 0 for good (cornell_lights: a penumbra
+// pixel that ReSTIR lit 12 frames in a row read 0.000 denoised).
+TEST_F(DenoiseGpuTest, LitPixelAmongDarkOnesIsNotHeldBlack) {
+  Run run = make_run({{"atrous", "0"}});
+  std::vector<std::uint8_t> mask;
+  FrameSnapshot s = black_frames(run, 6, mask);
+  // A surface pixel whose 8 neighbours are surfaces too, near the image's centre.
+  std::size_t lit = 0;
+  for (std::uint32_t y = kH / 2; y < kH - 1 && lit == 0; ++y) {
+    for (std::uint32_t x = kW / 2; x < kW - 1 && lit == 0; ++x) {
+      bool all = true;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) all = all && mask[(y + dy) * kW + (x + dx)];
+      if (all) lit = std::size_t{y} * kW + x;
+    }
+  }
+  ASSERT_NE(lit, 0u);
+  const float c = 0.4f;
+  ImageRGBA32F input = constant(0.0f);
+  for (int k = 0; k < 3; ++k) input.pixels[4 * lit + k] = c;
+  std::vector<float> shown;
+  for (int f = 0; f < 40; ++f) {
+    s = frozen(s);
+    const ImageRGBA32F out = render(run, input, s);
+    shown.push_back(out.pixels[4 * lit]);
+  }
+  std::printf("[denoise lit among dark] frames 1, 2, 3, 40: %.5f %.5f %.5f %.5f (c = %.5f)\n",
+              shown[0], shown[1], shown[2], shown[39], c);
+  EXPECT_EQ(shown[0], 0.0f) << "the first lit frame is a lone sample: the neighbours clamp it";
+  EXPECT_GT(shown[1], 0.05f * c) << "the history kept no trace of the first lit frame";
+  for (int f = 2; f < 40; ++f) EXPECT_GE(shown[f], shown[f - 1]) << "frame " << f + 1;
+  EXPECT_NEAR(shown[39] / c, 1.0, 0.05);
+}
+
 // The integrator's confidence weighs each frame (static camera, constant images, so every pixel
 // follows the closed form through the à-trous steps): 6 black frames of M = 1, then one of c with
 // M = 100 comes out as 100/106 c, where without the confidence (or with denoise.confidence off)
