@@ -77,11 +77,11 @@ vec3 denoise_remodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, ve
 const uint kDenoiseSky = 0xffffffffu;
 
 vec4 denoise_guide(vec4 position_depth, vec3 n) {
-  return vec4(position_depth.xyz, uintBitsToFloat(packSnorm2x16(oct_encode(n))));
+  return vec4(position_depth.xyz, uintBitsToFloat(oct_pack_snorm(n)));
 }
 vec4 denoise_guide_passthrough() { return vec4(0.0, 0.0, 0.0, uintBitsToFloat(kDenoiseSky)); }
 bool denoise_guide_sky(vec4 g) { return floatBitsToUint(g.w) == kDenoiseSky; }
-vec3 denoise_guide_normal(vec4 g) { return oct_decode(unpackSnorm2x16(floatBitsToUint(g.w))); }
+vec3 denoise_guide_normal(vec4 g) { return oct_unpack_snorm(floatBitsToUint(g.w)); }
 
 // Edge-stopping weight of a tap with guide q seen from the centre (guide c, normal n, view depth
 // depth), times exp(-extra): its distance from the centre's tangent plane relative to

@@ -52,6 +52,11 @@ LANTERN_FUNC vec3 oct_decode(vec2 e) {
   return normalize(n);
 }
 
+// A unit vector in 32 bits: its octahedral encoding as snorm 2x16 (RestirSurface's normals, the
+// similarity key's, the denoiser's guide), and back.
+LANTERN_FUNC uint oct_pack_snorm(vec3 n) { return packSnorm2x16(oct_encode(n)); }
+LANTERN_FUNC vec3 oct_unpack_snorm(uint packed) { return oct_decode(unpackSnorm2x16(packed)); }
+
 // A clip position moved so the raster's pixel centres sample the image at centre + jitter
 // (pixels; FrameConstants.jitter.xy): the geometry shifts by -jitter on screen.
 LANTERN_FUNC vec4 gbuffer_jitter_clip(vec4 clip, vec2 jitter, vec2 size) {

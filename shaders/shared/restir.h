@@ -177,8 +177,8 @@ LANTERN_FUNC RestirSurface restir_surface_pack(vec4 position_depth, vec3 n, vec3
   }
   vec3 a = clamp(albedo, vec3(0.0f), vec3(1.0f));
   s.position_depth = position_depth;
-  s.packed.x = packSnorm2x16(oct_encode(n));
-  s.packed.y = packSnorm2x16(oct_encode(ng));
+  s.packed.x = oct_pack_snorm(n);
+  s.packed.y = oct_pack_snorm(ng);
   s.packed.z = packUnorm2x16(vec2(a.x, a.y));
   s.packed.w = packUnorm2x16(vec2(a.z, clamp(roughness, 0.0f, 1.0f)));
   s.material.x = packUnorm2x16(vec2(clamp(metallic, 0.0f, 1.0f), clamp(specular, 0.0f, 1.0f)));
@@ -191,9 +191,9 @@ LANTERN_FUNC RestirSurface restir_surface_pack(vec4 position_depth, vec3 n, vec3
 LANTERN_FUNC bool restir_surface_valid(RestirSurface s) { return !gbuffer_is_sky(s.position_depth.w); }
 LANTERN_FUNC vec3 restir_surface_position(RestirSurface s) { return vec3(s.position_depth); }
 LANTERN_FUNC float restir_surface_depth(RestirSurface s) { return s.position_depth.w; }
-LANTERN_FUNC vec3 restir_surface_normal(RestirSurface s) { return oct_decode(unpackSnorm2x16(s.packed.x)); }
+LANTERN_FUNC vec3 restir_surface_normal(RestirSurface s) { return oct_unpack_snorm(s.packed.x); }
 LANTERN_FUNC vec3 restir_surface_geometric_normal(RestirSurface s) {
-  return oct_decode(unpackSnorm2x16(s.packed.y));
+  return oct_unpack_snorm(s.packed.y);
 }
 LANTERN_FUNC vec3 restir_surface_albedo(RestirSurface s) {
   vec2 rg = unpackUnorm2x16(s.packed.z);
@@ -238,7 +238,7 @@ LANTERN_FUNC bool restir_keys_similar(RestirSimilarityKey s, float expected_dept
   if (!(abs(expected_depth - d_other) <= similarity.x * max(expected_depth, d_other))) {
     return false;
   }
-  if (dot(oct_decode(unpackSnorm2x16(s.normal)), oct_decode(unpackSnorm2x16(other.normal))) <
+  if (dot(oct_unpack_snorm(s.normal), oct_unpack_snorm(other.normal)) <
       similarity.y) {
     return false;
   }
