@@ -72,6 +72,12 @@ float brightest_neighbour(ivec2 pixel) {
   return m;
 }
 
+// A sample's luminance moments (l, l^2), finite for every finite l (kDenoiseMaxMomentLuminance).
+vec2 luminance_moments(float l) {
+  float m = min(l, kDenoiseMaxMomentLuminance);
+  return vec2(m, m * m);
+}
+
 void main() {
   ivec2 pixel;
   if (!denoise_pixel(pixel)) return;
@@ -189,7 +195,7 @@ void main() {
                          ? max(packed_reservoir_m(confidence_in.r[index]), 1.0)
                          : 1.0;
   vec3 color = illumination;
-  vec2 moments = vec2(l, l * l);
+  vec2 moments = luminance_moments(l);
   float frames = 1.0;
   float mean_confidence = confidence;
   if (has_history) {
@@ -206,7 +212,7 @@ void main() {
     mean_confidence = mix(history_confidence, confidence, 1.0 / frames);
     float am = max(1.0 / frames, push.moments_alpha);
     color = mix(history_color, illumination, a);
-    moments = mix(history_moments.xy, vec2(l_moments, l_moments * l_moments), am);
+    moments = mix(history_moments.xy, luminance_moments(l_moments), am);
   }
   float variance = max(moments.y - moments.x * moments.x, 0.0);
   accum_out.p[index] = vec4(color, variance);

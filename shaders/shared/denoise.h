@@ -25,6 +25,9 @@ LANTERN_CONST float kDenoiseShortHistory = 4.0f;
 LANTERN_CONST float kDenoiseMinHistoryFootprint = 0.5f;
 // Smallest demodulation factor: keeps dark albedos from amplifying noise (and 0 from dividing).
 LANTERN_CONST float kDenoiseMinAlbedo = 0.02f;
+// Largest luminance the moments take (denoise.temporal): its square, and mixes of squares, stay
+// finite, so a finite but absurd sample (1e30) cannot write Inf into the moments' history.
+LANTERN_CONST float kDenoiseMaxMomentLuminance = 1.0e18f;
 
 // DenoisePush.flags.
 LANTERN_CONST uint kDenoiseFlagHistoryValid = 1u;  // the graph handed last frame's history

@@ -763,20 +763,36 @@ TEST_F(DenoiseGpuTest, RestirHandsItsConfidenceToTheDenoiser) {
   EXPECT_GT(differ, kW * kH / 100);
 }
 
-// NaN and Inf in the input (a broken integrator) never reach the output, nor the history.
+// NaN and Inf in the input (a broken integrator) never reach the output, nor the history; nor
+// does a finite value too large to square (1e30: its luminance moment would overflow to Inf and
+// turn the filter's variances into NaN), alone among black pixels (the all-black history's
+// unclamped moments) or among noise.
 TEST_F(DenoiseGpuTest, NonFiniteInputNeverReachesOutput) {
-  Run run = make_run();
-  FrameSnapshot s = test::first_snapshot(level, kW, kH);
-  for (std::uint32_t f = 0; f < 4; ++f) {
-    if (f > 0) s = frozen(s);
-    ImageRGBA32F in = noisy(0.3f, f);
-    for (std::size_t p = 0; p < in.pixels.size() / 4; p += 7) {
-      in.pixels[4 * p + (p % 3)] = p % 2 ? std::numeric_limits<float>::quiet_NaN()
-                                         : std::numeric_limits<float>::infinity();
+  const float bad[3] = {std::numeric_limits<float>::quiet_NaN(),
+                        std::numeric_limits<float>::infinity(), 1.0e30f};
+  {
+    Run run = make_run();
+    FrameSnapshot s = test::first_snapshot(level, kW, kH);
+    for (std::uint32_t f = 0; f < 6; ++f) {
+      if (f > 0) s = frozen(s);
+      ImageRGBA32F in = noisy(0.3f, f);
+      for (std::size_t p = 0; p < in.pixels.size() / 4; p += 7) in.pixels[4 * p + (p % 3)] = bad[p % 3];
+      const ImageRGBA32F out = render(run, in, s);
+      EXPECT_TRUE(test::all_finite(out)) << "noisy, frame " << f;
+      EXPECT_GT(runtime::mean_rgb(out), 0.1) << "frame " << f;
     }
-    const ImageRGBA32F out = render(run, in, s);
-    EXPECT_TRUE(test::all_finite(out)) << "frame " << f;
-    EXPECT_GT(runtime::mean_rgb(out), 0.1) << "frame " << f;
+  }
+  // 6 black frames, then 1e30 in every 7th pixel: lone samples on all-black histories.
+  Run run = make_run();
+  std::vector<std::uint8_t> mask;
+  FrameSnapshot s = black_frames(run, 6, mask);
+  for (std::uint32_t f = 0; f < 4; ++f) {
+    s = frozen(s);
+    ImageRGBA32F in = constant(0.0f);
+    for (std::size_t p = 0; p < in.pixels.size() / 4; p += 7) {
+      for (int c = 0; c < 3; ++c) in.pixels[4 * p + c] = bad[2];
+    }
+    EXPECT_TRUE(test::all_finite(render(run, in, s))) << "black, lit frame " << f;
   }
 }
 
