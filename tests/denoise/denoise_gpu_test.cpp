@@ -184,6 +184,21 @@ class DenoiseGpuTest : public runtime::test::GpuTest {
   }
 };
 
+// A surface pixel whose 8 neighbours are surfaces too, the first from the image's centre on (0
+// when there is none).
+std::size_t interior_surface_pixel(const std::vector<std::uint8_t>& mask) {
+  for (std::uint32_t y = kH / 2; y < kH - 1; ++y) {
+    for (std::uint32_t x = kW / 2; x < kW - 1; ++x) {
+      bool all = true;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) all = all && mask[(y + dy) * kW + (x + dx)];
+      }
+      if (all) return std::size_t{y} * kW + x;
+    }
+  }
+  return 0;
+}
+
 // The lowest and highest red value over the masked pixels.
 struct Range {
   float lo = std::numeric_limits<float>::infinity();
@@ -598,16 +613,7 @@ TEST_F(DenoiseGpuTest, LoneSampleWithoutHistoryIsClampedToItsNeighbours) {
     Run probe = make_run();
     (void)black_frames(probe, 1, mask);
   }
-  // A surface pixel whose 8 neighbours are surfaces too, near the image's centre.
-  std::size_t spike = 0;
-  for (std::uint32_t y = kH / 2; y < kH - 1 && spike == 0; ++y) {
-    for (std::uint32_t x = kW / 2; x < kW - 1 && spike == 0; ++x) {
-      bool all = true;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) all = all && mask[(y + dy) * kW + (x + dx)];
-      if (all) spike = std::size_t{y} * kW + x;
-    }
-  }
+  const std::size_t spike = interior_surface_pixel(mask);
   ASSERT_NE(spike, 0u);
   ImageRGBA32F input = constant(c);
   for (int k = 0; k < 3; ++k) input.pixels[4 * spike + k] = 100.0f * c;
@@ -651,16 +657,7 @@ TEST_F(DenoiseGpuTest, LitPixelAmongDarkOnesIsNotHeldBlack) {
   Run run = make_run({{"atrous", "0"}});
   std::vector<std::uint8_t> mask;
   FrameSnapshot s = black_frames(run, 6, mask);
-  // A surface pixel whose 8 neighbours are surfaces too, near the image's centre.
-  std::size_t lit = 0;
-  for (std::uint32_t y = kH / 2; y < kH - 1 && lit == 0; ++y) {
-    for (std::uint32_t x = kW / 2; x < kW - 1 && lit == 0; ++x) {
-      bool all = true;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) all = all && mask[(y + dy) * kW + (x + dx)];
-      if (all) lit = std::size_t{y} * kW + x;
-    }
-  }
+  const std::size_t lit = interior_surface_pixel(mask);
   ASSERT_NE(lit, 0u);
   const float c = 0.4f;
   ImageRGBA32F input = constant(0.0f);
