@@ -238,8 +238,7 @@ LANTERN_FUNC bool restir_keys_similar(RestirSimilarityKey s, float expected_dept
   if (!(abs(expected_depth - d_other) <= similarity.x * max(expected_depth, d_other))) {
     return false;
   }
-  if (dot(oct_unpack_snorm(s.normal), oct_unpack_snorm(other.normal)) <
-      similarity.y) {
+  if (dot(oct_unpack_snorm(s.normal), oct_unpack_snorm(other.normal)) < similarity.y) {
     return false;
   }
   if (s.material != other.material) {
