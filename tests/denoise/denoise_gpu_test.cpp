@@ -761,9 +761,9 @@ TEST_F(DenoiseGpuTest, RestirHandsItsConfidenceToTheDenoiser) {
 }
 
 // NaN and Inf in the input (a broken integrator) never reach the output, nor the history; nor
-// does a finite value too large to square (1e30: its luminance moment would overflow to Inf and
-// turn the filter's variances into NaN), alone among black pixels (the all-black history's
-// unclamped moments) or among noise.
+// does a finite value too large to square (1e30), among noise or alone among black pixels (the
+// all-black history's unclamped moments). The test sees the output; the moments' history stays
+// finite by construction (kDenoiseMaxMomentLuminance).
 TEST_F(DenoiseGpuTest, NonFiniteInputNeverReachesOutput) {
   const float bad[3] = {std::numeric_limits<float>::quiet_NaN(),
                         std::numeric_limits<float>::infinity(), 1.0e30f};
@@ -773,7 +773,9 @@ TEST_F(DenoiseGpuTest, NonFiniteInputNeverReachesOutput) {
     for (std::uint32_t f = 0; f < 6; ++f) {
       if (f > 0) s = frozen(s);
       ImageRGBA32F in = noisy(0.3f, f);
-      for (std::size_t p = 0; p < in.pixels.size() / 4; p += 7) in.pixels[4 * p + (p % 3)] = bad[p % 3];
+      for (std::size_t p = 0; p < in.pixels.size() / 4; p += 7) {
+        in.pixels[4 * p + (p % 3)] = bad[p % 3];
+      }
       const ImageRGBA32F out = render(run, in, s);
       EXPECT_TRUE(test::all_finite(out)) << "noisy, frame " << f;
       EXPECT_GT(runtime::mean_rgb(out), 0.1) << "frame " << f;
