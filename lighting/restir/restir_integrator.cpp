@@ -92,6 +92,7 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   if (s.temporal_permutation == kTemporalPermutationOn ||
       (s.temporal_permutation == kTemporalPermutationDenoised && inputs.denoised)) {
     p.flags |= gpu::kRestirFlagTemporalPermutation;
+    p.permutation_bits = gpu::restir_permutation_bits(inputs.frame_index, inputs.seed);
   }
   p.light_candidates = s.light_candidates;
   p.bsdf_candidates = s.bsdf_candidates;

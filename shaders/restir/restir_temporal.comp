@@ -67,8 +67,7 @@ ivec2 find_history(uvec2 pixel, RestirSurface surface, inout uint rng, out uint 
     vec2 jitter = t == 0u ? vec2(0.0) : (rng_next_vec2(rng) - 0.5) * 3.0;
     ivec2 q = ivec2(floor(previous + jitter));
     if (t == 0u && (push.flags & kRestirFlagTemporalPermutation) != 0u) {
-      uint frame_rng_state = frame_rng(uvec2(0u), kRestirRngTemporalPermutation);
-      q = restir_permuted_history_pixel(q, rng_next_uint(frame_rng_state));
+      q = restir_permuted_history_pixel(q, push.permutation_bits);
     }
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
     RestirSurface old = restir_surface_fetch(surfaces_history, q.y * size.x + q.x);

@@ -9,6 +9,7 @@
 #include "shared/gbuffer.h"
 #include "shared/lang.h"
 #include "shared/lights.h"
+#include "shared/rng.h"
 
 LANTERN_BEGIN_SHARED
 
@@ -66,6 +67,13 @@ LANTERN_CONST uint kRestirRngTemporalPermutation = 0x524c0u;  // one draw per fr
 // surface is a neighbour's, which the MIS weights see (as for a jittered retry), so the estimate
 // stays unbiased; the raw image is noisier next to sharp changes in the target (lights close to
 // a surface).
+// The frame's word: one draw of the frame's kRestirRngTemporalPermutation stream (the host
+// computes it once per frame, RestirPush.permutation_bits).
+LANTERN_FUNC uint restir_permutation_bits(uint frame_index, uint seed) {
+  uint state = rng_init(uvec2(0u, 0u), frame_index, seed, kRestirRngTemporalPermutation);
+  return rng_next_uint(state);
+}
+
 LANTERN_FUNC ivec2 restir_permuted_history_pixel(ivec2 q, uint frame_bits) {
   int shift_x = int(frame_bits & 1u);
   int shift_y = int((frame_bits >> 1u) & 1u);
@@ -136,7 +144,8 @@ struct RestirPush {
   vec4 similarity;        // restir_surfaces_similar's thresholds: x max relative depth difference;
                           // y min cos between normals; z max roughness difference; w unused
   uint local_candidates;  // > 0: draws per slot of restir.initial's local light lists (0: off)
-  uint pad0;
+  uint permutation_bits;  // with kRestirFlagTemporalPermutation: this frame's word for
+                          // restir_permuted_history_pixel (restir_permutation_bits)
   uint pad1;
   uint pad2;
 };
