@@ -23,6 +23,12 @@ foreach(src IN ITEMS ${CMAKE_CURRENT_SOURCE_DIR}/integrators/baseline.comp
   lantern_compile_shader(${src} hostemit DEFINES LANTERN_VISIBILITY_HOST_EMIT)
   lantern_compile_shader(${src} hostresolve DEFINES LANTERN_VISIBILITY_HOST_RESOLVE)
 endforeach()
+# Host closest hits (shared/host_visibility.h's HostClosestRay): restir.initial's BSDF candidate
+# rays written ("closestemit") and their hits read ("closestresolve").
+lantern_compile_shader(${CMAKE_CURRENT_SOURCE_DIR}/restir/restir_initial.comp closestemit
+  DEFINES LANTERN_VISIBILITY_HOST_CLOSEST_EMIT)
+lantern_compile_shader(${CMAKE_CURRENT_SOURCE_DIR}/restir/restir_initial.comp closestresolve
+  DEFINES LANTERN_VISIBILITY_HOST_CLOSEST_RESOLVE)
 lantern_compile_shader(${CMAKE_CURRENT_SOURCE_DIR}/tests/visibility_probe.comp storage
   DEFINES VIS_BVH_STORAGE_BUFFERS)
 # The host G-buffer method (lighting/gbuffer/gbuffer_pass.h): the resolve reads one

@@ -34,14 +34,22 @@ RestirIntegrator::RestirIntegrator(runtime::Device& device, runtime::ShaderLibra
 
 void RestirIntegrator::warm_up() {
   // With host visibility the BVH's restir.shade never runs: its two variants are JIT-compiled
-  // instead.
-  std::vector<const runtime::ComputePipeline*> pipelines{
-      &presample_.pipeline(), &initial_.pipeline(), &temporal_.pipeline(), &spatial_.pipeline()};
+  // instead, and restir.initial's two when the settings draw BSDF candidates.
+  std::vector<const runtime::ComputePipeline*> pipelines{&presample_.pipeline(),
+                                                         &temporal_.pipeline(),
+                                                         &spatial_.pipeline()};
   if (host_) {
     pipelines.push_back(&shade_emit_->pipeline());
     pipelines.push_back(&shade_occluded_->pipeline());
   } else {
     pipelines.push_back(&shade_.pipeline());
+  }
+  if (host_ && settings_.bsdf_candidates > 0) {
+    make_host_initial();
+    pipelines.push_back(&initial_rays_->pipeline());
+    pipelines.push_back(&initial_closest_->pipeline());
+  } else {
+    pipelines.push_back(&initial_.pipeline());
   }
   runtime::warm_up(device_, pipelines);
   if (volume_) runtime::warm_up(device_, volume_->pipelines());
@@ -208,11 +216,30 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
         // restir.initial: the G-buffer packed into RestirSurfaces (this frame's version of the
         // "restir.surfaces" history) and each pixel's initial reservoir from light (and BSDF)
         // candidates. Reads the G-buffer and the scene (lights, alias table, materials, BVH).
-        const std::vector<BufferHandle> out =
-            initial_.add(graph, inputs, push,
-                         {{"restir_surfaces", surfaces, RestirPass::Buffer::Write},
-                          {"reservoirs_out", handle(step.write), RestirPass::Buffer::Write},
-                          {"presampled_lights", presampled}});
+        std::vector<BufferHandle> out;
+        if (host_ != nullptr && push.bsdf_candidates > 0) {
+          // Host visibility: the BSDF candidates' rays are written by restir.initial_rays,
+          // traced by visibility.host_closest, and their hits read by restir.initial.
+          make_host_initial();
+          const BufferHandle hits = host_->add_closest_rays(
+              graph, static_cast<std::uint32_t>(pixels * push.bsdf_candidates),
+              [&](BufferHandle empty) {
+                return initial_rays_->add(
+                    graph, inputs, push,
+                    {{"host_closest_rays", empty, RestirPass::Buffer::Write}})[0];
+              });
+          out = initial_closest_->add(
+              graph, inputs, push,
+              {{"restir_surfaces", surfaces, RestirPass::Buffer::Write},
+               {"reservoirs_out", handle(step.write), RestirPass::Buffer::Write},
+               {"presampled_lights", presampled},
+               {"host_closest_rays", hits}});
+        } else {
+          out = initial_.add(graph, inputs, push,
+                             {{"restir_surfaces", surfaces, RestirPass::Buffer::Write},
+                              {"reservoirs_out", handle(step.write), RestirPass::Buffer::Write},
+                              {"presampled_lights", presampled}});
+        }
         surfaces = out[0];
         handle(step.write) = out[1];
         break;
@@ -314,9 +341,18 @@ void RestirIntegrator::prepare(const GpuScene& scene) {
     shade_occluded_ = std::make_unique<RestirPass>(device_, shaders_, "restir.shade_occluded",
                                                    "shade", "hostresolve");
   }
+  if (host_ != nullptr && settings_.bsdf_candidates > 0) make_host_initial();
   if (scene.volume_count() > 0 && !volume_) {
     volume_ = std::make_unique<VolumeRestir>(device_, shaders_, visibility_);
   }
+}
+
+void RestirIntegrator::make_host_initial() {
+  if (initial_rays_) return;
+  initial_rays_ =
+      std::make_unique<RestirPass>(device_, shaders_, "restir.initial_rays", "initial", "closestemit");
+  initial_closest_ = std::make_unique<RestirPass>(device_, shaders_, "restir.initial", "initial",
+                                                  "closestresolve");
 }
 
 }  // namespace lantern::lighting

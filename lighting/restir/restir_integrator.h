@@ -64,6 +64,9 @@ class RestirIntegrator final : public Integrator {
   static std::uint32_t local_candidates(const RestirSettings& settings, const FrameInputs& inputs);
 
  private:
+  // restir.initial's two host closest-hit passes (initial_rays_, initial_closest_), once.
+  void make_host_initial();
+
   runtime::graph::BufferHandle confidence_;  // this frame's final reservoirs (add_passes)
   runtime::Device& device_;
   runtime::ShaderLibrary& shaders_;
@@ -84,6 +87,10 @@ class RestirIntegrator final : public Integrator {
   HostVisibility* host_ = nullptr;
   std::unique_ptr<RestirPass> shade_emit_;
   std::unique_ptr<RestirPass> shade_occluded_;
+  // With BSDF candidates: restir.initial_rays ("closestemit") writes their rays,
+  // visibility.host_closest traces them, restir.initial ("closestresolve") reads the hits.
+  std::unique_ptr<RestirPass> initial_rays_;
+  std::unique_ptr<RestirPass> initial_closest_;
   ReservoirBuffers buffers_;
   std::unique_ptr<VolumeRestir> volume_;  // levels with volumes only (prepare)
 };

@@ -24,6 +24,14 @@ namespace {
 static_assert(sizeof(gpu::HostShadowRay) == sizeof(RTCRay), "HostShadowRay must be an RTCRay");
 static_assert(offsetof(RTCRay, tfar) == offsetof(gpu::HostShadowRay, tfar));
 static_assert(offsetof(RTCRay, mask) == offsetof(gpu::HostShadowRay, mask));
+static_assert(sizeof(gpu::HostClosestRay) == sizeof(RTCRayHit),
+              "HostClosestRay must be an RTCRayHit");
+static_assert(offsetof(RTCRayHit, hit) == offsetof(gpu::HostClosestRay, ng_x));
+static_assert(offsetof(RTCRayHit, hit.u) == offsetof(gpu::HostClosestRay, u));
+static_assert(offsetof(RTCRayHit, hit.primID) == offsetof(gpu::HostClosestRay, primitive));
+static_assert(offsetof(RTCRayHit, hit.geomID) == offsetof(gpu::HostClosestRay, instance));
+static_assert(offsetof(RTCRayHit, hit.instID) == offsetof(gpu::HostClosestRay, instance_id));
+static_assert(gpu::kNoInstance == RTC_INVALID_GEOMETRY_ID, "a miss reads the same to both");
 
 // Rays handed to one rtcOccluded1M call: big enough for Embree's stream path to sort them into
 // packets, small enough that two threads share the frame's rays evenly.
@@ -33,9 +41,6 @@ constexpr std::uint32_t kRaysPerChunk = 256;
 // so the slot a frame writes was last read by a frame that has finished.
 constexpr std::uint32_t kHitSlots = GpuScene::kStagingSlots;
 
-// A hit slot the merged scene left empty.
-constexpr std::uint32_t kNoHit = 0xffffffffu;
-
 // A host buffer's state when a frame imports it: last frame's passes may still use it (a window
 // keeps frames in flight), so this frame's first use orders after all of them.
 runtime::graph::AccessState any_prior_use() {
@@ -43,6 +48,27 @@ runtime::graph::AccessState any_prior_use() {
           VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT |
               VK_ACCESS_2_HOST_WRITE_BIT,
           VK_IMAGE_LAYOUT_UNDEFINED};
+}
+
+// Runs work(begin, count, context) over the records [0, total) in chunks of kRaysPerChunk on
+// `threads` host threads (this one among them).
+template <class Work>
+void parallel_chunks(unsigned threads, std::size_t total, const Work& work) {
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (std::size_t begin = next.fetch_add(kRaysPerChunk); begin < total;
+         begin = next.fetch_add(kRaysPerChunk)) {
+      work(begin, static_cast<unsigned>(std::min<std::size_t>(kRaysPerChunk, total - begin)),
+           context);
+    }
+  };
+  std::vector<std::thread> pool;
+  const std::size_t chunks = (total + kRaysPerChunk - 1) / kRaysPerChunk;
+  for (unsigned t = 1; t < std::min<std::size_t>(threads, chunks); ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
 }
 
 bool alpha_tested(const BvhInstanceDesc& d) {
@@ -108,6 +134,35 @@ struct HostVisibility::Embree {
         geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
     check("geometry buffers");
     return geometry;
+  }
+
+  // Closest hits of `count` records in place: the merged scene first, then the instances'
+  // scene, which only takes hits nearer than the merged one's (tfar shrank to it) and names
+  // them by instID. Then each hit is named as the compute BVH names it: geomID the scene
+  // instance index (kNoInstance on a miss), primID the triangle of that instance's mesh.
+  void intersect_and_name(RTCIntersectContext& context, RTCRayHit* records,
+                          unsigned count) const {
+    for (unsigned k = 0; k < count; ++k) {
+      records[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      records[k].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    if (merged_scene != nullptr)
+      rtcIntersect1M(merged_scene, &context, records, count, sizeof(RTCRayHit));
+    if (instanced) rtcIntersect1M(scene, &context, records, count, sizeof(RTCRayHit));
+    for (unsigned k = 0; k < count; ++k) {
+      RTCHit& h = records[k].hit;
+      if (h.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+        h.geomID = h.instID[0];
+      } else if (h.geomID != RTC_INVALID_GEOMETRY_ID) {
+        // The last merged instance whose first primID is <= the hit's.
+        const auto it = std::upper_bound(merged_first.begin(), merged_first.end(), h.primID);
+        const std::size_t m = static_cast<std::size_t>(it - merged_first.begin()) - 1;
+        h.geomID = merged_instance[m];
+        h.primID -= merged_first[m];
+      } else {
+        h.primID = RTC_INVALID_GEOMETRY_ID;
+      }
+    }
   }
 
   RTCScene mesh_scene(const MeshBvh& mesh, std::uint32_t id) {
@@ -263,68 +318,100 @@ void HostVisibility::update(std::span<const BvhInstanceDesc> instances) {
 std::size_t HostVisibility::trace(std::span<gpu::HostShadowRay> rays) const {
   RTCScene merged = embree_->merged_scene;
   RTCScene instances = embree_->instanced ? embree_->scene : nullptr;
-  std::atomic<std::size_t> next{0};
   std::atomic<std::size_t> traced{0};
-  auto worker = [&] {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    std::size_t mine = 0;
-    for (std::size_t begin = next.fetch_add(kRaysPerChunk); begin < rays.size();
-         begin = next.fetch_add(kRaysPerChunk)) {
-      const auto count =
-          static_cast<unsigned>(std::min<std::size_t>(kRaysPerChunk, rays.size() - begin));
-      for (std::size_t i = begin; i < begin + count; ++i)
-        mine += gpu::host_ray_active(rays[i]) ? 1u : 0u;
-      auto* chunk = reinterpret_cast<RTCRay*>(&rays[begin]);
-      if (merged != nullptr) rtcOccluded1M(merged, &context, chunk, count, sizeof(RTCRay));
-      if (instances != nullptr) rtcOccluded1M(instances, &context, chunk, count, sizeof(RTCRay));
-    }
-    traced += mine;
-  };
-  std::vector<std::thread> pool;
-  const std::size_t chunks = (rays.size() + kRaysPerChunk - 1) / kRaysPerChunk;
-  for (unsigned t = 1; t < std::min<std::size_t>(threads_, chunks); ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  parallel_chunks(threads_, rays.size(),
+                  [&](std::size_t begin, unsigned count, RTCIntersectContext& context) {
+                    std::size_t active = 0;
+                    for (std::size_t i = begin; i < begin + count; ++i)
+                      active += gpu::host_ray_active(rays[i]) ? 1u : 0u;
+                    auto* chunk = reinterpret_cast<RTCRay*>(&rays[begin]);
+                    if (merged != nullptr)
+                      rtcOccluded1M(merged, &context, chunk, count, sizeof(RTCRay));
+                    if (instances != nullptr)
+                      rtcOccluded1M(instances, &context, chunk, count, sizeof(RTCRay));
+                    traced += active;
+                  });
   return traced;
+}
+
+std::size_t HostVisibility::trace_closest(std::span<gpu::HostClosestRay> rays) const {
+  std::atomic<std::size_t> traced{0};
+  parallel_chunks(threads_, rays.size(),
+                  [&](std::size_t begin, unsigned count, RTCIntersectContext& context) {
+                    std::size_t active = 0;
+                    for (std::size_t i = begin; i < begin + count; ++i)
+                      active += gpu::host_ray_active(rays[i].ray) ? 1u : 0u;
+                    embree_->intersect_and_name(
+                        context, reinterpret_cast<RTCRayHit*>(&rays[begin]), count);
+                    traced += active;
+                  });
+  return traced;
+}
+
+runtime::graph::BufferHandle HostVisibility::import_ray_buffer(runtime::graph::RenderGraph& graph,
+                                                               RayBuffer& rays, const char* name,
+                                                               std::uint32_t slots,
+                                                               std::size_t record_size) {
+  slots = std::max(slots, 1u);
+  if (slots > rays.capacity) {
+    if (rays.capacity > 0) device_.wait_idle();  // the old buffer may still be read
+    rays.buffer = runtime::Buffer(device_, {.size = VkDeviceSize{slots} * record_size,
+                                            .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                            .memory = runtime::MemoryUsage::Readback,
+                                            .name = name});
+    if (rays.buffer.mapped() == nullptr ||
+        reinterpret_cast<std::uintptr_t>(rays.buffer.mapped()) % alignof(RTCRayHit) != 0) {
+      throw RuntimeError(fmt::format("host visibility: {} is not mapped 16-byte aligned", name));
+    }
+    rays.capacity = slots;
+  }
+  return graph.import_buffer(name, rays.buffer.handle(), {rays.buffer.size()},
+                             {.read_only = false, .initial = any_prior_use()});
 }
 
 runtime::graph::BufferHandle HostVisibility::import_rays(runtime::graph::RenderGraph& graph,
                                                          std::uint32_t slots) {
-  slots = std::max(slots, 1u);
-  if (slots > capacity_) {
-    if (capacity_ > 0) device_.wait_idle();  // the old buffer may still be read
-    rays_ = runtime::Buffer(device_, {.size = VkDeviceSize{slots} * sizeof(gpu::HostShadowRay),
-                                      .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                      .memory = runtime::MemoryUsage::Readback,
-                                      .name = "visibility.host_rays"});
-    if (rays_.mapped() == nullptr ||
-        reinterpret_cast<std::uintptr_t>(rays_.mapped()) % alignof(RTCRay) != 0) {
-      throw RuntimeError("host visibility: the ray buffer is not mapped 16-byte aligned");
-    }
-    capacity_ = slots;
-  }
-  return graph.import_buffer("visibility.host_rays", rays_.handle(), {rays_.size()},
-                             {.read_only = false, .initial = any_prior_use()});
+  return import_ray_buffer(graph, shadow_rays_, "visibility.host_rays", slots,
+                           sizeof(gpu::HostShadowRay));
 }
 
-runtime::graph::BufferHandle HostVisibility::add_trace_pass(runtime::graph::RenderGraph& graph,
-                                                            runtime::graph::BufferHandle rays,
-                                                            std::uint32_t slots) {
+runtime::graph::BufferHandle HostVisibility::add_host_pass(
+    runtime::graph::RenderGraph& graph, const char* name, runtime::graph::BufferHandle rays,
+    std::function<void()> trace_records) {
   struct Data {
     runtime::graph::BufferHandle rays;
   };
   return graph
       .add_pass<Data>(
-          "visibility.host", runtime::graph::PassKind::Host,
+          name, runtime::graph::PassKind::Host,
           [&](runtime::graph::PassBuilder& b, Data& d) {
             d.rays = b.write(rays, runtime::graph::Access::HostReadWrite);
           },
-          [this, slots](runtime::graph::PassContext&, const Data&) {
-            auto* records = reinterpret_cast<gpu::HostShadowRay*>(rays_.mapped());
-            last_traced_ = trace(std::span(records, std::min(slots, capacity_)));
+          [trace_records = std::move(trace_records)](runtime::graph::PassContext&, const Data&) {
+            trace_records();
           })
       .rays;
+}
+
+runtime::graph::BufferHandle HostVisibility::add_trace_pass(runtime::graph::RenderGraph& graph,
+                                                            runtime::graph::BufferHandle rays,
+                                                            std::uint32_t slots) {
+  return add_host_pass(graph, "visibility.host", rays, [this, slots] {
+    auto* records = reinterpret_cast<gpu::HostShadowRay*>(shadow_rays_.buffer.mapped());
+    last_traced_ = trace(std::span(records, std::min<std::uint64_t>(slots, shadow_rays_.capacity)));
+  });
+}
+
+runtime::graph::BufferHandle HostVisibility::add_closest_rays(
+    runtime::graph::RenderGraph& graph, std::uint32_t slots,
+    const std::function<runtime::graph::BufferHandle(runtime::graph::BufferHandle)>& emit) {
+  const runtime::graph::BufferHandle written = emit(import_ray_buffer(
+      graph, closest_rays_, "visibility.host_closest_rays", slots, sizeof(gpu::HostClosestRay)));
+  return add_host_pass(graph, "visibility.host_closest", written, [this, slots] {
+    auto* records = reinterpret_cast<gpu::HostClosestRay*>(closest_rays_.buffer.mapped());
+    last_closest_traced_ =
+        trace_closest(std::span(records, std::min<std::uint64_t>(slots, closest_rays_.capacity)));
+  });
 }
 
 void HostVisibility::trace_primary(const gpu::FrameConstants& frame, std::uint32_t width,
@@ -334,74 +421,37 @@ void HostVisibility::trace_primary(const gpu::FrameConstants& frame, std::uint32
     throw RuntimeError(fmt::format("host visibility: {} hit records for {}x{} pixels", hits.size(),
                                    width, height));
   }
-  const Embree& e = *embree_;
-  RTCScene merged = e.merged_scene;
-  RTCScene instances = e.instanced ? e.scene : nullptr;
   const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
   const glm::vec2 jitter(frame.jitter.x, frame.jitter.y);
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+  parallel_chunks(threads_, pixels, [&](std::size_t begin, unsigned count,
+                                        RTCIntersectContext& context) {
     std::array<RTCRayHit, kRaysPerChunk> chunk;
-    for (std::size_t begin = next.fetch_add(kRaysPerChunk); begin < pixels;
-         begin = next.fetch_add(kRaysPerChunk)) {
-      const auto count = static_cast<unsigned>(std::min<std::size_t>(kRaysPerChunk, pixels - begin));
-      for (unsigned k = 0; k < count; ++k) {
-        const std::size_t p = begin + k;
-        const glm::vec2 point = glm::vec2(static_cast<float>(p % width),
-                                          static_cast<float>(p / width)) + 0.5f + jitter;
-        glm::vec3 origin;
-        float far_t = 0.0f;
-        const glm::vec3 direction =
-            gpu::gbuffer_camera_ray(frame.inv_view_proj, point, size, origin, far_t);
-        RTCRayHit& r = chunk[k];
-        r.ray.org_x = origin.x;
-        r.ray.org_y = origin.y;
-        r.ray.org_z = origin.z;
-        r.ray.tnear = 0.0f;
-        r.ray.dir_x = direction.x;
-        r.ray.dir_y = direction.y;
-        r.ray.dir_z = direction.z;
-        r.ray.time = 0.0f;
-        r.ray.tfar = far_t;
-        r.ray.mask = ~0u;
-        r.ray.id = static_cast<unsigned>(k);
-        r.ray.flags = 0;
-        r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      }
-      // The merged scene first; the instances' scene then only takes hits nearer than its (tfar
-      // shrank to the hit), and names them by instID.
-      if (merged != nullptr) rtcIntersect1M(merged, &context, chunk.data(), count, sizeof(RTCRayHit));
-      std::array<std::uint32_t, kRaysPerChunk> merged_prim;
-      for (unsigned k = 0; k < count; ++k)
-        merged_prim[k] = chunk[k].hit.geomID != RTC_INVALID_GEOMETRY_ID ? chunk[k].hit.primID
-                                                                         : kNoHit;
-      if (instances != nullptr)
-        rtcIntersect1M(instances, &context, chunk.data(), count, sizeof(RTCRayHit));
-      for (unsigned k = 0; k < count; ++k) {
-        const RTCRayHit& r = chunk[k];
-        glm::uvec2& out = hits[begin + k];
-        if (r.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-          out = glm::uvec2(r.hit.instID[0], r.hit.primID);
-        } else if (merged_prim[k] != kNoHit) {
-          // The last merged instance whose first primID is <= the hit's.
-          const auto it =
-              std::upper_bound(e.merged_first.begin(), e.merged_first.end(), merged_prim[k]);
-          const std::size_t m = static_cast<std::size_t>(it - e.merged_first.begin()) - 1;
-          out = glm::uvec2(e.merged_instance[m], merged_prim[k] - e.merged_first[m]);
-        } else {
-          out = glm::uvec2(gpu::kNoInstance, gpu::kNoInstance);
-        }
-      }
+    for (unsigned k = 0; k < count; ++k) {
+      const std::size_t p = begin + k;
+      const glm::vec2 point =
+          glm::vec2(static_cast<float>(p % width), static_cast<float>(p / width)) + 0.5f + jitter;
+      glm::vec3 origin;
+      float far_t = 0.0f;
+      const glm::vec3 direction =
+          gpu::gbuffer_camera_ray(frame.inv_view_proj, point, size, origin, far_t);
+      RTCRayHit& r = chunk[k];
+      r.ray.org_x = origin.x;
+      r.ray.org_y = origin.y;
+      r.ray.org_z = origin.z;
+      r.ray.tnear = 0.0f;
+      r.ray.dir_x = direction.x;
+      r.ray.dir_y = direction.y;
+      r.ray.dir_z = direction.z;
+      r.ray.time = 0.0f;
+      r.ray.tfar = far_t;
+      r.ray.mask = ~0u;
+      r.ray.id = static_cast<unsigned>(k);
+      r.ray.flags = 0;
     }
-  };
-  std::vector<std::thread> pool;
-  const std::size_t chunks = (pixels + kRaysPerChunk - 1) / kRaysPerChunk;
-  for (unsigned t = 1; t < std::min<std::size_t>(threads_, chunks); ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+    embree_->intersect_and_name(context, chunk.data(), count);
+    for (unsigned k = 0; k < count; ++k)
+      hits[begin + k] = glm::uvec2(chunk[k].hit.geomID, chunk[k].hit.primID);
+  });
 }
 
 runtime::graph::BufferHandle HostVisibility::add_primary_pass(runtime::graph::RenderGraph& graph,

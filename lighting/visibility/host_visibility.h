@@ -12,8 +12,14 @@
 //       this traces the records in place (rtcOccluded1M over Embree's RTCRay layout: zero copy)
 //   restir.shade_occluded / integrators.baseline_occluded   the "hostresolve" variant rewrites
 //       the pixels whose ray was blocked
-// Every other ray (closest hits, media, the reference) stays on the compute BVH, which the scene
-// keeps building.
+// restir.initial's BSDF candidates (closest hits) go the same way through a second buffer:
+//   restir.initial_rays   the "closestemit" variant writes each pixel's BSDF candidate rays
+//       (shared/host_visibility.h's HostClosestRay: Embree's RTCRayHit layout)
+//   visibility.host_closest   a host pass: rtcIntersect1M in place, each hit named as the compute
+//       BVH names it (instance, triangle of its mesh, barycentrics)
+//   restir.initial   the "closestresolve" variant reads the hits instead of tracing
+// Every other ray (the reference's and the media's closest hits, restir.initial's optional
+// shadow ray) stays on the compute BVH, which the scene keeps building.
 //
 // The scene: exactly the instances SceneBvh merges (fixed, opaque, within its triangle cap) form
 // one world-space triangle geometry, so a ray pays for no overlapping instance boxes (README: two
@@ -21,7 +27,7 @@
 // mesh's scene, moved per frame. When the BVH takes a fixed instance that moved out of its merged
 // tree, the merged geometry follows (one rebuild).
 //
-// The frame's ray buffer is single: the host pass waits for everything submitted before it
+// Each ray buffer is single per frame: a host pass waits for everything submitted before it
 // (Device::submit_and_wait), which with a window's frames in flight means the previous frame
 // has finished. That orders its reads of the buffer before this frame's host writes, and it
 // leaves one frame in flight while host visibility is on.
@@ -77,6 +83,14 @@ class HostVisibility {
   // the pass's time for the host's rays per second).
   std::size_t last_traced() const { return last_traced_; }
 
+  // Closest hits of every record in place on all host threads (shared/host_visibility.h's
+  // HostClosestRay): instance (kNoInstance on a miss), triangle of the instance's mesh,
+  // barycentrics and ray.tfar = the hit distance; inactive records stay misses. Returns how many
+  // records held an active ray.
+  std::size_t trace_closest(std::span<gpu::HostClosestRay> rays) const;
+  // Records that held an active ray in the last visibility.host_closest pass.
+  std::size_t last_closest_traced() const { return last_closest_traced_; }
+
   // The frame's ray buffer (at least `slots` records; host-visible, mapped), imported into
   // `graph` as "visibility.host_rays". Grows (after the device is idle) when a frame needs more.
   [[nodiscard]] runtime::graph::BufferHandle import_rays(runtime::graph::RenderGraph& graph,
@@ -91,6 +105,14 @@ class HostVisibility {
   // lets `emit` add the pass writing it (it returns the buffer's new version), adds
   // visibility.host; returns the traced buffer for the resolve pass to read.
   [[nodiscard]] runtime::graph::BufferHandle add_shadow_rays(
+      runtime::graph::RenderGraph& graph, std::uint32_t slots,
+      const std::function<runtime::graph::BufferHandle(runtime::graph::BufferHandle)>& emit);
+
+  // The same for closest-hit rays: imports the closest-hit ray buffer
+  // ("visibility.host_closest_rays", at least `slots` HostClosestRay records), lets `emit` add the
+  // pass writing them, adds visibility.host_closest (trace_closest); returns the traced buffer
+  // for the pass that reads the hits.
+  [[nodiscard]] runtime::graph::BufferHandle add_closest_rays(
       runtime::graph::RenderGraph& graph, std::uint32_t slots,
       const std::function<runtime::graph::BufferHandle(runtime::graph::BufferHandle)>& emit);
 
@@ -117,19 +139,33 @@ class HostVisibility {
 
  private:
   struct Embree;
+  // A mapped buffer of ray records; grows (after the device is idle) when a frame needs more.
+  struct RayBuffer {
+    runtime::Buffer buffer;
+    std::uint64_t capacity = 0;  // records
+  };
   void build(const SceneBvh& bvh, std::span<const BvhInstanceDesc> instances);
+  runtime::graph::BufferHandle import_ray_buffer(runtime::graph::RenderGraph& graph,
+                                                 RayBuffer& rays, const char* name,
+                                                 std::uint32_t slots, std::size_t record_size);
+  // A host pass `name` that updates `rays` (an imported ray buffer) by running trace_records.
+  static runtime::graph::BufferHandle add_host_pass(runtime::graph::RenderGraph& graph,
+                                                    const char* name,
+                                                    runtime::graph::BufferHandle rays,
+                                                    std::function<void()> trace_records);
 
   runtime::Device& device_;
   const SceneBvh& bvh_;
   std::unique_ptr<Embree> embree_;
   unsigned threads_ = 1;
   double build_ms_ = 0.0;
-  runtime::Buffer rays_;
-  std::uint32_t capacity_ = 0;
+  RayBuffer shadow_rays_;
+  RayBuffer closest_rays_;
   std::vector<runtime::Buffer> hits_;  // the host G-buffer's ring (host_visibility.cpp kHitSlots)
   std::uint32_t hit_slot_ = 0;
   std::uint64_t hit_capacity_ = 0;
   std::size_t last_traced_ = 0;
+  std::size_t last_closest_traced_ = 0;
 };
 
 }  // namespace lantern::lighting

@@ -23,6 +23,11 @@
 //                                  the "hostemit" / "hostresolve" variants of restir.shade and
 //                                  integrators.baseline). vis_host_begin(slot) names the pixel's
 //                                  slot (a no-op in the other backends).
+//   LANTERN_VISIBILITY_HOST_CLOSEST_EMIT / _RESOLVE   closest hits written to / answered from the
+//                                  host's closest-hit ray buffer (HostClosestRay; the
+//                                  "closestemit" / "closestresolve" variants of restir.initial);
+//                                  shadow rays on the BVH. vis_host_closest_begin(first, count)
+//                                  names the invocation's slots (a no-op elsewhere).
 // Bindings: set VIS_DESCRIPTOR_SET (default 0), bindings VIS_BINDING_BASE .. + 3 (default 0..3):
 // the BVH uses four (header, nodes, triangles, instances), ray query one (scene_tlas at
 // VIS_TLAS_BINDING, default the base; the scene's at kSceneTlas, shared/scene_bindings.h).
@@ -116,6 +121,7 @@ bool vis_visible(vec3 origin, vec3 target) {
 }
 
 void vis_host_begin(uint slot) {}
+void vis_host_closest_begin(uint first, uint count) {}
 
 #else  // compute-shader BVH
 
@@ -129,6 +135,60 @@ void vis_host_begin(uint slot) {}
 #endif
 #include "lib/bvh_traverse.glsl"
 
+#if defined(LANTERN_VISIBILITY_HOST_CLOSEST_EMIT) || \
+    defined(LANTERN_VISIBILITY_HOST_CLOSEST_RESOLVE)
+
+// Host closest hits (shared/host_visibility.h's HostClosestRay): a pass calls
+// vis_host_closest_begin(first, count) once per invocation, before any vis_trace_closest, and
+// then asks at most `count` closest-hit rays, which take slots first, first + 1, ... in the order
+// asked; the emit variant ends with vis_host_closest_end(). Both variants must ask the same rays
+// in the same order (the resolve reads slot k as the answer to the k-th ray the emit wrote).
+#include "shared/host_visibility.h"
+
+layout(std430, binding = kHostClosestRaysBinding) buffer HostClosestRays {
+  HostClosestRay r[];
+} host_closest_rays;
+
+uint vis_closest_slot = 0u;
+uint vis_closest_end = 0u;
+
+#ifdef LANTERN_VISIBILITY_HOST_CLOSEST_EMIT
+// Emit: vis_trace_closest records the ray and answers "miss" (the pass keeps nothing it computes
+// from that); vis_host_closest_end writes the slots left unasked without a ray. Each slot is
+// written once.
+void vis_host_closest_begin(uint first, uint count) {
+  vis_closest_slot = first;
+  vis_closest_end = first + count;
+}
+
+bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {
+  hit = VisHit(0u, 0u, 0.0, 0.0, tmax);
+  host_closest_rays.r[vis_closest_slot] = host_closest_ray(origin, dir, tmax, vis_closest_slot);
+  ++vis_closest_slot;
+  return false;
+}
+
+void vis_host_closest_end() {
+  for (uint k = vis_closest_slot; k < vis_closest_end; ++k)
+    host_closest_rays.r[k] = host_closest_none();
+}
+#else
+// Resolve: the host's hit for the invocation's next slot.
+void vis_host_closest_begin(uint first, uint count) { vis_closest_slot = first; }
+
+bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {
+  HostClosestRay r = host_closest_rays.r[vis_closest_slot];
+  ++vis_closest_slot;
+  bool found = host_closest_found(r);
+  hit = VisHit(found ? r.instance : 0u, found ? r.primitive : 0u, found ? r.u : 0.0,
+               found ? r.v : 0.0, found ? r.ray.tfar : tmax);
+  return found;
+}
+#endif
+
+#else
+void vis_host_closest_begin(uint first, uint count) {}
+
 bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {
   BvhHit h;
   bool found = bvh_trace_closest(bvh_make_ray(origin, dir, 0.0, tmax), h);
@@ -136,6 +196,7 @@ bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {
                found ? h.v : 0.0, h.t);
   return found;
 }
+#endif
 
 #if defined(LANTERN_VISIBILITY_HOST_EMIT) || defined(LANTERN_VISIBILITY_HOST_RESOLVE)
 

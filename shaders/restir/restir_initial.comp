@@ -13,6 +13,11 @@
 // presampled_lights (restir.presample's; a stand-in when presampling is off).
 // Writes: restir_surfaces (history resource "restir.surfaces"), reservoirs_out. History: none.
 // Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
+// Host closest hits (shared/host_visibility.h, with the host visibility backend and BSDF
+// candidates): the "closestemit" variant (restir.initial_rays) writes each pixel's BSDF
+// candidate rays into the host's closest-hit ray buffer and nothing else; visibility.host_closest
+// traces them; the "closestresolve" variant (restir.initial) reads their hits instead of
+// tracing. Both draw the BSDF candidates from their own stream (kRestirRngInitialBsdf).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -210,91 +215,168 @@ float env_candidate(ShadingPoint p, vec3 l, float p_env, float m_light, float m_
   return safe_ratio(target, denominator);
 }
 
-Reservoir resample(ShadingPoint p, uint tile_base, inout uint rng) {
-  Reservoir r = reservoir_empty();
-  uint light_count = restir_light_count();
-  float p_env = restir_env_probability();
-  float m_light = float(push.light_candidates);
-  float m_bsdf = float(push.bsdf_candidates);
-  if (light_count == 0u && p_env == 0.0) {
-    r.M = m_light + m_bsdf;
-    return r;
-  }
+// The two strategies: how many candidates each draws, the lights and the environment's share of
+// the light strategy.
+struct Strategies {
+  uint light_count;
+  float p_env;
+  float m_light;
+  float m_bsdf;
+};
+
+Strategies restir_strategies() {
+  return Strategies(restir_light_count(), restir_env_probability(), float(push.light_candidates),
+                    float(push.bsdf_candidates));
+}
+
+// Whether there is nothing to sample (no light, no environment): no candidate is drawn.
+bool strategies_empty(Strategies s) { return s.light_count == 0u && s.p_env == 0.0; }
+
+// push.light_candidates light candidates into r.
+void resample_lights(ShadingPoint p, Strategies s, uint tile_base, inout uint rng,
+                     inout Reservoir r) {
   for (uint i = 0u; i < push.light_candidates; ++i) {
     float u0 = rng_next_float(rng);
     float u1 = rng_next_float(rng);
     vec2 uv = stored_uv(rng_next_vec2(rng));
     float u_pick = rng_next_float(rng);
-    if (u0 < p_env || light_count == 0u) {
+    if (u0 < s.p_env || s.light_count == 0u) {
       // The environment: u0 rescaled picks its row, the rest the column and the point.
       vec3 l, le;
-      float u_row = clamp(u0 / max(p_env, 1e-30), 0.0, 0.99999994);
+      float u_row = clamp(u0 / max(s.p_env, 1e-30), 0.0, 0.99999994);
       env_sample(env_header.env, vec4(u_row, u1, uv), l, le);
       vec2 env_uv;
       float target;
-      float weight = env_candidate(p, l, p_env, m_light, m_bsdf, env_uv, target);
+      float weight = env_candidate(p, l, s.p_env, s.m_light, s.m_bsdf, env_uv, target);
       reservoir_update(r, light_sample_make(kEnvironmentLight, env_uv, target), weight, u_pick);
       continue;
     }
-    u0 = p_env > 0.0 ? clamp((u0 - p_env) / (1.0 - p_env), 0.0, 0.99999994) : u0;
+    u0 = s.p_env > 0.0 ? clamp((u0 - s.p_env) / (1.0 - s.p_env), 0.0, 0.99999994) : u0;
     GpuLight light;
     float pdf;
     float strategy_pdf;
     uint index = draw_light(u0, u1, tile_base, light, pdf, strategy_pdf);
     float target = light_eval_target(restir_light_contribution(p, light, uv));
-    float weight = safe_ratio(target, m_light * (1.0 - p_env) * pdf);
+    float weight = safe_ratio(target, s.m_light * (1.0 - s.p_env) * pdf);
     if (push.bsdf_candidates > 0u && target > 0.0) {
       // Balance heuristic over the light strategy's density q (with the environment's share)
       // and the BSDF's, times the candidate's contribution weight 1 / pdf:
       // target q / (pdf (m_light q + m_bsdf p_bsdf)). Without the local list pdf = q: the plain
       // balance heuristic.
       vec3 y = light_eval_position(light, uv, p.x, restir_scene_radius());
-      float light_term = m_light * (1.0 - p_env) * strategy_pdf;
+      float light_term = s.m_light * (1.0 - s.p_env) * strategy_pdf;
       float contribution_ratio = push.local_candidates > 0u ? safe_ratio(strategy_pdf, pdf) : 1.0;
       weight = safe_ratio(target * contribution_ratio,
-                          light_term + m_bsdf * bsdf_area_pdf(p, light, y));
+                          light_term + s.m_bsdf * bsdf_area_pdf(p, light, y));
     }
     reservoir_update(r, light_sample_make(index, uv, target), weight, u_pick);
   }
+}
+
+// One BSDF candidate's draws from rng: its direction l, the reservoir's u_pick, and whether it
+// asks a closest-hit ray (from `origin`, where l leaves the surface's geometric side). The one
+// owner of what the "closestemit" variant and restir.initial ask, in the same order.
+bool bsdf_candidate_ray(ShadingPoint p, inout uint rng, out vec3 origin, out vec3 l,
+                        out float u_pick) {
+  float u_lobe = rng_next_float(rng);
+  vec2 u_dir = rng_next_vec2(rng);
+  u_pick = rng_next_float(rng);
+  l = u_lobe < specular_lobe_probability(p) ? ggx_vndf_sample(p.n, p.v, p.roughness, u_dir)
+                                            : cosine_sample_hemisphere(p.n, u_dir);
+  origin = bvh_ray_origin(p.x, p.ng);
+  return dot(l, p.ng) > 0.0;
+}
+
+// push.bsdf_candidates BSDF candidates into r, from their own random stream (so the
+// "closestemit" variant draws the same rays without the light candidates' draws).
+void resample_bsdf(ShadingPoint p, Strategies s, inout uint rng, inout Reservoir r) {
   for (uint j = 0u; j < push.bsdf_candidates; ++j) {
-    float u_lobe = rng_next_float(rng);
-    vec2 u_dir = rng_next_vec2(rng);
-    float u_pick = rng_next_float(rng);
-    vec3 l = u_lobe < specular_lobe_probability(p) ? ggx_vndf_sample(p.n, p.v, p.roughness, u_dir)
-                                                   : cosine_sample_hemisphere(p.n, u_dir);
+    vec3 origin;
+    vec3 l;
+    float u_pick;
+    bool asks = bsdf_candidate_ray(p, rng, origin, l, u_pick);
     VisHit hit;
     uint index = kInvalidLight;
     vec2 uv = vec2(0.0);
-    vec3 origin = bvh_ray_origin(p.x, p.ng);
     float weight = 0.0;
     float target = 0.0;
-    if (dot(l, p.ng) > 0.0) {
+    if (asks) {
       if (vis_trace_closest(origin, l, kVisInfinity, hit)) {
         uint first = scene_instances.i[hit.instance].bvh.y;
-        if (first != kInvalidLight && first + hit.primitive < light_count) {
+        if (first != kInvalidLight && first + hit.primitive < s.light_count) {
           index = first + hit.primitive;
           uv = stored_uv(triangle_barycentrics_to_uv(hit.u, hit.v));
         }
-      } else if (p_env > 0.0) {
+      } else if (s.p_env > 0.0) {
         // The ray escapes: it sees the environment in direction l.
         index = kEnvironmentLight;
-        weight = env_candidate(p, l, p_env, m_light, m_bsdf, uv, target);
+        weight = env_candidate(p, l, s.p_env, s.m_light, s.m_bsdf, uv, target);
       }
     }
     if (index != kInvalidLight && index != kEnvironmentLight &&
         light_kind(scene_light(index)) == kLightTriangle) {
       target = light_eval_target(restir_contribution(p, index, uv));
       vec3 y = light_eval_position(scene_light(index), uv, p.x, restir_scene_radius());
-      float denominator = m_light * light_strategy_pdf(index, p_env) +
-                          m_bsdf * bsdf_area_pdf(p, scene_light(index), y);
+      float denominator = s.m_light * light_strategy_pdf(index, s.p_env) +
+                          s.m_bsdf * bsdf_area_pdf(p, scene_light(index), y);
       weight = safe_ratio(target, denominator);
     }
     reservoir_update(r, light_sample_make(index, uv, target), weight, u_pick);
   }
+}
+
+Reservoir resample(ShadingPoint p, uvec2 pixel, uint tile_base) {
+  Reservoir r = reservoir_empty();
+  Strategies s = restir_strategies();
+  if (strategies_empty(s)) {
+    r.M = s.m_light + s.m_bsdf;
+    return r;
+  }
+  uint rng = frame_rng(pixel, kRestirRngInitial);
+  resample_lights(p, s, tile_base, rng, r);
+  uint bsdf_rng = frame_rng(pixel, kRestirRngInitialBsdf);
+  resample_bsdf(p, s, bsdf_rng, r);
   reservoir_finalize(r);
   return r;
 }
 
+// The pixel's G-buffer packed into a RestirSurface (the sky's where the G-buffer holds none).
+RestirSurface gbuffer_surface(ivec2 ip, vec4 position) {
+  if (gbuffer_is_sky(position.w)) return restir_surface_sky();
+  vec4 normals = imageLoad(gbuffer_normal, ip);
+  vec4 albedo_roughness = imageLoad(gbuffer_albedo_roughness, ip);
+  float metallic = imageLoad(gbuffer_emission_metallic, ip).w;
+  uint material = imageLoad(gbuffer_ids, ip).y;
+  float specular = scene_materials.m[material].params.z;
+  return restir_surface_pack(position, oct_decode(normals.xy), oct_decode(normals.zw),
+                             albedo_roughness.rgb, albedo_roughness.a, metallic, specular,
+                             material);
+}
+
+#ifdef LANTERN_VISIBILITY_HOST_CLOSEST_EMIT
+// The "closestemit" variant: only the BSDF candidates' rays, as restir.initial will ask them
+// (the same surface, stream and draws), into the host's closest-hit ray buffer.
+void main() {
+  uvec2 pixel;
+  if (!restir_pixel(pixel)) return;
+  ivec2 ip = ivec2(pixel);
+  vis_host_closest_begin(restir_index(pixel) * push.bsdf_candidates, push.bsdf_candidates);
+  RestirSurface surface = gbuffer_surface(ip, imageLoad(gbuffer_position, ip));
+  ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
+  if (p.valid && !strategies_empty(restir_strategies())) {
+    uint rng = frame_rng(pixel, kRestirRngInitialBsdf);
+    for (uint j = 0u; j < push.bsdf_candidates; ++j) {
+      vec3 origin;
+      vec3 l;
+      float u_pick;
+      VisHit hit;
+      if (bsdf_candidate_ray(p, rng, origin, l, u_pick))
+        vis_trace_closest(origin, l, kVisInfinity, hit);
+    }
+  }
+  vis_host_closest_end();
+}
+#else
 void main() {
   uvec2 pixel;
   bool inside = restir_pixel(pixel);
@@ -308,24 +390,14 @@ void main() {
   }
   if (!inside) return;
   uint index = restir_index(pixel);
-  RestirSurface surface = restir_surface_sky();
-  if (!gbuffer_is_sky(position.w)) {
-    vec4 normals = imageLoad(gbuffer_normal, ip);
-    vec4 albedo_roughness = imageLoad(gbuffer_albedo_roughness, ip);
-    float metallic = imageLoad(gbuffer_emission_metallic, ip).w;
-    uint material = imageLoad(gbuffer_ids, ip).y;
-    float specular = scene_materials.m[material].params.z;
-    surface = restir_surface_pack(position, oct_decode(normals.xy), oct_decode(normals.zw),
-                                  albedo_roughness.rgb, albedo_roughness.a, metallic, specular,
-                                  material);
-  }
+  RestirSurface surface = gbuffer_surface(ip, position);
   restir_surfaces.s[index] = surface;
 
   ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
   Reservoir r = reservoir_empty();
   if (p.valid) {
-    uint rng = frame_rng(pixel, kRestirRngInitial);
-    r = resample(p, tile_base, rng);
+    vis_host_closest_begin(index * push.bsdf_candidates, push.bsdf_candidates);
+    r = resample(p, pixel, tile_base);
     if ((push.flags & kRestirFlagInitialVisibility) != 0u && reservoir_has_sample(r)) {
       vec3 y = restir_light_position(p, r.selected.light_index, vec2(r.selected.u, r.selected.v));
       if (!vis_visible(p.x, y)) {
@@ -336,3 +408,4 @@ void main() {
   }
   reservoirs_out.r[index] = reservoir_pack(r);
 }
+#endif

@@ -13,6 +13,7 @@
 
 #include "shared/bvh.h"
 #include "shared/lang.h"
+#include "shared/scene.h"
 #include "shared/scene_bindings.h"
 
 LANTERN_BEGIN_SHARED
@@ -84,6 +85,65 @@ LANTERN_FUNC bool host_ray_active(HostShadowRay r) {
 // ray is visible).
 LANTERN_FUNC bool host_ray_visible(HostShadowRay r) {
   return !(r.tfar < 0.0f);
+}
+
+// One closest-hit ray and, once the host traced it, its hit: Embree's RTCRayHit layout (the ray,
+// then RTCHit), so the host hands the mapped records to rtcIntersect1M as they are (the
+// "closestemit" / "closestresolve" variants of restir.initial: its BSDF candidates). The emit
+// variant writes the ray from origin along direction for t in [0, tmax] (units of direction; the
+// caller offsets the origin off its surface, bvh_ray_origin, as for the BVH) with no hit; the
+// host then names the hit as the compute BVH does (VisHit): `instance` (Embree's geomID) the
+// scene instance index, or kNoInstance where the ray meets nothing, `primitive` the triangle of
+// the instance's mesh, (u, v) the barycentrics of vertices 1 and 2, ray.tfar the hit distance.
+struct HostClosestRay {
+  HostShadowRay ray;
+  float ng_x;         // Embree's geometric normal (unnormalised; not read)
+  float ng_y;
+  float ng_z;
+  float u;            // barycentric of vertex 1
+  float v;            // barycentric of vertex 2
+  uint primitive;     // Embree's primID, then the triangle of the instance's mesh
+  uint instance;      // Embree's geomID, then the scene instance index (kNoInstance: a miss)
+  uint instance_id;   // Embree's instID[0] (the host's, before it names the hit)
+};
+LANTERN_STATIC_SIZE(HostClosestRay, 80);
+
+// Binding of the closest-hit ray buffer in the two variants (beside kHostRaysBinding).
+LANTERN_CONST uint kHostClosestRaysBinding = kPassBindingBase + 17u;
+
+// The record of a slot that traces nothing (a miss).
+LANTERN_FUNC HostClosestRay host_closest_none() {
+  HostClosestRay r;
+  r.ray = host_ray_none();
+  r.ng_x = 0.0f;
+  r.ng_y = 0.0f;
+  r.ng_z = 0.0f;
+  r.u = 0.0f;
+  r.v = 0.0f;
+  r.primitive = kNoInstance;
+  r.instance = kNoInstance;
+  r.instance_id = kNoInstance;
+  return r;
+}
+
+// The record of the closest-hit ray origin + t direction, t in [0, tmax]; slot names it. A ray
+// that is not finite, or tmax <= 0, stays inactive (tnear > tfar: Embree skips it) and reads as
+// a miss, as the BVH answers it.
+LANTERN_FUNC HostClosestRay host_closest_ray(vec3 origin, vec3 direction, float tmax, uint slot) {
+  HostClosestRay r = host_closest_none();
+  r.ray.id = slot;
+  float finite_check = dot(origin, origin) + dot(direction, direction);
+  // NaN fails the comparisons; an infinite or overflowing origin or direction the first.
+  if (!(finite_check < 3.0e38f) || !(tmax > 0.0f) || !(tmax <= kBvhMiss)) return r;
+  r.ray.origin = vec4(origin, 0.0f);
+  r.ray.direction = vec4(direction, 0.0f);
+  r.ray.tfar = tmax;
+  return r;
+}
+
+// Whether the host found a hit for this record.
+LANTERN_FUNC bool host_closest_found(HostClosestRay r) {
+  return r.instance != kNoInstance;
 }
 
 LANTERN_END_SHARED

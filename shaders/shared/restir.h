@@ -52,6 +52,7 @@ LANTERN_CONST uint kRestirRngSpatial = 0x52492u;  // + pass index
 LANTERN_CONST uint kRestirRngPresample = 0x524a0u;
 LANTERN_CONST uint kRestirRngPresampleTile = 0x524a1u;
 LANTERN_CONST uint kRestirRngLocalLights = 0x524a2u;
+LANTERN_CONST uint kRestirRngInitialBsdf = 0x524a3u;  // restir.initial's BSDF candidates
 LANTERN_CONST uint kRestirRngShadeMedia = 0x524b0u;  // restir.shade's transmittance estimate
 LANTERN_CONST uint kRestirRngTemporalPermutation = 0x524c0u;  // one draw per frame, every pixel's
 

@@ -66,6 +66,7 @@ layout(std430, binding = 27) buffer VolumeReservoirProbe { VolumeReservoir volum
 layout(std430, binding = 28) buffer VolumeRestirPushProbe { VolumeRestirPush volume_restir_pushes[]; };
 layout(std430, binding = 29) buffer HostShadowRayProbe { HostShadowRay host_shadow_rays[]; };
 layout(std430, binding = 30) buffer RestirSimilarityKeyProbe { RestirSimilarityKey restir_similarity_keys[]; };
+layout(std430, binding = 31) buffer HostClosestRayProbe { HostClosestRay host_closest_rays[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
@@ -100,4 +101,5 @@ void main() {
   volume_reservoirs[0] = volume_reservoirs[1];
   volume_restir_pushes[0] = volume_restir_pushes[1];
   host_shadow_rays[0] = host_shadow_rays[1];
+  host_closest_rays[0] = host_closest_rays[1];
 }

@@ -2,13 +2,16 @@
 // (SceneBvh::visible): on night_market's power-sampled and ReSTIR-like (RIS over 8 candidates)
 // shadow rays at 160x90 on >= 99.9% of rays (the bar for every visibility path), and on
 // cornell_lights after instances moved (an instanced mover and a fixed instance that leaves the
-// merged geometry). Records without a ray stay visible; a level with alpha-tested materials is
-// refused by name.
+// merged geometry). Closest hits (restir.initial's BSDF candidates) name the CPU traversal's
+// triangle on camera rays and BSDF-like rays from their hits on >= 99.9% of rays, before and
+// after instances moved. Records without a ray stay visible (shadow) or miss (closest); a level
+// with alpha-tested materials is refused by name.
 #include "lighting/visibility/host_visibility.h"
 
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -44,6 +47,44 @@ Answers compare_with_cpu(const HostVisibility& host, const SceneBvh& bvh,
   return a;
 }
 
+// The host's closest hits against the CPU traversal's: the same miss, or the same instance and
+// triangle with barycentrics within 1e-3 and distances within 1e-3 relative.
+struct ClosestAnswers {
+  double agreement = 0.0;
+  std::size_t hits = 0;
+  std::size_t misses = 0;
+  std::size_t traced = 0;  // what trace_closest reported
+};
+
+ClosestAnswers compare_closest_with_cpu(const HostVisibility& host, const SceneBvh& bvh,
+                                        std::span<const gpu::BvhRay> rays) {
+  std::vector<gpu::HostClosestRay> records;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    records.push_back(gpu::host_closest_ray(glm::vec3(rays[i].origin),
+                                            glm::vec3(rays[i].direction), rays[i].direction.w,
+                                            static_cast<std::uint32_t>(i)));
+  }
+  ClosestAnswers a;
+  a.traced = host.trace_closest(records);
+  std::size_t same = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    gpu::BvhHit cpu;
+    const bool cpu_found = bvh.trace_closest(rays[i], cpu);
+    const gpu::HostClosestRay& r = records[i];
+    const bool found = gpu::host_closest_found(r);
+    bool agrees = found == cpu_found;
+    if (agrees && found) {
+      agrees = r.instance == cpu.instance && r.primitive == cpu.primitive &&
+               std::abs(r.u - cpu.u) <= 1e-3f && std::abs(r.v - cpu.v) <= 1e-3f &&
+               std::abs(r.ray.tfar - cpu.t) <= 1e-3f * cpu.t;
+    }
+    same += agrees ? 1u : 0u;
+    (found ? a.hits : a.misses) += 1;
+  }
+  a.agreement = static_cast<double>(same) / static_cast<double>(rays.size());
+  return a;
+}
+
 class HostVisibilityTest : public runtime::test::GpuTest {};
 
 TEST_F(HostVisibilityTest, ShadowRaysAgreeWithTheCpuTraversalOnNightMarket) {
@@ -62,6 +103,24 @@ TEST_F(HostVisibilityTest, ShadowRaysAgreeWithTheCpuTraversalOnNightMarket) {
     EXPECT_GE(a.agreement, 0.999);
     EXPECT_GT(a.blocked, rays->size() / 20) << "some rays must be blocked";
     EXPECT_GT(a.visible, rays->size() / 100) << "some rays must get through";
+  }
+}
+
+TEST_F(HostVisibilityTest, ClosestHitsAgreeWithTheCpuTraversalOnNightMarket) {
+  const Level level = load_level_argument("night_market");
+  const SceneData data = build_scene_data(level);
+  const HostVisibility host(device, data.bvh, bvh_instance_descs(level));
+  // Camera rays, and rays like restir.initial's BSDF candidates from their hits (the sky above
+  // the market: some miss).
+  const std::vector<gpu::BvhRay> primary = camera_rays(level.camera, 160, 90);
+  const std::vector<gpu::BvhRay> bsdf = bsdf_rays(level, data, primary, 11);
+  for (const auto* rays : {&primary, &bsdf}) {
+    ASSERT_GT(rays->size(), 1000u);
+    const ClosestAnswers a = compare_closest_with_cpu(host, data.bvh, *rays);
+    EXPECT_EQ(a.traced, rays->size()) << "every record held a ray";
+    EXPECT_GE(a.agreement, 0.999);
+    EXPECT_GT(a.hits, rays->size() / 10) << "some rays must hit";
+    EXPECT_GT(a.misses, rays->size() / 100) << "some rays must escape";
   }
 }
 
@@ -87,6 +146,10 @@ TEST_F(HostVisibilityTest, FollowsMovedInstances) {
     EXPECT_GE(a.agreement, 0.999) << "step " << step;
     EXPECT_GT(a.blocked, 0u);
     EXPECT_GT(a.visible, 0u);
+    // Closest hits name the moved instances (merged and instanced alike) as the BVH does.
+    const ClosestAnswers c = compare_closest_with_cpu(host, data.bvh, primary);
+    EXPECT_GE(c.agreement, 0.999) << "step " << step;
+    EXPECT_GT(c.hits, 0u);
   }
   EXPECT_EQ(host.merged_instances(), 0u) << "moved fixed instances leave the merged geometry";
 }
@@ -121,6 +184,36 @@ TEST_F(HostVisibilityTest, RecordsWithoutARayStayVisible) {
   host.trace(through);
   EXPECT_TRUE(gpu::host_ray_traced(through[0])) << "Embree keeps the record's id";
   EXPECT_FALSE(gpu::host_ray_visible(through[0]));
+}
+
+TEST_F(HostVisibilityTest, ClosestRecordsWithoutARayMiss) {
+  const Level level = load_level_argument("cornell_lights");
+  const SceneData data = build_scene_data(level);
+  const HostVisibility host(device, data.bvh, bvh_instance_descs(level));
+  // Slots the pass asked nothing of, non-finite rays and empty ranges (the emit variant's
+  // records for them) stay inactive and read as misses, as the BVH answers them.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  const glm::vec3 below(0.0f, -100.0f, 0.0f);
+  std::vector<gpu::HostClosestRay> records(300, gpu::host_closest_none());
+  records.push_back(gpu::host_closest_ray(glm::vec3(nan), up, gpu::kBvhMiss, 1));
+  records.push_back(gpu::host_closest_ray(below, glm::vec3(0.0f, inf, 0.0f), gpu::kBvhMiss, 2));
+  records.push_back(gpu::host_closest_ray(below, up, 0.0f, 3));
+  records.push_back(gpu::host_closest_ray(below, up, nan, 4));
+  for (const gpu::HostClosestRay& r : records) {
+    EXPECT_FALSE(gpu::host_ray_active(r.ray)) << "record " << r.ray.id << " holds an active ray";
+  }
+  EXPECT_EQ(host.trace_closest(records), 0u);
+  for (const gpu::HostClosestRay& r : records) EXPECT_FALSE(gpu::host_closest_found(r));
+  // A real ray into the box from far below meets its floor: an instance, a triangle, t > 0.
+  std::vector<gpu::HostClosestRay> through{gpu::host_closest_ray(below, up, gpu::kBvhMiss, 7)};
+  EXPECT_EQ(host.trace_closest(through), 1u);
+  ASSERT_TRUE(gpu::host_closest_found(through[0]));
+  EXPECT_LT(through[0].instance, level.instances.size());
+  EXPECT_GT(through[0].ray.tfar, 0.0f);
+  EXPECT_LT(through[0].ray.tfar, 200.0f);
+  EXPECT_EQ(through[0].ray.id, 7u) << "Embree keeps the record's id";
 }
 
 TEST_F(HostVisibilityTest, RefusesAlphaTestedLevelsByName) {

@@ -7,7 +7,8 @@
 //             light candidates); temporal and spatial reuse push the pick further towards large
 //             p̂, which a larger M stands in for (the M cap of balanced is 20 x 8 = 160).
 // Like the integrators, a pick with zero unshadowed contribution (light below the surface or
-// facing away) traces no ray. Emitters only: the environment's share is not drawn.
+// facing away) traces no ray. Emitters only: the environment's share is not drawn. Also
+// closest-hit rays like restir.initial's BSDF candidates (bsdf_rays).
 #pragma once
 
 #include <algorithm>
@@ -20,9 +21,54 @@
 
 #include "engine/scene/level.h"
 #include "lighting/scene/scene_data.h"
+#include "shared/brdf.h"
+#include "shared/bvh.h"
 #include "shared/light_eval.h"
 
 namespace lantern::lighting::test {
+
+// A CPU primary hit as the shading passes see it: the point, the geometric normal facing the
+// ray, the direction back to the camera and the material.
+struct SurfaceHit {
+  glm::vec3 x;
+  glm::vec3 ng;
+  glm::vec3 view;
+  const gpu::GpuMaterial* material;
+};
+
+inline SurfaceHit surface_hit(const Level& level, const SceneData& data, const gpu::BvhRay& ray,
+                              const gpu::BvhHit& hit) {
+  const Instance& inst = level.instances[hit.instance];
+  const Mesh& mesh = level.meshes[inst.mesh];
+  glm::vec3 v[3];
+  for (int k = 0; k < 3; ++k)
+    v[k] = glm::vec3(inst.world *
+                     glm::vec4(mesh.positions[mesh.indices[3 * hit.primitive + k]], 1.0f));
+  const glm::vec3 dir(ray.direction);
+  glm::vec3 ng = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
+  if (glm::dot(ng, dir) > 0.0f) ng = -ng;
+  return {glm::vec3(ray.origin) + hit.t * dir, ng, -glm::normalize(dir),
+          &data.materials[data.instances[hit.instance].geometry.x]};
+}
+
+// Closest-hit rays like restir.initial's BSDF candidates: from every CPU primary hit, offset off
+// the surface (bvh_ray_origin), one cosine-distributed direction about the facing geometric
+// normal, unbounded.
+inline std::vector<gpu::BvhRay> bsdf_rays(const Level& level, const SceneData& data,
+                                          std::span<const gpu::BvhRay> primary,
+                                          std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<gpu::BvhRay> rays;
+  for (const gpu::BvhRay& ray : primary) {
+    gpu::BvhHit hit;
+    if (!data.bvh.trace_closest(ray, hit)) continue;
+    const SurfaceHit s = surface_hit(level, data, ray, hit);
+    const glm::vec3 l = gpu::cosine_sample_hemisphere(s.ng, glm::vec2(u(rng), u(rng)));
+    rays.push_back(gpu::bvh_make_ray(gpu::bvh_ray_origin(s.x, s.ng), l, 0.0f, gpu::kBvhMiss));
+  }
+  return rays;
+}
 
 struct ShadingRaySet {
   std::vector<gpu::BvhRay> rays;      // origin -> light point segments (probe mode 1)
@@ -45,18 +91,11 @@ inline ShadingRaySet shading_shadow_rays(const Level& level, const SceneData& da
     gpu::BvhHit hit;
     if (!data.bvh.trace_closest(ray, hit)) continue;
     ++set.surface_points;
-    const Instance& inst = level.instances[hit.instance];
-    const Mesh& mesh = level.meshes[inst.mesh];
-    glm::vec3 v[3];
-    for (int k = 0; k < 3; ++k)
-      v[k] = glm::vec3(inst.world *
-                       glm::vec4(mesh.positions[mesh.indices[3 * hit.primitive + k]], 1.0f));
-    const glm::vec3 dir(ray.direction);
-    const glm::vec3 x = glm::vec3(ray.origin) + hit.t * dir;
-    glm::vec3 ng = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
-    if (glm::dot(ng, dir) > 0.0f) ng = -ng;
-    const glm::vec3 view = -glm::normalize(dir);
-    const gpu::GpuMaterial& mat = data.materials[data.instances[hit.instance].geometry.x];
+    const SurfaceHit surface = surface_hit(level, data, ray, hit);
+    const glm::vec3 x = surface.x;
+    const glm::vec3 ng = surface.ng;
+    const glm::vec3 view = surface.view;
+    const gpu::GpuMaterial& mat = *surface.material;
     const auto contribution = [&](std::uint32_t index, glm::vec3 y) {
       return gpu::light_eval_contribution_at(lights[index], y, x, ng, ng, view,
                                              glm::vec3(mat.base_color), mat.params.x, mat.params.y,

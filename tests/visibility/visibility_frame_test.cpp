@@ -3,8 +3,8 @@
 // scene.tlas_build every frame) at 64x36 with --set visibility=bvh and =rayquery, and the
 // frames agree: each channel's mean within 0.1%, and >= 99.9% of the pixels equal to float noise
 // (relative 1e-4). The same for --set visibility=host (Embree answers restir.shade's and the
-// baseline's shadow rays in the host pass visibility.host). Synchronization validation is on and
-// must stay clean.
+// baseline's shadow rays in the host pass visibility.host, and restir.initial's BSDF candidates'
+// closest hits in visibility.host_closest). Synchronization validation is on and must stay clean.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -43,6 +43,7 @@ struct Frames {
   std::vector<runtime::ImageRGBA32F> images;
   std::uint32_t tlas_builds = 0;  // frames whose passes included scene.tlas_build
   std::uint32_t host_passes = 0;  // frames whose passes included visibility.host
+  std::uint32_t host_closest_passes = 0;  // ... and visibility.host_closest
   VisibilityBackend backend = VisibilityBackend::Bvh;
 };
 
@@ -84,6 +85,9 @@ class VisibilityFrameTest : public runtime::test::GpuTest,
                                      [](const auto& p) { return p.first == "scene.tlas_build"; });
       out.host_passes += std::any_of(t.passes.begin(), t.passes.end(),
                                      [](const auto& p) { return p.first == "visibility.host"; });
+      out.host_closest_passes +=
+          std::any_of(t.passes.begin(), t.passes.end(),
+                      [](const auto& p) { return p.first == "visibility.host_closest"; });
       out.images.push_back(std::move(image));
     }
     return out;
@@ -165,6 +169,7 @@ TEST_P(VisibilityFrameTest, HostRendersTheBvhImage) {
     // The reference traces its own rays on the BVH; the real-time integrators ask the host.
     EXPECT_EQ(host.host_passes, GetParam() == "reference" ? 0u : kFrames);
     EXPECT_EQ(bvh.host_passes, 0u);
+    EXPECT_EQ(host.host_closest_passes, 0u) << "no integrator draws BSDF candidates by default";
     for (std::uint32_t f = 0; f < kFrames; ++f) {
       const Agreement g = compare(bvh.images[f], host.images[f]);
       EXPECT_GT(g.mean_luminance, 0.0) << "frame " << f << " is black: nothing compared";
@@ -175,17 +180,24 @@ TEST_P(VisibilityFrameTest, HostRendersTheBvhImage) {
     // The scene moves between the first and last frame, so stale answers would show.
     EXPECT_LT(compare(host.images.front(), host.images.back()).equal_fraction, 0.999);
   }
+  if (GetParam() != "restir") return;
   // ReSTIR's visibility reuse: restir.shade_occluded writes the host's verdicts into the
   // reservoirs as restir.shade does with its own rays, so the frames that reuse them match too.
-  if (GetParam() == "restir") {
-    const std::vector<std::pair<std::string, std::string>> reuse{{"visibility_reuse", "2"}};
-    const Frames bvh = render(VisibilitySetting::Bvh, false, reuse);
-    const Frames host = render(VisibilitySetting::Host, false, reuse);
+  // BSDF candidates (the quality preset's): the host traces their closest hits
+  // (visibility.host_closest), restir.initial reads them, and the image is the BVH's.
+  const std::vector<std::pair<std::string, std::string>> reuse{{"visibility_reuse", "2"}};
+  const std::vector<std::pair<std::string, std::string>> bsdf{{"bsdf_candidates", "2"}};
+  for (const auto* settings : {&reuse, &bsdf}) {
+    const Frames bvh = render(VisibilitySetting::Bvh, false, *settings);
+    const Frames host = render(VisibilitySetting::Host, false, *settings);
+    const std::string what = settings->front().first;
+    EXPECT_EQ(host.host_closest_passes, settings == &bsdf ? kFrames : 0u) << what;
     for (std::uint32_t f = 0; f < kFrames; ++f) {
       const Agreement g = compare(bvh.images[f], host.images[f]);
-      EXPECT_GT(g.mean_luminance, 0.0) << "reuse frame " << f << " is black";
-      EXPECT_LE(g.max_mean_rel, 1e-3) << "reuse frame " << f;
-      EXPECT_GE(g.equal_fraction, 0.999) << "reuse frame " << f;
+      EXPECT_GT(g.mean_luminance, 0.0) << what << " frame " << f << " is black";
+      EXPECT_LE(g.max_mean_rel, 1e-3) << what << " frame " << f;
+      EXPECT_GE(g.equal_fraction, 0.999) << what << " frame " << f;
+      EXPECT_EQ(host.images[f].count_non_finite(), 0u) << what << " frame " << f;
     }
   }
 }
