@@ -198,6 +198,9 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
     variants.push_back(
         "visibility: hostemit / hostresolve for the shading passes "
         "(LANTERN_VISIBILITY_HOST_EMIT / _RESOLVE)");
+    variants.push_back(
+        "visibility: closestemit / closestresolve for restir.initial when it draws BSDF "
+        "candidates (LANTERN_VISIBILITY_HOST_CLOSEST_EMIT / _RESOLVE)");
   }
   if (level.environment) variants.push_back("environment sampling: on");
   if (!textures.empty()) variants.push_back("gbuffer: textured (kTextured)");

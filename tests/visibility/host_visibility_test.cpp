@@ -58,12 +58,7 @@ struct ClosestAnswers {
 
 ClosestAnswers compare_closest_with_cpu(const HostVisibility& host, const SceneBvh& bvh,
                                         std::span<const gpu::BvhRay> rays) {
-  std::vector<gpu::HostClosestRay> records;
-  for (std::size_t i = 0; i < rays.size(); ++i) {
-    records.push_back(gpu::host_closest_ray(glm::vec3(rays[i].origin),
-                                            glm::vec3(rays[i].direction), rays[i].direction.w,
-                                            static_cast<std::uint32_t>(i)));
-  }
+  std::vector<gpu::HostClosestRay> records = host_closest_records(rays);
   ClosestAnswers a;
   a.traced = host.trace_closest(records);
   std::size_t same = 0;

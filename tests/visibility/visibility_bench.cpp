@@ -10,7 +10,9 @@
 // visibility backend (lighting/visibility/host_visibility.h: its own Embree scenes, streams of
 // 256 rays through rtcOccluded1M) on the shadow-ray sets, and on the primary set its G-buffer
 // trace (HostVisibility::trace_primary: the camera rays made from the frame constants,
-// rtcIntersect1M), with its agreement (hit/miss, and the same triangle).
+// rtcIntersect1M), with its agreement (hit/miss, and the same triangle); on the "bsdf" set
+// (closest hits from the primary hits, like restir.initial's BSDF candidates) its closest-hit
+// trace (HostVisibility::trace_closest).
 // "texel" and "cpu" trace the renderer's layout (lighting/bvh/scene_bvh.h: the fixed instances
 // merged into one world-space tree, movers instanced); "texel two-level" and "cpu two-level" the
 // same scene with every instance under the TLAS (the layout before the merge).
@@ -190,6 +192,9 @@ int run(int argc, char** argv) {
         make_frame_constants(level.camera, w, h, 0, 1, {});
     std::vector<RaySet> sets;
     sets.push_back({"primary", 0, primary, ""});
+    sets.push_back({"bsdf", 0, test::bsdf_rays(level, data, primary, 77),
+                    "closest hits from the primary hits, cosine about the normal (restir.initial's "
+                    "BSDF candidates)"});
     sets.push_back(
         {"probe", 1,
          test::shadow_rays(data.bvh, primary, data.lights, data.scene_radius(), {}, 1234), ""});
@@ -240,6 +245,11 @@ int run(int argc, char** argv) {
         if (set.mode == 1) {
           std::vector<gpu::HostShadowRay> records = test::host_records(set.rays);
           const double t = wall_ms([&] { host.trace(records); });
+          if (r >= 0) ms[set.name]["host"].push_back(t);
+        } else if (set.name != "primary") {
+          // restir.initial's closest hits: the records as its "closestemit" variant writes them.
+          std::vector<gpu::HostClosestRay> records = test::host_closest_records(set.rays);
+          const double t = wall_ms([&] { host.trace_closest(records); });
           if (r >= 0) ms[set.name]["host"].push_back(t);
         } else {
           // The host G-buffer's trace: the same pixels' camera rays, made from the frame constants.
@@ -328,10 +338,18 @@ int run(int argc, char** argv) {
         agree += fmt::format(" host {:.4f}%", 100.0 * static_cast<double>(same) /
                                                   std::max<std::size_t>(cpu.size(), 1));
       } else {
-        // The host G-buffer names the triangle: the same hit or miss, and the same (instance,
-        // triangle) where both hit.
+        // The host names the triangle: the same hit or miss, and the same (instance, triangle)
+        // where both hit. Primary rays through the host G-buffer's trace, the others as
+        // restir.initial's closest-hit records.
         std::vector<glm::uvec2> hits(set.rays.size());
-        host.trace_primary(primary_constants, w, h, hits);
+        if (set.name == "primary") {
+          host.trace_primary(primary_constants, w, h, hits);
+        } else {
+          std::vector<gpu::HostClosestRay> records = test::host_closest_records(set.rays);
+          host.trace_closest(records);
+          for (std::size_t i = 0; i < records.size(); ++i)
+            hits[i] = glm::uvec2(records[i].instance, records[i].primitive);
+        }
         std::size_t same = 0, same_triangle = 0;
         for (std::size_t i = 0; i < cpu.size(); ++i) {
           const bool cpu_hit = cpu[i].x != ~0u, host_hit = hits[i].x != gpu::kNoInstance;

@@ -106,6 +106,19 @@ inline std::vector<gpu::HostShadowRay> host_records(std::span<const gpu::BvhRay>
   return records;
 }
 
+// The host backend's closest-hit records of probe-format rays (origin, direction, tmax =
+// direction.w), as restir.initial's "closestemit" variant writes them, slot = ray index.
+inline std::vector<gpu::HostClosestRay> host_closest_records(std::span<const gpu::BvhRay> rays) {
+  std::vector<gpu::HostClosestRay> records;
+  records.reserve(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    records.push_back(gpu::host_closest_ray(glm::vec3(rays[i].origin),
+                                            glm::vec3(rays[i].direction), rays[i].direction.w,
+                                            static_cast<std::uint32_t>(i)));
+  }
+  return records;
+}
+
 // The CPU answers in the probe's format (x = instance or ~0u, w = visible for mode 1).
 inline std::vector<glm::uvec4> cpu_probe(const SceneBvh& bvh, std::span<const gpu::BvhRay> rays,
                                          std::uint32_t mode) {
