@@ -84,9 +84,9 @@ class HostVisibility {
   std::size_t last_traced() const { return last_traced_; }
 
   // Closest hits of every record in place on all host threads (shared/host_visibility.h's
-  // HostClosestRay): instance (kNoInstance on a miss), triangle of the instance's mesh,
-  // barycentrics and ray.tfar = the hit distance; inactive records stay misses. Returns how many
-  // records held an active ray.
+  // HostClosestRay; only the ray part is read, the hit is reset first): instance (kNoInstance on
+  // a miss), triangle of the instance's mesh, barycentrics and ray.tfar = the hit distance;
+  // inactive records read as misses. Returns how many records held an active ray.
   std::size_t trace_closest(std::span<gpu::HostClosestRay> rays) const;
   // Records that held an active ray in the last visibility.host_closest pass.
   std::size_t last_closest_traced() const { return last_closest_traced_; }

@@ -154,8 +154,9 @@ uint vis_closest_end = 0u;
 
 #ifdef LANTERN_VISIBILITY_HOST_CLOSEST_EMIT
 // Emit: vis_trace_closest records the ray and answers "miss" (the pass keeps nothing it computes
-// from that); vis_host_closest_end writes the slots left unasked without a ray. Each slot is
-// written once.
+// from that); vis_host_closest_end writes the slots left unasked without a ray. Each slot's ray
+// is written once, and only the ray: the host resets the hit before it traces (48 of the 80
+// bytes: restir.initial_rays 3.57 -> 3.11 ms on night_market 320x180).
 void vis_host_closest_begin(uint first, uint count) {
   vis_closest_slot = first;
   vis_closest_end = first + count;
@@ -163,14 +164,15 @@ void vis_host_closest_begin(uint first, uint count) {
 
 bool vis_trace_closest(vec3 origin, vec3 dir, float tmax, out VisHit hit) {
   hit = VisHit(0u, 0u, 0.0, 0.0, tmax);
-  host_closest_rays.r[vis_closest_slot] = host_closest_ray(origin, dir, tmax, vis_closest_slot);
+  host_closest_rays.r[vis_closest_slot].ray =
+      host_closest_ray(origin, dir, tmax, vis_closest_slot).ray;
   ++vis_closest_slot;
   return false;
 }
 
 void vis_host_closest_end() {
   for (uint k = vis_closest_slot; k < vis_closest_end; ++k)
-    host_closest_rays.r[k] = host_closest_none();
+    host_closest_rays.r[k].ray = host_closest_none().ray;
 }
 #else
 // Resolve: the host's hit for the invocation's next slot.

@@ -90,9 +90,9 @@ LANTERN_FUNC bool host_ray_visible(HostShadowRay r) {
 // One closest-hit ray and, once the host traced it, its hit: Embree's RTCRayHit layout (the ray,
 // then RTCHit), so the host hands the mapped records to rtcIntersect1M as they are (the
 // "closestemit" / "closestresolve" variants of restir.initial: its BSDF candidates). The emit
-// variant writes the ray from origin along direction for t in [0, tmax] (units of direction; the
-// caller offsets the origin off its surface, bvh_ray_origin, as for the BVH) with no hit; the
-// host then names the hit as the compute BVH does (VisHit): `instance` (Embree's geomID) the
+// variant writes only the ray, from origin along direction for t in [0, tmax] (units of
+// direction; the caller offsets the origin off its surface, bvh_ray_origin, as for the BVH); the
+// host resets every record's hit, traces, and names the hit as the compute BVH does (VisHit): `instance` (Embree's geomID) the
 // scene instance index, or kNoInstance where the ray meets nothing, `primitive` the triangle of
 // the instance's mesh, (u, v) the barycentrics of vertices 1 and 2, ray.tfar the hit distance.
 struct HostClosestRay {

@@ -196,6 +196,10 @@ TEST_F(HostVisibilityTest, ClosestRecordsWithoutARayMiss) {
   records.push_back(gpu::host_closest_ray(below, glm::vec3(0.0f, inf, 0.0f), gpu::kBvhMiss, 2));
   records.push_back(gpu::host_closest_ray(below, up, 0.0f, 3));
   records.push_back(gpu::host_closest_ray(below, up, nan, 4));
+  // The emit variant writes only the ray: whatever a record's hit held before is reset.
+  records[5].instance = 0;
+  records[5].primitive = 0;
+  records[5].instance_id = 0;
   for (const gpu::HostClosestRay& r : records) {
     EXPECT_FALSE(gpu::host_ray_active(r.ray)) << "record " << r.ray.id << " holds an active ray";
   }
