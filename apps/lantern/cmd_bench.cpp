@@ -216,6 +216,9 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
   // Host visibility: the shadow rays visibility.host traced per frame (pixels without a ray —
   // sky, no sample, a pick that lights nothing — trace none).
   std::vector<double> host_rays;
+  // ... and the closest-hit rays visibility.host_closest traced (restir.initial's BSDF
+  // candidates, where the settings draw them).
+  std::vector<double> host_closest_rays;
   const lighting::HostVisibility* host = session.renderer().scene().host_visibility();
   std::map<std::string, std::vector<double>> pass_ms, system_ms;
   std::vector<std::string> pass_order;
@@ -241,7 +244,10 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
     }
     denoise_ms.push_back(denoise);
     upscale_ms.push_back(upscale);
-    if (host != nullptr) host_rays.push_back(static_cast<double>(host->last_traced()));
+    if (host != nullptr) {
+      host_rays.push_back(static_cast<double>(host->last_traced()));
+      host_closest_rays.push_back(static_cast<double>(host->last_closest_traced()));
+    }
     for (const auto& [name, ms] : t.systems) system_ms[name].push_back(ms);
 
     // Trace: systems laid out in run order inside the step (exact with one worker thread), the
@@ -324,14 +330,32 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
   }
   // The host's real throughput: rays it traced over visibility.host's time (the line above
   // counts one ray per pixel, as for the GPU backends).
-  double host_rays_median = 0.0, host_rps = 0.0;
-  if (host != nullptr && m.passes.contains("visibility.host")) {
-    host_rays_median = perf::summarize(host_rays).median;
-    const double host_ms = m.passes["visibility.host"].median;
-    if (host_ms > 0.0) host_rps = host_rays_median / (host_ms * 1e-3);
+  // Median rays per frame and rays per second of a host pass, where the frame ran it.
+  struct HostRate {
+    double rays_per_frame = 0.0;
+    double rays_per_second = 0.0;
+  };
+  const auto host_rate = [&](const char* pass, const std::vector<double>& rays) {
+    HostRate r;
+    if (host == nullptr || !m.passes.contains(pass)) return r;
+    r.rays_per_frame = perf::summarize(rays).median;
+    const double ms = m.passes[pass].median;
+    if (ms > 0.0) r.rays_per_second = r.rays_per_frame / (ms * 1e-3);
+    return r;
+  };
+  const HostRate shadow_host = host_rate("visibility.host", host_rays);
+  if (m.passes.contains("visibility.host")) {
     std::printf("host visibility: %.0f shadow rays traced per frame (%.0f%% of pixels), %.3g rays/s "
                 "in visibility.host\n",
-                host_rays_median, 100.0 * host_rays_median / pixels, host_rps);
+                shadow_host.rays_per_frame, 100.0 * shadow_host.rays_per_frame / pixels,
+                shadow_host.rays_per_second);
+  }
+  const HostRate closest_host = host_rate("visibility.host_closest", host_closest_rays);
+  if (m.passes.contains("visibility.host_closest")) {
+    std::printf("host closest hits: %.0f BSDF candidate rays traced per frame (%.2f per pixel), "
+                "%.3g rays/s in visibility.host_closest\n",
+                closest_host.rays_per_frame, closest_host.rays_per_frame / pixels,
+                closest_host.rays_per_second);
   }
 
   if (o.startup) {
@@ -371,7 +395,12 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"calibration_ms", m.calibration_ms},
         {"rays_per_second",
          {{"primary", primary_rps}, {"primary_host", primary_host_rps}, {"shadow", shadow_rps}}},
-        {"host_visibility", {{"rays_per_frame", host_rays_median}, {"rays_per_second", host_rps}}},
+        {"host_visibility",
+         {{"rays_per_frame", shadow_host.rays_per_frame},
+          {"rays_per_second", shadow_host.rays_per_second}}},
+        {"host_closest_hits",
+         {{"rays_per_frame", closest_host.rays_per_frame},
+          {"rays_per_second", closest_host.rays_per_second}}},
     };
     nlohmann::json out = j;
     if (o.startup) {
