@@ -44,8 +44,7 @@ void RestirIntegrator::warm_up() {
   } else {
     pipelines.push_back(&shade_.pipeline());
   }
-  if (host_ && settings_.bsdf_candidates > 0) {
-    make_host_initial();
+  if (host_traces_bsdf(settings_.bsdf_candidates)) {
     pipelines.push_back(&initial_rays_->pipeline());
     pipelines.push_back(&initial_closest_->pipeline());
   } else {
@@ -217,10 +216,9 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
         // "restir.surfaces" history) and each pixel's initial reservoir from light (and BSDF)
         // candidates. Reads the G-buffer and the scene (lights, alias table, materials, BVH).
         std::vector<BufferHandle> out;
-        if (host_ != nullptr && push.bsdf_candidates > 0) {
+        if (host_traces_bsdf(push.bsdf_candidates)) {
           // Host visibility: the BSDF candidates' rays are written by restir.initial_rays,
           // traced by visibility.host_closest, and their hits read by restir.initial.
-          make_host_initial();
           const BufferHandle hits = host_->add_closest_rays(
               graph, static_cast<std::uint32_t>(pixels * push.bsdf_candidates),
               [&](BufferHandle empty) {
@@ -341,18 +339,19 @@ void RestirIntegrator::prepare(const GpuScene& scene) {
     shade_occluded_ = std::make_unique<RestirPass>(device_, shaders_, "restir.shade_occluded",
                                                    "shade", "hostresolve");
   }
-  if (host_ != nullptr && settings_.bsdf_candidates > 0) make_host_initial();
   if (scene.volume_count() > 0 && !volume_) {
     volume_ = std::make_unique<VolumeRestir>(device_, shaders_, visibility_);
   }
 }
 
-void RestirIntegrator::make_host_initial() {
-  if (initial_rays_) return;
+bool RestirIntegrator::host_traces_bsdf(std::uint32_t bsdf_candidates) {
+  if (host_ == nullptr || bsdf_candidates == 0) return false;
+  if (initial_rays_) return true;
   initial_rays_ =
       std::make_unique<RestirPass>(device_, shaders_, "restir.initial_rays", "initial", "closestemit");
   initial_closest_ = std::make_unique<RestirPass>(device_, shaders_, "restir.initial", "initial",
                                                   "closestresolve");
+  return true;
 }
 
 }  // namespace lantern::lighting

@@ -64,8 +64,10 @@ class RestirIntegrator final : public Integrator {
   static std::uint32_t local_candidates(const RestirSettings& settings, const FrameInputs& inputs);
 
  private:
-  // restir.initial's two host closest-hit passes (initial_rays_, initial_closest_), once.
-  void make_host_initial();
+  // Whether the host traces restir.initial's BSDF candidates (host visibility and at least one
+  // candidate): the one rule warm_up and add_passes follow. Makes the two passes
+  // (initial_rays_, initial_closest_) the first time it is true.
+  bool host_traces_bsdf(std::uint32_t bsdf_candidates);
 
   runtime::graph::BufferHandle confidence_;  // this frame's final reservoirs (add_passes)
   runtime::Device& device_;
