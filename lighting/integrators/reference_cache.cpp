@@ -19,8 +19,9 @@ namespace lantern::lighting {
 namespace {
 
 // Bump when the reference integrator's output changes for the same inputs (estimator, conventions).
-// 2: media attenuate (issue 14); 3: media scatter light into camera rays.
-constexpr std::uint32_t kReferenceFormatVersion = 3;
+// 2: media attenuate (issue 14); 3: media scatter light into camera rays; 4: analytic lights by a
+// per-pixel walk (integrators/reference.h kReferenceAnalyticWalkMax).
+constexpr std::uint32_t kReferenceFormatVersion = 4;
 
 class Fnv1a {
  public:

@@ -20,6 +20,11 @@ LANTERN_CONST uint kReferenceTileSize = 8u;
 // RNG stream of the reference pass (rng_init's `pass`).
 LANTERN_CONST uint kReferenceRngPass = 0x72u;
 
+// Analytic lights up to this many are estimated by a walk through all of them at every pixel
+// (reference.comp analytic_lights: two evaluations each per pixel and frame); more are drawn
+// from the power alias table like emissive triangles.
+LANTERN_CONST uint kReferenceAnalyticWalkMax = 4096u;
+
 // Default samples per pixel per frame (IntegratorConfig.spp = 0).
 LANTERN_CONST uint kReferenceDefaultSpp = 64u;
 

@@ -6,127 +6,41 @@
 //   (d) under a constant environment map of radiance L: rho * L; under a non-constant map:
 //       rho/pi * E, E = the map's cosine-weighted integral over the upper hemisphere by CPU
 //       quadrature (the same everywhere on the unoccluded plane).
-// Noisy cases: F frames of S samples per pixel each are read back separately; per pixel the mean
-// over frames and its standard error give t = (mean - expected) / se (Student t with F-1 dof).
-// Asserted: the image mean within 0.5% of the expected mean, every |t| < 6.5 (F = 32: p < 1e-6
-// per pixel) and fewer than 1% of pixels beyond |t| > 3.3 (p = 0.002 each). No NaN/Inf anywhere.
+// The scene, the frames and the assertions (per-pixel t against the closed form, the image mean
+// within 0.5%, no NaN/Inf) are tests/reference/reference_plane.h's.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <memory>
 
 #include "engine/level/primitives.h"
-#include "lighting/integrators/offline_render.h"
 #include "lighting/lights/environment_map.h"
-#include "lighting/scene/frame_constants.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/image/image_io.h"
 #include "shared/environment.h"
 #include "tests/reference/polygon_irradiance.h"
+#include "tests/reference/reference_plane.h"
 #include "tests/runtime/gpu_test_support.h"
 
 namespace lantern {
 namespace {
 
-using lighting::OfflineRenderRequest;
-
-constexpr double kPiD = 3.14159265358979323846;
-constexpr float kRho = 0.6f;
-constexpr std::uint32_t kSize = 64;
+using test::expect_matches;
+using test::Frames;
+using test::kPiD;
+using test::kRho;
+using test::plane_level;
+using test::plane_point;
+using test::render_frames;
 
 class ReferenceRenderTest : public runtime::test::GpuTest {
  protected:
   runtime::ShaderLibrary shaders;
 };
-
-// A 20 x 20 Lambertian plane at y = 0 seen from straight above (camera at height `eye`).
-Level plane_level(float eye, float yfov) {
-  Level level;
-  level.name = "reference_plane";
-  level.meshes.push_back(make_plane(glm::vec2(20.0f, 20.0f)));
-  level.materials.push_back(make_lambert(kRho));
-  Instance inst;
-  inst.name = "plane";
-  level.instances.push_back(inst);
-  level.camera.position = glm::vec3(0.0f, eye, 0.0f);
-  level.camera.orientation = look_at_orientation(level.camera.position, glm::vec3(0.0f));
-  level.camera.yfov = yfov;
-  level.has_camera = true;
-  return level;
-}
-
-// World point on the plane y = 0 seen through the centre of pixel (x, y).
-glm::dvec3 plane_point(const Camera& camera, std::uint32_t x, std::uint32_t y) {
-  const glm::mat4 inv = glm::inverse(lighting::camera_view_proj(camera, kSize, kSize));
-  const glm::vec2 ndc = (glm::vec2(static_cast<float>(x), static_cast<float>(y)) + 0.5f) /
-                            static_cast<float>(kSize) * 2.0f -
-                        1.0f;
-  const glm::vec4 a = inv * glm::vec4(ndc, 0.0f, 1.0f);
-  const glm::vec4 b = inv * glm::vec4(ndc, 0.5f, 1.0f);
-  const glm::dvec3 dir = glm::normalize(glm::dvec3(glm::vec3(b) / b.w - glm::vec3(a) / a.w));
-  const glm::dvec3 origin = camera.position;
-  return origin + dir * (-origin.y / dir.y);
-}
-
-struct Frames {
-  std::vector<runtime::ImageRGBA32F> images;
-};
-
-Frames render_frames(runtime::Device& device, runtime::ShaderLibrary& shaders, const Level& level,
-                     std::uint32_t frames, std::uint32_t spp) {
-  OfflineRenderRequest request;
-  request.integrator.name = "reference";
-  request.integrator.spp = spp;
-  request.width = kSize;
-  request.height = kSize;
-  request.frames = frames;
-  request.animate = false;
-  auto result = lighting::render_offline(device, shaders, level, request);
-  EXPECT_EQ(result.images.size(), frames);
-  for (const auto& image : result.images) EXPECT_EQ(image.count_non_finite(), 0u);
-  return {std::move(result.images)};
-}
-
-// The assertions of the file comment for channel 0 (the tests use grey lights and albedo).
-void expect_matches(const Frames& frames,
-                    const std::function<double(std::uint32_t, std::uint32_t)>& expected) {
-  const auto n = static_cast<double>(frames.images.size());
-  double sum_mean = 0.0;
-  double sum_expected = 0.0;
-  double max_t = 0.0;
-  int beyond = 0;
-  for (std::uint32_t y = 0; y < kSize; ++y) {
-    for (std::uint32_t x = 0; x < kSize; ++x) {
-      double s = 0.0;
-      double s2 = 0.0;
-      for (const auto& image : frames.images) {
-        const double v = image.at(x, y)[0];
-        s += v;
-        s2 += v * v;
-      }
-      const double mean = s / n;
-      const double var = std::max(s2 / n - mean * mean, 0.0) * n / (n - 1.0);
-      const double se = std::sqrt(var / n);
-      const double e = expected(x, y);
-      sum_mean += mean;
-      sum_expected += e;
-      // A noiseless pixel (se ~ 0) must match to float precision.
-      const double t = std::abs(mean - e) / std::max(se, 1e-4 * std::abs(e) + 1e-9);
-      max_t = std::max(max_t, t);
-      if (t > 3.3) ++beyond;
-    }
-  }
-  std::printf("reference vs closed form: mean ratio %.5f, max |t| %.2f, %d pixels beyond 3.3\n",
-              sum_mean / sum_expected, max_t, beyond);
-  EXPECT_NEAR(sum_mean / sum_expected, 1.0, 0.005) << "image mean vs closed form";
-  EXPECT_LT(max_t, 6.5) << "largest per-pixel |t|";
-  EXPECT_LT(beyond, static_cast<int>(kSize * kSize / 100)) << "pixels beyond |t| > 3.3";
-}
 
 TEST_F(ReferenceRenderTest, PlaneUnderPointLightMatchesClosedForm) {
   Level level = plane_level(4.0f, 0.6f);
