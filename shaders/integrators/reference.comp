@@ -13,10 +13,11 @@
 // Analytic lights (point, spot, directional; the light list's tail after the emissive triangles)
 // are estimated apart when there are at most kReferenceAnalyticWalkMax of them: per pixel, `spp`
 // stratified picks from all of them in proportion to each one's unshadowed contribution at the
-// point (two walks through the list: the total, then the picks), one shadow ray each. That
-// estimate is exact but for visibility, where the power alias table picks a weak light beside the
-// point about once in 10^4-10^5 samples (night_market: the old reference's two seeds differed by a
-// relMSE of 0.27 at 2048 spp); the alias draws that land on an analytic light then count 0.
+// point (two walks through the list: the total, then the picks), one shadow ray per light
+// picked. That estimate is exact but for visibility (and the media's transmittance), where the
+// power alias table picks a weak light beside the point about once in 10^4-10^5 samples
+// (night_market: the old reference's two seeds differed by a relMSE of 0.27 at 2048 spp); the
+// alias draws that land on an analytic light then count 0.
 // Reads: G-buffer images (shared/gbuffer.h) and the scene (lib/scene_buffers.glsl: frame
 // constants, geometry, materials, lights, the environment map — a black 1-texel stand-in when the
 // level has none — and the BVH through lib/visibility.glsl).
@@ -98,11 +99,14 @@ vec3 analytic_contribution(Shading sh, uint i, out vec3 y) {
 // The analytic lights' direct light: n picks with probability t_i / total (t: ReSTIR's target,
 // the contribution's luminance), stratified over [0, total) by one offset; each pick adds
 // c_i V T total / (n t_i). Unbiased: pick k lands on light i with probability n x the overlap of
-// stratum k with i's interval, over total. A light picked several times traces one ray (the
-// picks' mean is the same; V is the same ray's).
-vec3 analytic_pick(Shading sh, vec3 c, vec3 y, float weight, inout uint rng) {
+// stratum k with i's interval, over total. A light picked k times traces one shadow ray (V is
+// the same ray's) and estimates the media's transmittance k times (each pick its own estimate:
+// ratio tracking is random, one estimate for all k would multiply its noise by k).
+vec3 analytic_picks(Shading sh, vec3 c, vec3 y, float weight, uint k, inout uint rng) {
   if (!vis_visible(sh.x, y)) return vec3(0.0);
-  return c * scene_transmittance_between(sh.x, y, rng) * weight;
+  vec3 transmittance = vec3(0.0);
+  for (uint j = 0u; j < k; ++j) transmittance += scene_transmittance_between(sh.x, y, rng);
+  return c * transmittance * weight;
 }
 
 vec3 analytic_lights(Shading sh, uint n, inout uint rng) {
@@ -124,15 +128,17 @@ vec3 analytic_lights(Shading sh, uint n, inout uint rng) {
     if (!(t > 0.0)) continue;
     last = i;
     cum += t;
-    float until = i + 1u == end ? float(n) : clamp(ceil(cum / total * float(n) - offset), 0.0, float(n));
+    // Picks k < n with (k + offset) / n < cum / total have landed on this light or earlier ones.
+    float until = i + 1u == end ? float(n)
+                                : clamp(ceil(cum / total * float(n) - offset), 0.0, float(n));
     if (until > float(picks)) {
-      sum += analytic_pick(sh, c, y, total / t * (until - float(picks)), rng);
+      sum += analytic_picks(sh, c, y, total / t, uint(until) - picks, rng);
       picks = uint(until);
     }
   }
   if (picks < n && last < end) {
     vec3 c = analytic_contribution(sh, last, y);
-    sum += analytic_pick(sh, c, y, total / light_eval_target(c) * float(n - picks), rng);
+    sum += analytic_picks(sh, c, y, total / light_eval_target(c), n - picks, rng);
   }
   return sum / float(n);
 }

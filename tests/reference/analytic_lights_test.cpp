@@ -146,7 +146,8 @@ TEST_F(ReferenceAnalyticLightsTest, BehindAnOccluderTheMeanIsTheVisibleLightsSum
   auto clean = [&](std::uint32_t x, std::uint32_t y) {
     const glm::dvec3 c = test::plane_point(level.camera, x, y);
     if (segment_hits_box(eye, c, lo, hi)) return false;
-    for (const glm::vec2 at : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(0, 1), glm::vec2(1, 1)}) {
+    for (const glm::vec2 at :
+         {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(0, 1), glm::vec2(1, 1)}) {
       const glm::dvec3 corner = test::plane_point(level.camera, x, y, at);
       if (segment_hits_box(eye, corner, lo, hi)) return false;
       for (const Light& light : level.lights) {
@@ -197,8 +198,8 @@ TEST_F(ReferenceAnalyticLightsTest, BehindAnOccluderTheMeanIsTheVisibleLightsSum
         const bool whole = std::abs(k - std::round(k)) < 1e-3 * kPicks;
         if (!whole || std::abs(k - kPicks * lit / total) > runs + 1e-3) {
           if (broken++ < 5) {
-            std::printf("pixel (%u, %u): %.4f picks lit, visible share %.4f of %u, %d runs\n", x,
-                        y, k, lit / total, kPicks, runs);
+            std::printf("pixel (%u, %u): %.4f picks lit, visible share %.4f of %u, %d runs\n", x, y,
+                        k, lit / total, kPicks, runs);
           }
         }
         sum_image += image.at(x, y)[0];

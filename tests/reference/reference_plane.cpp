@@ -30,10 +30,9 @@ Level plane_level(float eye, float yfov) {
 
 glm::dvec3 plane_point(const Camera& camera, std::uint32_t x, std::uint32_t y, glm::vec2 at) {
   const glm::mat4 inv = glm::inverse(lighting::camera_view_proj(camera, kSize, kSize));
-  const glm::vec2 ndc =
-      (glm::vec2(static_cast<float>(x), static_cast<float>(y)) + at) / static_cast<float>(kSize) *
-          2.0f -
-      1.0f;
+  const glm::vec2 ndc = (glm::vec2(static_cast<float>(x), static_cast<float>(y)) + at) /
+                            static_cast<float>(kSize) * 2.0f -
+                        1.0f;
   const glm::vec4 a = inv * glm::vec4(ndc, 0.0f, 1.0f);
   const glm::vec4 b = inv * glm::vec4(ndc, 0.5f, 1.0f);
   const glm::dvec3 dir = glm::normalize(glm::dvec3(glm::vec3(b) / b.w - glm::vec3(a) / a.w));
