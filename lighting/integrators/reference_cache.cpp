@@ -20,8 +20,9 @@ namespace {
 
 // Bump when the reference integrator's output changes for the same inputs (estimator, conventions).
 // 2: media attenuate (issue 14); 3: media scatter light into camera rays; 4: analytic lights by a
-// per-pixel walk (integrators/reference.h kReferenceAnalyticWalkMax).
-constexpr std::uint32_t kReferenceFormatVersion = 4;
+// per-pixel walk (integrators/reference.h kReferenceAnalyticWalkMax); 5: the walk only while it
+// costs at most kReferenceAnalyticWalkPerSample lights per sample.
+constexpr std::uint32_t kReferenceFormatVersion = 5;
 
 class Fnv1a {
  public:

@@ -11,7 +11,8 @@
 // Both strategies' pdfs are evaluated for every direction that either can produce, so emissive
 // triangles and the environment are counted once. Direct lighting only (no bounces).
 // Analytic lights (point, spot, directional; the light list's tail after the emissive triangles)
-// are estimated apart when there are at most kReferenceAnalyticWalkMax of them: per pixel, `spp`
+// are estimated apart when there are at most kReferenceAnalyticWalkMax of them and
+// kReferenceAnalyticWalkPerSample per sample (integrators/reference.h): per pixel, `spp`
 // stratified picks from all of them in proportion to each one's unshadowed contribution at the
 // point (two walks through the list: the total, then the picks), one shadow ray per light
 // picked. That estimate is exact but for visibility (and the media's transmittance), where the
@@ -81,10 +82,12 @@ vec3 brdf(Shading sh, vec3 l) {
 }
 
 // The first light analytic_lights() estimates: the first analytic light when there are at most
-// kReferenceAnalyticWalkMax, else none (the alias table draws them all).
+// kReferenceAnalyticWalkMax and kReferenceAnalyticWalkPerSample per sample, else none (the alias
+// table draws them all).
 uint analytic_walk_first() {
   uvec4 counts = frame_constants.frame.counts;
-  bool walk = counts.x > counts.z && counts.x - counts.z <= kReferenceAnalyticWalkMax;
+  uint most = min(kReferenceAnalyticWalkMax, kReferenceAnalyticWalkPerSample * max(push.spp, 1u));
+  bool walk = counts.x > counts.z && counts.x - counts.z <= most;
   return walk ? counts.z : 0xffffffffu;
 }
 

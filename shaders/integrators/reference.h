@@ -24,6 +24,11 @@ LANTERN_CONST uint kReferenceRngPass = 0x72u;
 // (reference.comp analytic_lights: two evaluations each per pixel and frame); more are drawn
 // from the power alias table like emissive triangles.
 LANTERN_CONST uint kReferenceAnalyticWalkMax = 4096u;
+// ... and only while the walk's fixed cost is at most this many lights per sample of the frame's
+// spp: at one sample per pixel the walk through night_market's 1200 lights took 12x the frame
+// (and lost at equal time), at 64 samples 1.7x, at 256 1.35x (README, "The reference's analytic
+// lights").
+LANTERN_CONST uint kReferenceAnalyticWalkPerSample = 64u;
 
 // Default samples per pixel per frame (IntegratorConfig.spp = 0).
 LANTERN_CONST uint kReferenceDefaultSpp = 64u;

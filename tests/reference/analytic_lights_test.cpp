@@ -10,6 +10,8 @@
 //     frames is the visible lights' sum within 0.5% (pixels whose visibility changes within the
 //     pixel, and those that see the occluder, left out). The stratified picks are nearly
 //     deterministic (a pixel may show the same count in all 32 frames), so no per-pixel t.
+//   - The walk runs only while it costs at most kReferenceAnalyticWalkPerSample lights per
+//     sample: at that count one frame is the closed form, with one light more it is not.
 //   - Beyond the walk's limit the power alias table draws them: expect_matches' per-pixel t-tests
 //     and image mean hold over 32 frames of 8 samples.
 #include <gtest/gtest.h>
@@ -99,6 +101,38 @@ TEST_F(ReferenceAnalyticLightsTest, WithoutOccludersOneSampleIsTheClosedForm) {
   }
   std::printf("one sample per pixel vs the closed form: worst relative error %.2e\n", worst);
   EXPECT_EQ(off, 0) << "pixels more than 2e-4 from the closed form (worst " << worst << ")";
+}
+
+// Pixels of `image` more than 2e-4 from the unshadowed sum of `lights` (grey point lights).
+int pixels_off_the_closed_form(const Level& level, const runtime::ImageRGBA32F& image) {
+  int off = 0;
+  for (std::uint32_t y = 0; y < kSize; ++y) {
+    for (std::uint32_t x = 0; x < kSize; ++x) {
+      const glm::dvec3 q = test::plane_point(level.camera, x, y);
+      double expected = 0.0;
+      for (const Light& light : level.lights) expected += point_light_at(light, q);
+      if (std::abs(image.at(x, y)[0] - expected) > 2e-4 * expected) ++off;
+    }
+  }
+  return off;
+}
+
+// The walk runs only while it costs at most kReferenceAnalyticWalkPerSample lights per sample:
+// one light more than that per sample turns it off (power draws: not exact), as many turns it on.
+TEST_F(ReferenceAnalyticLightsTest, TheWalkRunsWhileItsCostPerSampleIsBounded) {
+  Level level = test::plane_level(4.0f, 0.6f);
+  const std::uint32_t spp = 2;
+  level.lights =
+      scattered_point_lights(gpu::kReferenceAnalyticWalkPerSample * spp, 0.3f, 0.2f, 3.0f, 9);
+  const int walked = pixels_off_the_closed_form(
+      level, test::render_frames(device, shaders, level, 1, spp).images.at(0));
+  level.lights.push_back(level.lights.front());
+  const int drawn = pixels_off_the_closed_form(
+      level, test::render_frames(device, shaders, level, 1, spp).images.at(0));
+  std::printf("%u lights: %d pixels off the closed form; one more: %d\n",
+              gpu::kReferenceAnalyticWalkPerSample * spp, walked, drawn);
+  EXPECT_EQ(walked, 0);
+  EXPECT_GT(drawn, static_cast<int>(kSize * kSize / 2));
 }
 
 // Does the segment from q to p cross the axis-aligned box [lo, hi]? (slab test)
