@@ -36,6 +36,11 @@ constexpr std::uint32_t kJitterPhases = 8;
 
 }  // namespace
 
+glm::vec2 FrameRenderer::jitter_sequence(std::uint32_t frame) {
+  return glm::vec2(halton(frame % kJitterPhases + 1, 2), halton(frame % kJitterPhases + 1, 3)) -
+         0.5f;
+}
+
 FrameOutput parse_frame_output(std::string_view text) {
   if (text == "raw") return FrameOutput::Raw;
   if (text == "denoised") return FrameOutput::Denoised;
@@ -130,9 +135,7 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   const bool upscaling = width_ != output_width_ || height_ != output_height_;
   const bool jitter = jitter_mode_ == Jitter::On || (jitter_mode_ == Jitter::WhenUpscaling && upscaling);
   previous_jitter_ = history_valid ? jitter_ : glm::vec2(0.0f);
-  jitter_ = jitter ? glm::vec2(halton(frames_ % kJitterPhases + 1, 2),
-                               halton(frames_ % kJitterPhases + 1, 3)) - 0.5f
-                   : glm::vec2(0.0f);
+  jitter_ = jitter ? jitter_sequence(frames_) : glm::vec2(0.0f);
   if (!history_valid) previous_jitter_ = jitter_;
   gpu::FrameConstants constants =
       make_frame_constants(snapshot, width_, height_, frames_, seed_, counts, history_valid);
@@ -169,7 +172,8 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
     hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr, integrator_->sample_confidence());
   }
   if (width_ != output_width_ || height_ != output_height_) {
-    hdr = upscaler_->add_pass(graph, inputs_, hdr, output_width_, output_height_, jitter_);
+    hdr = upscaler_->add_pass(graph, inputs_, hdr, output_width_, output_height_,
+                              glm::vec4(jitter_, previous_jitter_));
   }
   ++frames_;
   resized_ = false;

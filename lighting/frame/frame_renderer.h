@@ -84,6 +84,9 @@ class FrameRenderer {
   void set_jitter(Jitter jitter) { jitter_mode_ = jitter; }
   // This frame's sample offset from the pixel centres (pixels; 0 when off), after add_frame.
   glm::vec2 jitter() const { return jitter_; }
+  // The offset of the samples of the renderer's frame `frame` (counted from its first, cuts
+  // included) while the jitter is on: Halton (2, 3) points 1..8, centred on the pixel.
+  static glm::vec2 jitter_sequence(std::uint32_t frame);
 
   // A new output size (the internal size follows it): the next frame has no history.
   void resize(std::uint32_t width, std::uint32_t height);

@@ -909,6 +909,53 @@ TEST_F(DenoiseGpuTest, InternalSizesBelowTheOutputResampleALinearRampExactly) {
   }
 }
 
+// A still view upscaled frame after frame: each frame's internal samples are a linear ramp taken
+// at that frame's jittered positions (FrameRenderer::jitter_sequence), so each frame's bilinear
+// resampling is the ramp at the output pixel, and the output history, which a still view must
+// keep where it is, holds the same value: the output is the ramp at every interior pixel on every
+// frame, history blended in from the second on. The motion vectors lead to last frame's jittered
+// samples (the jitter step); reprojecting the unjittered output history along them moved it by
+// twice that step each frame at half size (up to 0.017 off here: a blur of the whole image).
+TEST_F(DenoiseGpuTest, StillViewKeepsTheUpscaledHistoryInPlace) {
+  const auto ramp = [](float x, float y) { return 0.1f + 0.01f * x + 0.02f * y; };
+  const std::uint32_t kInW = kW / 2, kInH = kH / 2;
+  Run run = make_run();
+  run.harness->renderer().set_output(lighting::FrameOutput::Raw);
+  run.harness->renderer().set_internal_size(kInW, kInH);
+  const glm::vec2 scale(static_cast<float>(kInW) / kW, static_cast<float>(kInH) / kH);
+  FrameSnapshot s = test::first_snapshot(level, kW, kH);
+  for (std::uint32_t f = 0; f < 10; ++f) {
+    if (f > 0) s = frozen(s);
+    const glm::vec2 jitter = lighting::FrameRenderer::jitter_sequence(f);
+    ImageRGBA32F in(kW, kH);  // the first kInW x kInH pixels, rows of kInW, are read
+    for (std::uint32_t y = 0; y < kInH; ++y) {
+      for (std::uint32_t x = 0; x < kInW; ++x) {
+        const float v = ramp(static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y);
+        for (int c = 0; c < 4; ++c) {
+          in.pixels[4 * (std::size_t{y} * kInW + x) + c] = c == 3 ? 1.0f : v;
+        }
+      }
+    }
+    const ImageRGBA32F out = render(run, in, s);
+    ASSERT_EQ(run.harness->renderer().jitter(), jitter) << "frame " << f;
+    std::size_t inside = 0;
+    float worst = 0.0f;
+    for (std::uint32_t y = 0; y < kH; ++y) {
+      for (std::uint32_t x = 0; x < kW; ++x) {
+        // The output pixel in internal coordinates; its bilinear footprint stays inside the image
+        // for every jitter (|jitter| < 0.5) away from the last internal pixel's half.
+        const glm::vec2 u = (glm::vec2(x, y) + 0.5f) * scale - 0.5f;
+        if (u.x < 0.5f || u.y < 0.5f || u.x > kInW - 1.5f || u.y > kInH - 1.5f) continue;
+        ++inside;
+        const float* p = &out.pixels[4 * (std::size_t{y} * kW + x)];
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(p[c] - ramp(u.x, u.y)));
+      }
+    }
+    EXPECT_GT(inside, std::size_t{kW} * kH * 3 / 4);
+    EXPECT_LT(worst, 1e-5f) << "frame " << f << ": largest difference from the ramp";
+  }
+}
+
 // With the sample jitter on, a still scene's motion vectors are exactly the jitter step (this
 // frame's offset minus last frame's: the previous frame's pixel whose sample was nearest), so
 // ReSTIR's and the denoiser's reprojection stay consistent with it. Both G-buffer methods: the
