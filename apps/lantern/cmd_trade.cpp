@@ -4,7 +4,10 @@
 // error is the relMSE against cached converged references at a few frames spread over the run
 // (lighting/integrators/reference_cache.h). Also measured: the baseline at equal time (as many
 // baseline frames of the same instant averaged as fit in one ReSTIR frame). Writes trade.json,
-// trade.csv and trade.png (error against ms, log-log, Pareto front marked).
+// trade.csv and trade.png (error against ms, log-log, Pareto front marked). With --render-scale
+// below 1 the denoised frames are rendered at that internal size and upscaled (upscale.temporal)
+// to --size, as `play`'s dynamic resolution shows them; the raw columns stay at --size, the
+// unbiased image the denoised one is measured against.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -48,6 +51,7 @@ struct TradeOptions {
   std::uint32_t reference_frames = 16;
   bool no_baseline = false;
   bool images = false;  // write the last evaluated frame's images beside trade.json
+  float render_scale = 1.0f;  // the denoised frames' internal size / --size
 };
 
 struct Config {
@@ -66,7 +70,8 @@ struct Row {
   Config config;
   double frame_ms = 0.0;       // GPU ms of the raw frame (the denoise.* passes not included)
   double frame_wall_ms = 0.0;
-  double denoise_ms = 0.0;     // GPU ms of the denoise.* passes
+  double denoise_ms = 0.0;     // GPU ms of the denoise.* and upscale.* passes
+  double denoised_frame_ms = 0.0;  // GPU ms of the denoised frame (at --render-scale)
   std::vector<double> relmse;  // per evaluated frame, raw image
   std::vector<double> relmse_denoised;
   std::vector<double> mean_ratio_denoised;  // mean(denoised) / mean(reference) per frame
@@ -222,6 +227,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   const double noise_ref = noise_known ? mean_of(reference_noise) : -1.0;
 
   std::vector<Row> rows;
+  std::pair<std::uint32_t, std::uint32_t> denoised_internal{width, height};
   for (const Config& cfg : cfgs) {
     Row row{cfg};
     // The same frames twice: the raw output (what `render` writes: the raw columns and the frame
@@ -236,9 +242,11 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                                          .width = width,
                                          .height = height,
                                          .seed = common.seed,
-                                         .output = output});
+                                         .output = output,
+                                         .render_scale = denoised ? o.render_scale : 1.0f});
       session.warm_up();
-      std::vector<double> gpu, wall, denoise;
+      if (denoised) denoised_internal = {session.renderer().width(), session.renderer().height()};
+      std::vector<double> gpu, wall, denoise, denoised_gpu;
       std::size_t next = 0;
       runtime::ImageRGBA32F previous;
       for (std::uint32_t k = 0; k < frames; ++k) {
@@ -250,9 +258,10 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
         if (denoised) {
           double denoise_ms = 0.0;
           for (const auto& [name, ms] : t.passes) {
-            if (name.rfind("denoise.", 0) == 0) denoise_ms += ms;
+            if (name.rfind("denoise.", 0) == 0 || name.rfind("upscale.", 0) == 0) denoise_ms += ms;
           }
           denoise.push_back(denoise_ms);
+          denoised_gpu.push_back(t.gpu_ms);
         } else {
           gpu.push_back(t.gpu_ms);
           wall.push_back(t.wall_ms);
@@ -276,6 +285,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
       }
       if (denoised) {
         row.denoise_ms = perf::summarize(denoise).median;
+        row.denoised_frame_ms = perf::summarize(denoised_gpu).median;
       } else {
         row.frame_ms = perf::summarize(gpu).median;
         row.frame_wall_ms = perf::summarize(wall).median;
@@ -332,7 +342,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   nlohmann::json jrows = nlohmann::json::array();
   std::string csv =
       "name,integrator,frame_ms,frame_wall_ms,relmse,pareto,denoise_ms,relmse_denoised,"
-      "mean_ratio_denoised,flicker_raw,flicker_denoised,settings\n";
+      "mean_ratio_denoised,flicker_raw,flicker_denoised,settings,denoised_frame_ms\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     const std::string& integrator = r.config.integrator.name;
@@ -344,6 +354,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                      {"relmse", r.mean_relmse()},
                      {"relmse_per_frame", r.relmse},
                      {"denoise_ms", r.denoise_ms},
+                     {"denoised_frame_ms", r.denoised_frame_ms},
                      {"relmse_denoised", mean_of(r.relmse_denoised)},
                      {"relmse_denoised_per_frame", r.relmse_denoised},
                      {"relmse_reduction",
@@ -358,14 +369,18 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                      {"settings", settings_json(r.config.integrator)}});
     std::string settings;
     for (const auto& [k, v] : r.config.integrator.settings) settings += fmt::format("{}={};", k, v);
-    csv += fmt::format("{},{},{:.4f},{:.4f},{:.6g},{},{:.4f},{:.6g},{:.5f},{:.6g},{:.6g},{}\n",
+    csv += fmt::format("{},{},{:.4f},{:.4f},{:.6g},{},{:.4f},{:.6g},{:.5f},{:.6g},{:.6g},{},{:.4f}\n",
                        r.config.name, integrator, r.frame_ms, r.frame_wall_ms, r.mean_relmse(),
                        on_front(i) ? 1 : 0, r.denoise_ms, mean_of(r.relmse_denoised),
-                       mean_of(r.mean_ratio_denoised), r.flicker_raw, r.flicker_denoised, settings);
+                       mean_of(r.mean_ratio_denoised), r.flicker_raw, r.flicker_denoised, settings,
+                       r.denoised_frame_ms);
   }
   const nlohmann::json j = {
       {"level", level->name},
       {"size", {width, height}},
+      // The denoised frames' internal size / size (upscale.temporal below 1); raw is at size.
+      {"render_scale", o.render_scale},
+      {"denoised_internal_size", {denoised_internal.first, denoised_internal.second}},
       {"frames", frames},
       {"seed", common.seed},
       {"device", device.info().name},
@@ -408,14 +423,20 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   for (std::size_t i : front) plot.line.emplace_back(rows[i].frame_ms, rows[i].mean_relmse());
   runtime::write_log_log_plot(out / "trade.png", plot);
 
-  std::printf("%-14s %-9s %10s %12s %6s %10s %12s %8s %8s %10s %10s\n", "config", "integr.",
-              "frame ms", "relMSE", "pareto", "denoise ms", "denoised", "mean", "raw mean",
-              "flicker", "x ref");
+  if (denoised_internal != std::pair{width, height}) {
+    std::printf("denoised frames rendered at %ux%u and upscaled to %ux%u (--render-scale %g)\n",
+                denoised_internal.first, denoised_internal.second, width, height,
+                static_cast<double>(o.render_scale));
+  }
+  std::printf("%-14s %-9s %10s %12s %6s %10s %10s %12s %8s %8s %10s %10s\n", "config", "integr.",
+              "frame ms", "relMSE", "pareto", "den. frame", "denoise ms", "denoised", "mean",
+              "raw mean", "flicker", "x ref");
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
-    std::printf("%-14s %-9s %10.2f %12.4g %6s %10.2f %12.4g %8.4f %8.4f %10.4g %10.3g\n",
+    std::printf("%-14s %-9s %10.2f %12.4g %6s %10.2f %10.2f %12.4g %8.4f %8.4f %10.4g %10.3g\n",
                 r.config.name.c_str(), r.config.integrator.name.c_str(), r.frame_ms,
-                r.mean_relmse(), on_front(i) ? "*" : "", r.denoise_ms, mean_of(r.relmse_denoised),
+                r.mean_relmse(), on_front(i) ? "*" : "", r.denoised_frame_ms, r.denoise_ms,
+                mean_of(r.relmse_denoised),
                 mean_of(r.mean_ratio_denoised), mean_of(r.mean_ratio_raw), r.flicker_denoised,
                 flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0);
   }
@@ -457,6 +478,11 @@ void add_trade_command(CLI::App& root, CommonOptions& options) {
       ->capture_default_str();
   cmd->add_option("--reference-frames", opts->reference_frames,
                   "Reference frames averaged (total spp = spp x frames)")
+      ->capture_default_str();
+  cmd->add_option("--render-scale", opts->render_scale,
+                  "Internal size of the denoised frames as a fraction of --size (upscale.temporal "
+                  "reconstructs them at --size); the raw frames stay at --size")
+      ->check(CLI::Range(0.1f, 1.0f))
       ->capture_default_str();
   cmd->add_flag("--images", opts->images,
                 "Also write the last evaluated frame: reference.exr, NAME_raw.exr, "
