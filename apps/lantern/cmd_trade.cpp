@@ -71,7 +71,7 @@ struct Row {
   double frame_ms = 0.0;       // GPU ms of the raw frame (the denoise.* passes not included)
   double frame_wall_ms = 0.0;
   double denoise_ms = 0.0;     // GPU ms of the denoise.* and upscale.* passes
-  double denoised_frame_ms = 0.0;  // GPU ms of the denoised frame (at --render-scale)
+  double denoised_frame_ms = 0.0;  // GPU ms of the denoised frame, at --render-scale
   std::vector<double> relmse;  // per evaluated frame, raw image
   std::vector<double> relmse_denoised;
   std::vector<double> mean_ratio_denoised;  // mean(denoised) / mean(reference) per frame

@@ -29,8 +29,8 @@ gpu::UpscalePush Upscaler::make_push(const FrameInputs& inputs, std::uint32_t ou
 }
 
 BufferHandle Upscaler::add_pass(runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
-                                BufferHandle hdr, std::uint32_t out_width,
-                                std::uint32_t out_height, glm::vec4 jitter) const {
+                                BufferHandle hdr, std::uint32_t out_width, std::uint32_t out_height,
+                                glm::vec4 jitter) const {
   gpu::UpscalePush push = make_push(inputs, out_width, out_height, jitter);
   BufferHandle out = graph.create_history_buffer(
       "upscale.color", {VkDeviceSize{out_width} * out_height * 4 * sizeof(float)});
@@ -56,14 +56,14 @@ BufferHandle Upscaler::add_pass(runtime::graph::RenderGraph& graph, const FrameI
         d.out = b.write(out, Access::StorageWrite);
       },
       [this, push](runtime::graph::PassContext& ctx, const Data& d) {
-        pipeline_.bind(ctx.cmd(),
-                       runtime::Bindings(pipeline_)
-                           .image_view("gbuffer_motion", ctx.view(d.motion), VK_IMAGE_LAYOUT_GENERAL)
-                           .image_view("gbuffer_position", ctx.view(d.position),
-                                       VK_IMAGE_LAYOUT_GENERAL)
-                           .texel_buffer("hdr_in", ctx.texel_view(d.hdr))
-                           .texel_buffer("history", ctx.texel_view(d.history))
-                           .buffer("hdr_out", ctx.buffer(d.out), 0, VK_WHOLE_SIZE));
+        pipeline_.bind(
+            ctx.cmd(),
+            runtime::Bindings(pipeline_)
+                .image_view("gbuffer_motion", ctx.view(d.motion), VK_IMAGE_LAYOUT_GENERAL)
+                .image_view("gbuffer_position", ctx.view(d.position), VK_IMAGE_LAYOUT_GENERAL)
+                .texel_buffer("hdr_in", ctx.texel_view(d.hdr))
+                .texel_buffer("history", ctx.texel_view(d.history))
+                .buffer("hdr_out", ctx.buffer(d.out), 0, VK_WHOLE_SIZE));
         pipeline_.push_constants(ctx.cmd(), push);
         pipeline_.dispatch_threads(ctx.cmd(), push.out_width, push.out_height);
       });
