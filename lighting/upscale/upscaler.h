@@ -1,10 +1,10 @@
 // Upscaler: upscale.temporal, the pass between the internal-size image (denoised or raw) and the
 // output size (shaders/upscale/upscale_temporal.comp): bilinear resampling of this frame's
 // samples plus last frame's output reprojected along the motion vectors (less the jitter step
-// they hold: the output is not jittered) and rectified against the current 3x3 neighbourhood.
-// Its history ("upscale.color", output size) is the graph's: a cut, a resize or a change of
-// internal size leaves none. The frame renderer adds it when the internal size differs from the
-// output size (lighting/frame/frame_renderer.h).
+// they hold: the output is not jittered), fetched by Catmull-Rom and rectified against the
+// current 3x3 neighbourhood. Its history ("upscale.color", output size) is the graph's: a cut, a
+// resize or a change of internal size leaves none. The frame renderer adds it when the internal
+// size differs from the output size (lighting/frame/frame_renderer.h).
 #pragma once
 
 #include <cstdint>
