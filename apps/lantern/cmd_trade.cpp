@@ -369,11 +369,12 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                      {"settings", settings_json(r.config.integrator)}});
     std::string settings;
     for (const auto& [k, v] : r.config.integrator.settings) settings += fmt::format("{}={};", k, v);
-    csv += fmt::format("{},{},{:.4f},{:.4f},{:.6g},{},{:.4f},{:.6g},{:.5f},{:.6g},{:.6g},{},{:.4f}\n",
-                       r.config.name, integrator, r.frame_ms, r.frame_wall_ms, r.mean_relmse(),
-                       on_front(i) ? 1 : 0, r.denoise_ms, mean_of(r.relmse_denoised),
-                       mean_of(r.mean_ratio_denoised), r.flicker_raw, r.flicker_denoised, settings,
-                       r.denoised_frame_ms);
+    csv += fmt::format(
+        "{},{},{:.4f},{:.4f},{:.6g},{},{:.4f},{:.6g},{:.5f},{:.6g},{:.6g},{},{:.4f}\n",
+        r.config.name, integrator, r.frame_ms, r.frame_wall_ms, r.mean_relmse(),
+        on_front(i) ? 1 : 0, r.denoise_ms, mean_of(r.relmse_denoised),
+        mean_of(r.mean_ratio_denoised), r.flicker_raw, r.flicker_denoised, settings,
+        r.denoised_frame_ms);
   }
   const nlohmann::json j = {
       {"level", level->name},
@@ -436,8 +437,8 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
     std::printf("%-14s %-9s %10.2f %12.4g %6s %10.2f %10.2f %12.4g %8.4f %8.4f %10.4g %10.3g\n",
                 r.config.name.c_str(), r.config.integrator.name.c_str(), r.frame_ms,
                 r.mean_relmse(), on_front(i) ? "*" : "", r.denoised_frame_ms, r.denoise_ms,
-                mean_of(r.relmse_denoised),
-                mean_of(r.mean_ratio_denoised), mean_of(r.mean_ratio_raw), r.flicker_denoised,
+                mean_of(r.relmse_denoised), mean_of(r.mean_ratio_denoised),
+                mean_of(r.mean_ratio_raw), r.flicker_denoised,
                 flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0);
   }
   std::printf("reference flicker %.4g (frames %u-%u)\n", flicker_ref, flicker_frame,

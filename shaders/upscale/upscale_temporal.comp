@@ -5,7 +5,8 @@
 // every output pixel's history where it is; the sky's motion is 0), scaled to output pixels,
 // fetched by Catmull-Rom over 4x4 output pixels, and rectified (clamped to the min/max of the 3x3
 // current samples around the pixel: stale history, e.g. a moving emitter's trail, cannot
-// survive), then blended (push.history_weight). At scale 1 with no jitter the weight is 0: the input comes out as it is.
+// survive), then blended (push.history_weight). At scale 1 with no jitter the weight is 0: the
+// input comes out as it is.
 // Reads: hdr_in (internal size), gbuffer_motion and gbuffer_position (internal size: the sky test),
 // history (output size).
 // Writes: hdr_out ("upscale.color", output size). History: "upscale.color" of last frame;
