@@ -141,6 +141,23 @@ ImageRGBA32F noisy(float c, std::uint32_t frame) {
   return image;
 }
 
+// An input for an internal size below the output: w x h pixels of which the first in_w x in_h,
+// rows of in_w, are read (what the renderer reads at that internal size), grey value(x, y) at
+// internal pixel (x, y), alpha 1.
+template <class Value>
+ImageRGBA32F internal_image(std::uint32_t w, std::uint32_t h, std::uint32_t in_w,
+                            std::uint32_t in_h, Value value) {
+  ImageRGBA32F image(w, h);
+  for (std::uint32_t y = 0; y < in_h; ++y) {
+    for (std::uint32_t x = 0; x < in_w; ++x) {
+      const float v = value(x, y);
+      for (int c = 0; c < 4; ++c)
+        image.pixels[4 * (std::size_t{y} * in_w + x) + c] = c == 3 ? 1.0f : v;
+    }
+  }
+  return image;
+}
+
 // Pixels that show a surface (not sky).
 std::vector<std::uint8_t> surfaces(const test::GBufferReadback& g) {
   std::vector<std::uint8_t> mask(g.ids.size());
@@ -865,15 +882,9 @@ TEST_F(DenoiseGpuTest, InternalSizesBelowTheOutputResampleALinearRampExactly) {
     Run run = make_run({}, w, h);
     run.harness->renderer().set_output(lighting::FrameOutput::Raw);
     run.harness->renderer().set_internal_size(kInW, kInH);
-    ImageRGBA32F in(w, h);  // the first kInW x kInH pixels, rows of kInW, are read
-    for (std::uint32_t y = 0; y < kInH; ++y) {
-      for (std::uint32_t x = 0; x < kInW; ++x) {
-        const float v = ramp(static_cast<float>(x), static_cast<float>(y));
-        for (int c = 0; c < 4; ++c) {
-          in.pixels[4 * (std::size_t{y} * kInW + x) + c] = c == 3 ? 1.0f : v;
-        }
-      }
-    }
+    const ImageRGBA32F in = internal_image(w, h, kInW, kInH, [&](std::uint32_t x, std::uint32_t y) {
+      return ramp(static_cast<float>(x), static_cast<float>(y));
+    });
     const ImageRGBA32F out = render(run, in, test::first_snapshot(level, w, h));
     ASSERT_EQ(out.width, w);
     const glm::vec2 jitter = run.harness->renderer().jitter();
@@ -929,15 +940,10 @@ TEST_F(DenoiseGpuTest, StillViewKeepsTheUpscaledHistoryInPlace) {
   for (std::uint32_t f = 0; f < 10; ++f) {
     if (f > 0) s = frozen(s);
     const glm::vec2 jitter = lighting::FrameRenderer::jitter_sequence(f);
-    ImageRGBA32F in(kW, kH);  // the first kInW x kInH pixels, rows of kInW, are read
-    for (std::uint32_t y = 0; y < kInH; ++y) {
-      for (std::uint32_t x = 0; x < kInW; ++x) {
-        const float v = ramp(static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y);
-        for (int c = 0; c < 4; ++c) {
-          in.pixels[4 * (std::size_t{y} * kInW + x) + c] = c == 3 ? 1.0f : v;
-        }
-      }
-    }
+    const ImageRGBA32F in =
+        internal_image(kW, kH, kInW, kInH, [&](std::uint32_t x, std::uint32_t y) {
+          return ramp(static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y);
+        });
     const ImageRGBA32F out = render(run, in, s);
     ASSERT_EQ(run.harness->renderer().jitter(), jitter) << "frame " << f;
     std::size_t inside = 0;
@@ -1000,16 +1006,9 @@ TEST_F(DenoiseGpuTest, MovingViewKeepsTheUpscaledHistoryOnTheScene) {
                                    glm::mat4_cast(s.camera.orientation));
     }
     const glm::vec2 jitter = lighting::FrameRenderer::jitter_sequence(f);
-    ImageRGBA32F in(kW, kH);  // the first kInW x kInH pixels, rows of kInW, are read
-    for (std::uint32_t y = 0; y < kInH; ++y) {
-      for (std::uint32_t x = 0; x < kInW; ++x) {
-        const float v = ramp(wall_x(static_cast<float>(x) + 0.5f + jitter.x, s.camera.position.x));
-        for (int c = 0; c < 4; ++c) {
-          in.pixels[4 * (std::size_t{y} * kInW + x) + c] = c == 3 ? 1.0f : v;
-        }
-      }
-    }
-    input->set(in);
+    input->set(internal_image(kW, kH, kInW, kInH, [&](std::uint32_t x, std::uint32_t) {
+      return ramp(wall_x(static_cast<float>(x) + 0.5f + jitter.x, s.camera.position.x));
+    }));
     const ImageRGBA32F out = run.render(s);
     ASSERT_EQ(run.renderer().jitter(), jitter) << "frame " << f;
     // Left out: 2 pixels at the top and bottom and 3 on the left (the history's 4x4 fetch reaches

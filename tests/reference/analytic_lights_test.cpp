@@ -71,6 +71,33 @@ std::vector<Light> scattered_point_lights(std::size_t count, float min_height, f
   return lights;
 }
 
+// rho/pi * E cos of a grey directional light on the plane (normal +y).
+double directional_light_term(const Light& light) {
+  return kRho / kPiD * light.intensity * std::max(-light.direction().y, 0.0f);
+}
+
+// The pixels of images more than 2e-4 (relative) from the unshadowed closed form of the level's
+// grey point and directional lights, and the worst relative error.
+struct ClosedFormCheck {
+  int off = 0;
+  double worst = 0.0;
+  void add(const Level& level, const runtime::ImageRGBA32F& image) {
+    for (std::uint32_t y = 0; y < kSize; ++y) {
+      for (std::uint32_t x = 0; x < kSize; ++x) {
+        const glm::dvec3 q = test::plane_point(level.camera, x, y);
+        double expected = 0.0;
+        for (const Light& light : level.lights) {
+          expected += light.type == LightType::Directional ? directional_light_term(light)
+                                                           : point_light_at(light, q);
+        }
+        const double error = std::abs(image.at(x, y)[0] - expected) / expected;
+        worst = std::max(worst, error);
+        if (error > 2e-4) ++off;
+      }
+    }
+  }
+};
+
 TEST_F(ReferenceAnalyticLightsTest, WithoutOccludersOneSampleIsTheClosedForm) {
   Level level = test::plane_level(4.0f, 0.6f);
   level.lights = scattered_point_lights(40, 0.3f, 0.2f, 3.0f, 5);
@@ -79,42 +106,20 @@ TEST_F(ReferenceAnalyticLightsTest, WithoutOccludersOneSampleIsTheClosedForm) {
   sun.intensity = 0.7f;
   sun.rotation = look_at_orientation(glm::vec3(0.0f), glm::vec3(0.3f, -1.0f, 0.2f));
   level.lights.push_back(sun);
-  const double sun_term = kRho / kPiD * sun.intensity * std::max(-sun.direction().y, 0.0f);
-  ASSERT_GT(sun_term, 0.0);
+  ASSERT_GT(directional_light_term(sun), 0.0);
 
   const test::Frames frames = test::render_frames(device, shaders, level, 2, 1);
-  int off = 0;
-  double worst = 0.0;
-  for (const auto& image : frames.images) {
-    for (std::uint32_t y = 0; y < kSize; ++y) {
-      for (std::uint32_t x = 0; x < kSize; ++x) {
-        const glm::dvec3 q = test::plane_point(level.camera, x, y);
-        double expected = sun_term;
-        for (std::size_t i = 0; i + 1 < level.lights.size(); ++i) {
-          expected += point_light_at(level.lights[i], q);
-        }
-        const double error = std::abs(image.at(x, y)[0] - expected) / expected;
-        worst = std::max(worst, error);
-        if (error > 2e-4) ++off;
-      }
-    }
-  }
-  std::printf("one sample per pixel vs the closed form: worst relative error %.2e\n", worst);
-  EXPECT_EQ(off, 0) << "pixels more than 2e-4 from the closed form (worst " << worst << ")";
+  ClosedFormCheck check;
+  for (const auto& image : frames.images) check.add(level, image);
+  std::printf("one sample per pixel vs the closed form: worst relative error %.2e\n", check.worst);
+  EXPECT_EQ(check.off, 0) << "pixels more than 2e-4 from the closed form (worst " << check.worst
+                          << ")";
 }
 
-// Pixels of `image` more than 2e-4 from the unshadowed sum of `lights` (grey point lights).
 int pixels_off_the_closed_form(const Level& level, const runtime::ImageRGBA32F& image) {
-  int off = 0;
-  for (std::uint32_t y = 0; y < kSize; ++y) {
-    for (std::uint32_t x = 0; x < kSize; ++x) {
-      const glm::dvec3 q = test::plane_point(level.camera, x, y);
-      double expected = 0.0;
-      for (const Light& light : level.lights) expected += point_light_at(light, q);
-      if (std::abs(image.at(x, y)[0] - expected) > 2e-4 * expected) ++off;
-    }
-  }
-  return off;
+  ClosedFormCheck check;
+  check.add(level, image);
+  return check.off;
 }
 
 // The walk runs only while it costs at most kReferenceAnalyticWalkPerSample lights per sample:
