@@ -172,8 +172,7 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
     hdr = denoiser_->add_passes(graph, inputs_, denoise_, hdr, integrator_->sample_confidence());
   }
   if (width_ != output_width_ || height_ != output_height_) {
-    hdr = upscaler_->add_pass(graph, inputs_, hdr, output_width_, output_height_,
-                              glm::vec4(jitter_, previous_jitter_));
+    hdr = upscaler_->add_pass(graph, inputs_, hdr, output_width_, output_height_, jitter_);
   }
   ++frames_;
   resized_ = false;

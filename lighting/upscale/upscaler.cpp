@@ -15,29 +15,28 @@ Upscaler::Upscaler(runtime::Device& device, runtime::ShaderLibrary& shaders)
                 runtime::ComputePipelineDesc{.name = "upscale.temporal", .constants = {}}) {}
 
 gpu::UpscalePush Upscaler::make_push(const FrameInputs& inputs, std::uint32_t out_width,
-                                     std::uint32_t out_height, glm::vec4 jitter) {
+                                     std::uint32_t out_height, glm::vec2 jitter) {
   gpu::UpscalePush p{};
   p.in_width = inputs.width;
   p.in_height = inputs.height;
   p.out_width = out_width;
   p.out_height = out_height;
   const bool same = inputs.width == out_width && inputs.height == out_height;
-  p.history_weight = same && jitter == glm::vec4(0.0f) ? 0.0f : kHistoryWeight;
-  p.jitter = glm::vec2(jitter.x, jitter.y);
-  p.previous_jitter = glm::vec2(jitter.z, jitter.w);
+  p.history_weight = same && jitter == glm::vec2(0.0f) ? 0.0f : kHistoryWeight;
+  p.jitter = jitter;
   return p;
 }
 
 BufferHandle Upscaler::add_pass(runtime::graph::RenderGraph& graph, const FrameInputs& inputs,
                                 BufferHandle hdr, std::uint32_t out_width, std::uint32_t out_height,
-                                glm::vec4 jitter) const {
+                                glm::vec2 jitter) const {
   gpu::UpscalePush push = make_push(inputs, out_width, out_height, jitter);
   BufferHandle out = graph.create_history_buffer(
       "upscale.color", {VkDeviceSize{out_width} * out_height * 4 * sizeof(float)});
   const BufferHandle history = graph.history(out);
   if (history.valid()) push.flags |= gpu::kUpscaleFlagHistoryValid;
   struct Data {
-    runtime::graph::ImageHandle motion, position;
+    runtime::graph::ImageHandle motion;
     BufferHandle hdr, history, out;
   };
   const Data& data = graph.add_pass<Data>(
@@ -45,8 +44,6 @@ BufferHandle Upscaler::add_pass(runtime::graph::RenderGraph& graph, const FrameI
       [&](runtime::graph::PassBuilder& b, Data& d) {
         d.motion = inputs.gbuffer.motion;
         b.read(d.motion, Access::StorageRead);
-        d.position = inputs.gbuffer.position;
-        b.read(d.position, Access::StorageRead);
         d.hdr = hdr;
         // Both read through texel views (lib/texel_records.glsl). Without history this frame's
         // input stands in (not read: the flag is clear).
@@ -56,14 +53,12 @@ BufferHandle Upscaler::add_pass(runtime::graph::RenderGraph& graph, const FrameI
         d.out = b.write(out, Access::StorageWrite);
       },
       [this, push](runtime::graph::PassContext& ctx, const Data& d) {
-        pipeline_.bind(
-            ctx.cmd(),
-            runtime::Bindings(pipeline_)
-                .image_view("gbuffer_motion", ctx.view(d.motion), VK_IMAGE_LAYOUT_GENERAL)
-                .image_view("gbuffer_position", ctx.view(d.position), VK_IMAGE_LAYOUT_GENERAL)
-                .texel_buffer("hdr_in", ctx.texel_view(d.hdr))
-                .texel_buffer("history", ctx.texel_view(d.history))
-                .buffer("hdr_out", ctx.buffer(d.out), 0, VK_WHOLE_SIZE));
+        pipeline_.bind(ctx.cmd(), runtime::Bindings(pipeline_)
+                                      .image_view("gbuffer_motion", ctx.view(d.motion),
+                                                  VK_IMAGE_LAYOUT_GENERAL)
+                                      .texel_buffer("hdr_in", ctx.texel_view(d.hdr))
+                                      .texel_buffer("history", ctx.texel_view(d.history))
+                                      .buffer("hdr_out", ctx.buffer(d.out), 0, VK_WHOLE_SIZE));
         pipeline_.push_constants(ctx.cmd(), push);
         pipeline_.dispatch_threads(ctx.cmd(), push.out_width, push.out_height);
       });

@@ -100,7 +100,7 @@ void main() {
   // gl_FragCoord.w = 1 / clip w, and clip w is the linear view depth (w = -z_view).
   float view_depth = max(finite_or_zero(1.0 / gl_FragCoord.w), 1e-30);
 
-  vec2 motion = gbuffer_point_motion(in_clip, in_prev_clip, frame_constants.frame.jitter,
+  vec4 motion = gbuffer_point_motion(in_clip, in_prev_clip, frame_constants.frame.jitter,
                                      vec2(frame_constants.frame.frame.xy));
 
   out_position = vec4(position, view_depth);
@@ -109,5 +109,5 @@ void main() {
       vec4(finite_or_zero(base_color), finite_or_zero(params.x));
   out_emission_metallic = vec4(emission, finite_or_zero(params.y));
   out_ids = uvec4(in_ids, 0u);
-  out_motion = vec4(motion, 0.0, 0.0);
+  out_motion = motion;
 }

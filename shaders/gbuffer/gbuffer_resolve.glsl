@@ -200,7 +200,7 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
   vec4 clip = frame_constants.frame.view_proj * (object_to_world * p_object);
   vec4 prev_clip = frame_constants.frame.prev_view_proj *
                    (scene_instances.i[instance].prev_object_to_world * p_object);
-  vec2 motion = gbuffer_point_motion(clip, prev_clip, frame_constants.frame.jitter, size);
+  vec4 motion = gbuffer_point_motion(clip, prev_clip, frame_constants.frame.jitter, size);
 
   GBufferTexel g;
   g.position = vec4(position, view_depth);
@@ -209,7 +209,7 @@ GBufferTexel gbuffer_resolve_texel(uvec2 pixel, uvec2 hit) {
       vec4(gbuffer_finite_or_zero(base_color), gbuffer_finite_or_zero(params.x));
   g.emission_metallic = vec4(emission, gbuffer_finite_or_zero(params.y));
   g.ids = uvec4(instance, material_index, primitive, 0u);
-  g.motion = vec4(motion, 0.0, 0.0);
+  g.motion = motion;
   return g;
 }
 

@@ -13,14 +13,19 @@
 //                                                   (float: radiance spans 1e-8..1e8)
 //   gbuffer.ids                R32G32B32A32_UINT    x instance (kNoInstance = sky), y material,
 //                                                   z primitive, w 0
-//   gbuffer.motion             R32G32B32A32_SFLOAT  xy motion in pixels: previous pixel position
-//                                                   minus current (prev = cur + motion); zw 0.
-//                                                   With a sample jitter (FrameConstants.jitter)
-//                                                   pixel p samples the image at p + 0.5 + j, and
-//                                                   the motion leads to the previous frame's
-//                                                   pixel whose sample was nearest: the point's
-//                                                   previous position minus last frame's jitter,
-//                                                   minus p + 0.5
+//   gbuffer.motion             R32G32B32A32_SFLOAT  motion in pixels, previous pixel position
+//                                                   minus current (prev = cur + motion). With a
+//                                                   sample jitter (FrameConstants.jitter) pixel
+//                                                   p samples the image at p + 0.5 + j.
+//                                                   xy: to the previous frame's pixel whose
+//                                                   sample was nearest (the point's previous
+//                                                   position minus last frame's jitter, minus
+//                                                   p + 0.5): what reprojects per-sample
+//                                                   history (restir.temporal, denoise.temporal).
+//                                                   zw: the point's own motion on screen, without
+//                                                   the jitter (xy + last jitter - this one):
+//                                                   what moves an unjittered output history
+//                                                   (upscale.temporal). Sky: 0 in both
 //   gbuffer.depth              D32_SFLOAT           raster depth (not read by compute passes)
 //
 // Compute passes read the colour images as storage images (imageLoad, layout GENERAL).
@@ -91,22 +96,26 @@ LANTERN_FUNC vec3 gbuffer_camera_ray(mat4 inv_view_proj, vec2 point, vec2 size,
 // it moves the previous position far off-screen, so temporal passes find no history there.
 LANTERN_CONST float kGBufferNoPreviousPixel = -1.0e6f;
 
-// gbuffer.motion of a surface point from its clip position this frame (without the jitter) and
-// last frame: the previous position minus last frame's jitter, minus the current one minus this
-// frame's (pixel p + 0.5 where the sample at p + 0.5 + jitter hit). Both sides go through the same
-// arithmetic, so a point that did not move (same camera, same instance transform, no jitter) gets
-// exactly 0, not the ~1e-4 px rounding of re-projecting a hit against its pixel centre: a
-// bilinear history tap of that weight carries a lit neighbour's second moment into a black
-// pixel's variance, and the denoiser's luminance stop then lets the neighbours in.
-LANTERN_FUNC vec2 gbuffer_point_motion(vec4 clip, vec4 prev_clip, vec4 jitter, vec2 size) {
-  vec2 current = (vec2(clip.x, clip.y) / clip.w * 0.5f + 0.5f) * size - vec2(jitter.x, jitter.y);
+// gbuffer.motion of a surface point (xy to last frame's jittered sample, zw the point's own
+// motion: see the table above) from its clip position this frame (without the jitter) and last
+// frame. Both sides go through the same arithmetic, so a point that did not move (same camera,
+// same instance transform) gets exactly 0 in zw, and in xy too without jitter, not the ~1e-4 px
+// rounding of re-projecting a hit against its pixel centre: a bilinear history tap of that
+// weight carries a lit neighbour's second moment into a black pixel's variance, and the
+// denoiser's luminance stop then lets the neighbours in.
+LANTERN_FUNC vec4 gbuffer_point_motion(vec4 clip, vec4 prev_clip, vec4 jitter, vec2 size) {
+  vec2 current = (vec2(clip.x, clip.y) / clip.w * 0.5f + 0.5f) * size;
   vec2 previous = vec2(kGBufferNoPreviousPixel);
   if (prev_clip.w > 0.0f) {
-    previous = (vec2(prev_clip.x, prev_clip.y) / prev_clip.w * 0.5f + 0.5f) * size -
-               vec2(jitter.z, jitter.w);
+    previous = (vec2(prev_clip.x, prev_clip.y) / prev_clip.w * 0.5f + 0.5f) * size;
   }
-  vec2 motion = previous - current;
-  return is_finite(motion.x) && is_finite(motion.y) ? motion : vec2(kGBufferNoPreviousPixel);
+  vec2 sampled = (previous - vec2(jitter.z, jitter.w)) - (current - vec2(jitter.x, jitter.y));
+  vec2 own = previous - current;
+  if (!(prev_clip.w > 0.0f) || !is_finite(sampled.x) || !is_finite(sampled.y) ||
+      !is_finite(own.x) || !is_finite(own.y)) {
+    return vec4(kGBufferNoPreviousPixel);
+  }
+  return vec4(sampled.x, sampled.y, own.x, own.y);
 }
 
 // Sky test on gbuffer.position.w.

@@ -1,8 +1,7 @@
 // Push constants of upscale.temporal (shaders/upscale/upscale_temporal.comp), shared with
 // lighting/upscale/upscaler.cpp: the internal (render) size, the output size, how much of the
-// reprojected output history each pixel keeps, and the sub-pixel jitter of this frame's and last
-// frame's samples (FrameConstants.jitter: the motion vectors lead to last frame's jittered
-// samples, the output history is not jittered).
+// reprojected output history each pixel keeps, and the sub-pixel jitter of this frame's samples
+// (FrameConstants.jitter.xy).
 #ifndef LANTERN_SHARED_UPSCALE_H
 #define LANTERN_SHARED_UPSCALE_H
 
@@ -21,9 +20,8 @@ struct UpscalePush {
   uint flags;            // kUpscaleFlag*
   float history_weight;  // share of the (rectified) history kept: 0 = this frame's samples only
   vec2 jitter;           // this frame's sample offset from the internal pixel centres, pixels
-  vec2 previous_jitter;  // last frame's (the motion vectors include jitter - previous_jitter)
 };
-LANTERN_STATIC_SIZE(UpscalePush, 40);
+LANTERN_STATIC_SIZE(UpscalePush, 32);
 
 LANTERN_END_SHARED
 

@@ -1,14 +1,13 @@
 // upscale.temporal: reconstructs the output-size image from this frame's internal-size HDR image
 // and last frame's output: the current samples resampled bilinearly at the output pixel centre
-// (minus the sample jitter), last frame's output reprojected along the G-buffer's motion vector
-// less the jitter step a surface's holds (the output history is not jittered: a still view keeps
-// every output pixel's history where it is; the sky's motion is 0), scaled to output pixels,
+// (minus the sample jitter), last frame's output reprojected along the scene's own motion
+// (gbuffer.motion's zw: without the jitter step, since the output history is not jittered; a
+// still view keeps every output pixel's history where it is), scaled to output pixels,
 // fetched by Catmull-Rom over 4x4 output pixels, and rectified (clamped to the min/max of the 3x3
 // current samples around the pixel: stale history, e.g. a moving emitter's trail, cannot
 // survive), then blended (push.history_weight). At scale 1 with no jitter the weight is 0: the
 // input comes out as it is.
-// Reads: hdr_in (internal size), gbuffer_motion and gbuffer_position (internal size: the sky test),
-// history (output size).
+// Reads: hdr_in and gbuffer_motion (internal size), history (output size).
 // Writes: hdr_out ("upscale.color", output size). History: "upscale.color" of last frame;
 // without kUpscaleFlagHistoryValid the history binding is a stand-in and is not read.
 // Dispatch: one thread per output pixel, 8x8 groups.
@@ -17,7 +16,6 @@
 #extension GL_EXT_control_flow_attributes : require
 
 #include "shared/common_math.h"
-#include "shared/gbuffer.h"
 #include "shared/upscale.h"
 
 #include "lib/texel_records.glsl"
@@ -29,7 +27,6 @@ layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_motion;
 layout(binding = 1) uniform utextureBuffer hdr_in;
 layout(binding = 2) uniform utextureBuffer history;
 layout(std430, binding = 3) writeonly buffer HdrOut { vec4 p[]; } hdr_out;
-layout(binding = 4, rgba32f) readonly uniform image2D gbuffer_position;
 
 vec3 finite3(vec3 c) {
   return vec3(finite_positive_or_zero(c.r), finite_positive_or_zero(c.g),
@@ -105,13 +102,8 @@ void main() {
   }
   vec3 result = current;
   if ((push.flags & kUpscaleFlagHistoryValid) != 0u && push.history_weight > 0.0) {
-    // A surface's gbuffer.motion leads to last frame's jittered sample (gbuffer_point_motion):
-    // its own motion is that plus the previous jitter minus this frame's. The sky's is 0.
-    vec2 motion = imageLoad(gbuffer_motion, n).xy;
-    if (!gbuffer_is_sky(imageLoad(gbuffer_position, n).w)) {
-      motion += push.previous_jitter - push.jitter;
-    }
-    motion *= out_size / in_size;
+    // The point's own motion (zw; xy leads to last frame's jittered sample instead).
+    vec2 motion = imageLoad(gbuffer_motion, n).zw * (out_size / in_size);
     vec2 previous = vec2(o) + 0.5 + motion;
     if (is_finite(motion.x) && is_finite(motion.y) && all(greaterThanEqual(previous, vec2(0.0))) &&
         all(lessThan(previous, out_size))) {

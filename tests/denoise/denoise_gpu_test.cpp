@@ -1033,8 +1033,9 @@ TEST_F(DenoiseGpuTest, MovingViewKeepsTheUpscaledHistoryOnTheScene) {
 
 // With the sample jitter on, a still scene's motion vectors are exactly the jitter step (this
 // frame's offset minus last frame's: the previous frame's pixel whose sample was nearest), so
-// ReSTIR's and the denoiser's reprojection stay consistent with it. Both G-buffer methods: the
-// forward raster (96x54: few triangles per pixel) and cull + visibility + resolve (16x9: more
+// ReSTIR's and the denoiser's reprojection stay consistent with it, and the points' own motion
+// (zw, what upscale.temporal moves its unjittered history by) is exactly 0. Both G-buffer methods:
+// the forward raster (96x54: few triangles per pixel) and cull + visibility + resolve (16x9: more
 // than one triangle per 16 pixels, GBufferMethod::Auto's switch).
 TEST_F(DenoiseGpuTest, JitteredMotionIsTheJitterStep) {
   for (const auto& [w, h] : {std::pair<std::uint32_t, std::uint32_t>{kW, kH}, {16u, 9u}}) {
@@ -1051,15 +1052,18 @@ TEST_F(DenoiseGpuTest, JitteredMotionIsTheJitterStep) {
       EXPECT_LT(std::max(std::abs(jitter.x), std::abs(jitter.y)), 0.5f);
       if (f > 0) {
         const glm::vec2 step = jitter - previous;
-        std::size_t surfaces = 0, exact = 0;
+        std::size_t surfaces = 0, exact = 0, still = 0;
         for (std::size_t p = 0; p < g.ids.size(); ++p) {
           if (g.ids[p].x == gpu::kNoInstance) continue;
           ++surfaces;
           exact += glm::length(glm::vec2(g.motion[p]) - step) < 1e-3f;
+          still += g.motion[p].z == 0.0f && g.motion[p].w == 0.0f;
         }
         EXPECT_GT(surfaces, std::size_t{w} * h / 2);
         EXPECT_EQ(exact, surfaces) << w << "x" << h << " frame " << f
                                    << ": motion must be the jitter step";
+        EXPECT_EQ(still, surfaces)
+            << w << "x" << h << " frame " << f << ": the points' own motion (zw) must be exactly 0";
       }
       previous = jitter;
     }

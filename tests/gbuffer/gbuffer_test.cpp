@@ -300,7 +300,7 @@ TEST_P(GBufferMethodTest, SkyBackFacesAndMirroredInstanceAgreeWithCpuTrace) {
     if (gpu::gbuffer_is_sky(g.position[i].w)) {
       EXPECT_EQ(g.position[i].w, 0.0f);
       EXPECT_EQ(g.ids[i].x, gpu::kNoInstance);
-      EXPECT_EQ(glm::vec2(g.motion[i]), glm::vec2(0.0f));
+      EXPECT_EQ(g.motion[i], glm::vec4(0.0f));
     }
     mirrored_pixels += g.ids[i].x == mirrored ? 1 : 0;
   }
@@ -337,6 +337,8 @@ TEST_P(GBufferMethodTest, CameraMotionIsTheReprojectionThroughPrevViewProj) {
       EXPECT_LE(error, 0.01f) << "pixel (" << x << ", " << y << ") expected motion (" << expected.x
                               << ", " << expected.y << ") got (" << g.motion[i].x << ", "
                               << g.motion[i].y << ")";
+      // Without jitter the point's own motion (zw) is the sampled one (xy), to the bit.
+      EXPECT_EQ(glm::vec2(g.motion[i].z, g.motion[i].w), glm::vec2(g.motion[i]));
       if (error > 0.01f) return;  // one report is enough
       max_error = std::max(max_error, error);
       max_motion = std::max(max_motion, glm::length(expected));
@@ -346,6 +348,36 @@ TEST_P(GBufferMethodTest, CameraMotionIsTheReprojectionThroughPrevViewProj) {
   EXPECT_GT(checked, kWidth * kHeight / 2);
   EXPECT_GT(max_motion, 2.0f) << "the camera barely moved: the test proves nothing";
   RecordProperty("max_motion_error_px", std::to_string(max_error));
+
+  // Jittered (this frame's samples at pixel + 0.5 + j, last frame's at + pj): zw is the point's
+  // own motion, from where this frame's sample hit it to where it was last frame; xy leads to
+  // the previous frame's pixel whose sample was nearest, so it adds the jitter step j - pj.
+  // upscale.temporal moves its unjittered history by zw, restir.temporal and denoise.temporal
+  // reproject per-sample history by xy.
+  fc.jitter = glm::vec4(0.31f, -0.27f, -0.12f, 0.4f);
+  const glm::vec2 jitter(fc.jitter.x, fc.jitter.y), previous_jitter(fc.jitter.z, fc.jitter.w);
+  const test::GBufferImages jittered = *harness.render(fc, true);
+  EXPECT_EQ(count_non_finite(jittered), 0u);
+  std::size_t own_off = 0, sampled_off = 0, surfaces = 0;
+  for (std::uint32_t y = 0; y < kHeight; ++y) {
+    for (std::uint32_t x = 0; x < kWidth; ++x) {
+      const std::size_t i = jittered.index(x, y);
+      const glm::vec4 m = jittered.motion[i];
+      if (gpu::gbuffer_is_sky(jittered.position[i].w)) {
+        EXPECT_EQ(m, glm::vec4(0.0f)) << "sky pixel (" << x << ", " << y << ")";
+        continue;
+      }
+      ++surfaces;
+      const glm::vec2 own =
+          project(fc.prev_view_proj, glm::vec3(jittered.position[i]), glm::uvec2(kWidth, kHeight)) -
+          (glm::vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f) + jitter);
+      own_off += glm::length(glm::vec2(m.z, m.w) - own) > 0.01f;
+      sampled_off += glm::length(glm::vec2(m) - (own + jitter - previous_jitter)) > 0.01f;
+    }
+  }
+  EXPECT_GT(surfaces, kWidth * kHeight / 2);
+  EXPECT_EQ(own_off, 0u) << "surface pixels whose zw is not the point's own motion";
+  EXPECT_EQ(sampled_off, 0u) << "surface pixels whose xy does not lead to last frame's sample";
 }
 
 TEST_P(GBufferMethodTest, MovingInstanceGetsItsObjectMotion) {

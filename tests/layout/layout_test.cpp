@@ -113,7 +113,7 @@ const std::vector<StructLayout>& cpp_layouts() {
        {LANTERN_MEMBER(UpscalePush, in_width), LANTERN_MEMBER(UpscalePush, in_height),
         LANTERN_MEMBER(UpscalePush, out_width), LANTERN_MEMBER(UpscalePush, out_height),
         LANTERN_MEMBER(UpscalePush, flags), LANTERN_MEMBER(UpscalePush, history_weight),
-        LANTERN_MEMBER(UpscalePush, jitter), LANTERN_MEMBER(UpscalePush, previous_jitter)}},
+        LANTERN_MEMBER(UpscalePush, jitter)}},
       {"RestirSurface",
        sizeof(gpu::RestirSurface),
        {LANTERN_MEMBER(RestirSurface, position_depth), LANTERN_MEMBER(RestirSurface, packed),
