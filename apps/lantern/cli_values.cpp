@@ -139,4 +139,20 @@ std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size) {
   return {w, h};
 }
 
+CLI::Option* add_render_scale_option(CLI::App& cmd, float& scale, const std::string& description) {
+  return cmd.add_option("--render-scale", scale, description)
+      ->check(CLI::Range(0.1f, 1.0f))
+      ->capture_default_str();
+}
+
+void require_denoised_for_render_scale(float scale, lighting::FrameOutput output,
+                                       std::string_view how_to_denoise) {
+  if (scale < 1.0f && output == lighting::FrameOutput::Raw) {
+    throw InputError(fmt::format(
+        "--render-scale {} upscales the denoised image, and this output is raw (the integrator's "
+        "unbiased image at --size): {}",
+        scale, how_to_denoise));
+  }
+}
+
 }  // namespace lantern::app

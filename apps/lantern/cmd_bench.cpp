@@ -454,10 +454,9 @@ void add_bench_command(CLI::App& root, CommonOptions& options) {
                   "raw (the integrator's image) or denoised (adds the denoise.* passes)")
       ->check(CLI::IsMember({"raw", "denoised"}))
       ->capture_default_str();
-  cmd->add_option("--render-scale", opts->render_scale,
-                  "Internal size as a fraction of --size; below 1 upscale.temporal reconstructs")
-      ->check(CLI::Range(0.1f, 1.0f))
-      ->capture_default_str();
+  add_render_scale_option(*cmd, opts->render_scale,
+                          "Internal size as a fraction of --size; below 1 upscale.temporal "
+                          "reconstructs");
   cmd->add_option("--json", opts->json, "Write the statistics as JSON to FILE");
   cmd->add_option("--trace", opts->trace,
                   "Write a Chrome trace (chrome://tracing, ui.perfetto.dev) to FILE");

@@ -1,8 +1,9 @@
-// `lantern capture LEVEL [--path NAME] --frames N --out DIR [--format exr|png] [--video FILE.mp4]`
-// (CLI.md): a scripted flythrough with a fixed time step — deterministic, the same seed gives the
-// same files — written as frame_NNNN.exr/png, timings.csv (GPU ms per pass per frame) and
-// capture.json (level, settings, device, versions); --video encodes the frames with ffmpeg.
-// Files are written into a staging directory and moved into DIR only when everything succeeded.
+// `lantern capture LEVEL [--path NAME] --frames N --out DIR [--format exr|png] [--video FILE.mp4]
+// [--output raw|denoised] [--render-scale S]` (CLI.md): a scripted flythrough with a fixed time
+// step — deterministic, the same seed gives the same files — written as frame_NNNN.exr/png,
+// timings.csv (GPU ms per pass per frame) and capture.json (level, settings, device, versions);
+// --video encodes the frames with ffmpeg. Files are written into a staging directory and moved
+// into DIR only when everything succeeded.
 #include <fmt/format.h>
 
 #include <unistd.h>
@@ -43,6 +44,7 @@ struct CaptureOptions {
   std::string video;
   float exposure = 0.0f;  // PNG/video: 0 = automatic from the first frame, then fixed
   std::string output;     // --output raw|denoised; empty: raw for EXR frames, denoised for PNG/video
+  float render_scale = 1.0f;  // --render-scale: the denoised frames' internal size / --size
 };
 
 bool have_ffmpeg() { return std::system("command -v ffmpeg >/dev/null 2>&1") == 0; }
@@ -61,6 +63,19 @@ std::string shell_quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
+}
+
+// timings.csv's columns of one frame: one per pass instance, a pass that runs several times a
+// frame (the à-trous steps) as NAME, NAME#2, ... in the order it ran.
+std::vector<std::pair<std::string, double>> pass_columns(
+    const std::vector<std::pair<std::string, double>>& passes) {
+  std::vector<std::pair<std::string, double>> out;
+  std::map<std::string, int> seen;
+  for (const auto& [name, ms] : passes) {
+    const int n = ++seen[name];
+    out.emplace_back(n == 1 ? name : fmt::format("{}#{}", name, n), ms);
+  }
+  return out;
 }
 
 void encode_video(const fs::path& frames_dir, const std::string& pattern, const fs::path& video,
@@ -108,6 +123,8 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
       !o.output.empty() ? frame_output : FrameOutput::Denoised;
   const bool denoise = frame_output == FrameOutput::Denoised ||
                        (!o.video.empty() && video_output == FrameOutput::Denoised);
+  require_denoised_for_render_scale(o.render_scale, frame_output,
+                                    "add --output denoised, or --format png");
 
   runtime::Device device({.selector = common.device});
   runtime::ShaderLibrary shaders;
@@ -118,7 +135,8 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
                                      .height = height,
                                      .seed = common.seed,
                                      .fixed_dt = 1.0 / fps,
-                                     .output = denoise ? FrameOutput::Denoised : FrameOutput::Raw});
+                                     .output = denoise ? FrameOutput::Denoised : FrameOutput::Raw,
+                                     .render_scale = o.render_scale});
   if (!o.path.empty()) session.world().set_camera_path(o.path);  // InputError when unknown
   session.warm_up();
 
@@ -145,18 +163,22 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
     const runtime::ImageRGBA32F& image = frame_output == FrameOutput::Raw && need_raw ? raw : shown;
     const runtime::ImageRGBA32F& video_image =
         video_output == FrameOutput::Raw && need_raw ? raw : shown;
+    const std::vector<std::pair<std::string, double>> named = pass_columns(t.passes);
     if (k == 0) {
       if (exposure <= 0.0f) exposure = lighting::auto_exposure(video_image);
       csv << "frame,frame_ms,frame_wall_ms";
-      for (const auto& [name, ms] : t.passes) {
-        columns.push_back(name);
-        csv << ',' << name;
+      for (const auto& [column, ms] : named) {
+        columns.push_back(column);
+        csv << ',' << column;
       }
       csv << '\n';
     }
-    std::map<std::string, double> by_name(t.passes.begin(), t.passes.end());
+    const std::map<std::string, double> by_column(named.begin(), named.end());
     csv << k << ',' << t.gpu_ms << ',' << t.wall_ms;
-    for (const std::string& c : columns) csv << ',' << (by_name.contains(c) ? by_name[c] : 0.0);
+    for (const std::string& c : columns) {
+      const auto it = by_column.find(c);
+      csv << ',' << (it != by_column.end() ? it->second : 0.0);
+    }
     csv << '\n';
     const std::string name = fmt::format("frame_{:04}.{}", k, o.format);
     runtime::write_image(staging.path / name, image, exposure);
@@ -181,6 +203,8 @@ void run_capture(const CaptureOptions& o, const CommonOptions& common) {
       {"preset", settings_preset},
       {"settings", settings},
       {"size", {width, height}},
+      {"render_scale", o.render_scale},
+      {"internal_size", {session.renderer().width(), session.renderer().height()}},
       {"frames", frames},
       {"fixed_dt", 1.0 / fps},
       {"seed", common.seed},
@@ -245,6 +269,11 @@ void add_capture_command(CLI::App& root, CommonOptions& options) {
                   "raw or denoised frames and video; default raw EXR frames, denoised PNG "
                   "frames and video")
       ->check(CLI::IsMember({"raw", "denoised"}));
+  add_render_scale_option(*cmd, opts->render_scale,
+                          "Internal size of the denoised frames and video as a fraction of "
+                          "--size (upscale.temporal reconstructs them at --size, as play's "
+                          "dynamic resolution does); needs denoised frames (--output denoised or "
+                          "--format png)");
   cmd->add_option("--exposure", opts->exposure,
                   "PNG/video exposure (default: automatic from the first frame, then fixed)")
       ->check(CLI::Range(1e-6f, 1e6f));

@@ -1,5 +1,6 @@
 // `lantern render LEVEL --integrator NAME (integrator_registry.h) [--frame K] [--frames N]
-// [--spp N] [--average] [--static] --out PATH` (CLI.md): steps the level's world K frames, then
+// [--spp N] [--average] [--static] [--output raw|denoised] [--render-scale S] --out PATH`
+// (CLI.md): steps the level's world K frames, then
 // renders N frames headless (objects, lights and camera animate unless --static) and writes them:
 // one .exr/.png file when one image results, else a directory of frame_NNNN.exr. --preset and
 // --set KEY=VALUE go to the integrator (an unknown key is an error).
@@ -37,6 +38,7 @@ struct RenderOptions {
   std::uint32_t spp = 0;
   bool still = false;  // --static: every frame renders the first rendered frame's snapshot
   std::string output;  // --output raw|denoised; empty: raw for EXR, denoised for PNG
+  float render_scale = 1.0f;  // --render-scale: the denoised image's internal size / --size
 };
 
 // --output, or the default for the file type: EXR (and a directory of EXRs) raw, PNG denoised.
@@ -107,6 +109,9 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
   request.average = o.average;
   request.seed = common.seed;
   request.output = frame_output(o);
+  require_denoised_for_render_scale(o.render_scale, request.output,
+                                    "add --output denoised, or write a .png");
+  request.render_scale = o.render_scale;
   // Refuse a bad --out before any work.
   require_writable_parent(o.out, out_is_file(o.out, request.average ? 1u : request.frames));
   const auto level = std::make_shared<const Level>(load_level_argument(o.level));
@@ -120,10 +125,10 @@ void run_render(const RenderOptions& o, const CommonOptions& common) {
   const lighting::OfflineRenderResult result =
       lighting::render_offline(device, shaders, level, request);
   write_images(o.out, result.images, o.exposure);
-  log::info("{} {} frame(s) from frame {} at {}x{}: median {:.2f} ms/frame (GPU); wrote {} ({})",
-            request.integrator.name, request.frames, request.first_frame,
-            width, height, result.median_frame_ms(), o.out,
-            lighting::frame_output_name(request.output));
+  log::info("{} {} frame(s) from frame {} at {}x{}{}: median {:.2f} ms/frame (GPU); wrote {} ({})",
+            request.integrator.name, request.frames, request.first_frame, width, height,
+            o.render_scale < 1.0f ? fmt::format(" (render scale {})", o.render_scale) : "",
+            result.median_frame_ms(), o.out, lighting::frame_output_name(request.output));
   // Median GPU ms per pass, in the order of the first frame.
   if (!result.pass_ms.empty()) {
     std::string passes;
@@ -174,6 +179,10 @@ void add_render_command(CLI::App& root, CommonOptions& options) {
                   "raw (the integrator's unbiased image) or denoised; default raw for EXR, "
                   "denoised for PNG")
       ->check(CLI::IsMember({"raw", "denoised"}));
+  add_render_scale_option(*cmd, opts->render_scale,
+                          "Internal size of the denoised image as a fraction of --size "
+                          "(upscale.temporal reconstructs it at --size, as play's dynamic "
+                          "resolution does); needs the denoised output");
   cmd->add_option("--exposure", opts->exposure, "PNG exposure multiplier (default: automatic)")
       ->check(CLI::Range(1e-6f, 1e6f));
   cmd->callback([opts, &options] { run_render(*opts, options); });

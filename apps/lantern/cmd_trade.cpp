@@ -480,11 +480,10 @@ void add_trade_command(CLI::App& root, CommonOptions& options) {
   cmd->add_option("--reference-frames", opts->reference_frames,
                   "Reference frames averaged (total spp = spp x frames)")
       ->capture_default_str();
-  cmd->add_option("--render-scale", opts->render_scale,
-                  "Internal size of the denoised frames as a fraction of --size (upscale.temporal "
-                  "reconstructs them at --size); the raw frames stay at --size")
-      ->check(CLI::Range(0.1f, 1.0f))
-      ->capture_default_str();
+  add_render_scale_option(*cmd, opts->render_scale,
+                          "Internal size of the denoised frames as a fraction of --size "
+                          "(upscale.temporal reconstructs them at --size); the raw frames stay at "
+                          "--size");
   cmd->add_flag("--images", opts->images,
                 "Also write the last evaluated frame: reference.exr, NAME_raw.exr, "
                 "NAME_denoised.exr");

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/scene/level.h"
+#include "lighting/frame/frame_renderer.h"
 #include "lighting/integrators/integrator_registry.h"
 
 namespace lantern::app {
@@ -75,5 +76,14 @@ void require_gbuffer_method(lighting::GBufferMethod method, const Level& level,
 
 // "640x360" -> (640, 360); InputError naming the flag otherwise.
 std::pair<std::uint32_t, std::uint32_t> parse_size(std::string_view size);
+
+// --render-scale S (0.1..1, default 1): the internal size as a fraction of --size, upscaled back
+// by upscale.temporal (what `play`'s dynamic resolution moves); `description` is its help.
+CLI::Option* add_render_scale_option(CLI::App& cmd, float& scale, const std::string& description);
+// render and capture: a scale below 1 shapes the denoised image only (the raw one is the
+// integrator's unbiased image at --size). InputError naming --render-scale and `how_to_denoise`
+// (the flags that choose the denoised output) when `output` is raw.
+void require_denoised_for_render_scale(float scale, lighting::FrameOutput output,
+                                       std::string_view how_to_denoise);
 
 }  // namespace lantern::app

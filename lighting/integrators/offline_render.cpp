@@ -58,7 +58,8 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
                            .width = request.width,
                            .height = request.height,
                            .seed = request.seed,
-                           .output = request.output});
+                           .output = request.output,
+                           .render_scale = request.render_scale});
   session.warm_up();
   session.skip(request.first_frame);
 

@@ -36,6 +36,9 @@ struct OfflineRenderRequest {
   bool animate = true;
   // Raw integrator images or denoised ones (knobs: integrator.preset, integrator.denoise).
   FrameOutput output = FrameOutput::Raw;
+  // Internal size / width x height (SessionOptions::render_scale): below 1 the images are
+  // upscaled to width x height by upscale.temporal.
+  float render_scale = 1.0f;
 };
 
 struct OfflineRenderResult {
