@@ -28,6 +28,7 @@
 #include "engine/perf/pareto.h"
 #include "engine/perf/statistics.h"
 #include "lighting/frame/headless_session.h"
+#include "lighting/frame/motion_flicker.h"
 #include "lighting/integrators/offline_render.h"
 #include "lighting/integrators/reference_cache.h"
 #include "runtime/core/device.h"
@@ -79,6 +80,9 @@ struct Row {
   // Mean squared change between the last two frames relative to the reference's mean square.
   double flicker_raw = 0.0;
   double flicker_denoised = 0.0;
+  // The same with the last-but-one frame moved along the scene's motion (motion_flicker.h).
+  double flicker_mc_raw = 0.0;
+  double flicker_mc_denoised = 0.0;
   // --images: the last evaluated frame.
   runtime::ImageRGBA32F last_raw, last_denoised;
   double mean_relmse() const { return mean_of(relmse); }
@@ -226,6 +230,14 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                                         [](double n) { return n < 0.0; });
   const double noise_ref = noise_known ? mean_of(reference_noise) : -1.0;
 
+  // The motion-compensated flicker compares each pixel of the last frame with where its point
+  // was in the frame before: the first raw run's G-buffers of those two frames say where, and
+  // which pixels show the same surface in both (the raw run has no jitter; every run renders
+  // the same camera and objects, so one warp serves the references and every row).
+  lighting::MotionWarp warp;
+  lighting::GBufferTexels flicker_gbuffer;
+  double flicker_mc_ref = 0.0;
+
   std::vector<Row> rows;
   std::pair<std::uint32_t, std::uint32_t> denoised_internal{width, height};
   for (const Config& cfg : cfgs) {
@@ -253,8 +265,18 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
         const bool evaluate = next < ks.size() && ks[next] == k;
         const bool keep = evaluate || (flicker && k == flicker_frame);
         runtime::ImageRGBA32F image;
+        const bool read_gbuffer =
+            flicker && rows.empty() && !denoised && (k == flicker_frame || k == flicker_frame + 1);
+        lighting::GBufferTexels gbuffer;
         const lighting::FrameTiming t =
-            session.render(session.step_world(), keep ? &image : nullptr, nullptr);
+            session.render(session.step_world(), keep ? &image : nullptr, nullptr,
+                           read_gbuffer ? &gbuffer : nullptr);
+        if (read_gbuffer && k == flicker_frame) flicker_gbuffer = std::move(gbuffer);
+        if (read_gbuffer && k == flicker_frame + 1) {
+          warp = lighting::motion_warp(flicker_gbuffer, gbuffer);
+          flicker_mc_ref = lighting::motion_compensated_change(references.back(), flicker_reference,
+                                                               references.back(), warp);
+        }
         if (denoised) {
           double denoise_ms = 0.0;
           for (const auto& [name, ms] : t.passes) {
@@ -269,6 +291,8 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
         if (flicker && k == flicker_frame + 1) {
           (denoised ? row.flicker_denoised : row.flicker_raw) =
               frame_change(image, previous, references.back());
+          (denoised ? row.flicker_mc_denoised : row.flicker_mc_raw) =
+              lighting::motion_compensated_change(image, previous, references.back(), warp);
         }
         if (evaluate) {
           const runtime::ImageRGBA32F& ref = references[next++];
@@ -342,7 +366,8 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   nlohmann::json jrows = nlohmann::json::array();
   std::string csv =
       "name,integrator,frame_ms,frame_wall_ms,relmse,pareto,denoise_ms,relmse_denoised,"
-      "mean_ratio_denoised,flicker_raw,flicker_denoised,settings,denoised_frame_ms\n";
+      "mean_ratio_denoised,flicker_raw,flicker_denoised,settings,denoised_frame_ms,"
+      "flicker_mc_raw,flicker_mc_denoised\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     const std::string& integrator = r.config.integrator.name;
@@ -365,16 +390,21 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                      {"flicker_raw", r.flicker_raw},
                      {"flicker_denoised", r.flicker_denoised},
                      {"flicker_ratio", flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0},
+                     {"flicker_mc_raw", r.flicker_mc_raw},
+                     {"flicker_mc_denoised", r.flicker_mc_denoised},
+                     {"flicker_mc_ratio",
+                      flicker_mc_ref > 0.0 ? r.flicker_mc_denoised / flicker_mc_ref : 0.0},
                      {"pareto", on_front(i)},
                      {"settings", settings_json(r.config.integrator)}});
     std::string settings;
     for (const auto& [k, v] : r.config.integrator.settings) settings += fmt::format("{}={};", k, v);
     csv += fmt::format(
-        "{},{},{:.4f},{:.4f},{:.6g},{},{:.4f},{:.6g},{:.5f},{:.6g},{:.6g},{},{:.4f}\n",
+        "{},{},{:.4f},{:.4f},{:.6g},{},{:.4f},{:.6g},{:.5f},{:.6g},{:.6g},{},{:.4f},{:.6g},"
+        "{:.6g}\n",
         r.config.name, integrator, r.frame_ms, r.frame_wall_ms, r.mean_relmse(),
         on_front(i) ? 1 : 0, r.denoise_ms, mean_of(r.relmse_denoised),
         mean_of(r.mean_ratio_denoised), r.flicker_raw, r.flicker_denoised, settings,
-        r.denoised_frame_ms);
+        r.denoised_frame_ms, r.flicker_mc_raw, r.flicker_mc_denoised);
   }
   const nlohmann::json j = {
       {"level", level->name},
@@ -388,9 +418,14 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
       {"evaluated_frames", ks},
       // Frame-to-frame change between frames frames-2 and frames-1 relative to the reference's
       // mean square; the rows' flicker_ratio is their denoised flicker over this.
+      // motion_compensated: the same with frame frames-2 moved along the scene's motion, over
+      // the pixels both frames show as the same surface (compared_pixels); the rows'
+      // flicker_mc_ratio is their denoised one over this reference's.
       {"flicker", {{"frames", flicker ? nlohmann::json::array({flicker_frame, flicker_frame + 1})
                                       : nlohmann::json()},
-                   {"reference", flicker_ref}}},
+                   {"reference", flicker_ref},
+                   {"motion_compensated",
+                    {{"reference", flicker_mc_ref}, {"compared_pixels", warp.valid_count}}}}},
       {"reference", {{"integrator", "reference"},
                      {"spp_per_frame", o.reference_spp},
                      {"frames_averaged", o.reference_frames},
@@ -429,20 +464,24 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                 denoised_internal.first, denoised_internal.second, width, height,
                 static_cast<double>(o.render_scale));
   }
-  std::printf("%-14s %-9s %10s %12s %6s %10s %10s %12s %8s %8s %10s %10s\n", "config", "integr.",
-              "frame ms", "relMSE", "pareto", "den. frame", "denoise ms", "denoised", "mean",
-              "raw mean", "flicker", "x ref");
+  std::printf("%-14s %-9s %10s %12s %6s %10s %10s %12s %8s %8s %10s %10s %10s %10s\n", "config",
+              "integr.", "frame ms", "relMSE", "pareto", "den. frame", "denoise ms", "denoised",
+              "mean", "raw mean", "flicker", "x ref", "mc flicker", "x ref");
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
-    std::printf("%-14s %-9s %10.2f %12.4g %6s %10.2f %10.2f %12.4g %8.4f %8.4f %10.4g %10.3g\n",
-                r.config.name.c_str(), r.config.integrator.name.c_str(), r.frame_ms,
-                r.mean_relmse(), on_front(i) ? "*" : "", r.denoised_frame_ms, r.denoise_ms,
-                mean_of(r.relmse_denoised), mean_of(r.mean_ratio_denoised),
-                mean_of(r.mean_ratio_raw), r.flicker_denoised,
-                flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0);
+    std::printf(
+        "%-14s %-9s %10.2f %12.4g %6s %10.2f %10.2f %12.4g %8.4f %8.4f %10.4g %10.3g %10.4g "
+        "%10.3g\n",
+        r.config.name.c_str(), r.config.integrator.name.c_str(), r.frame_ms, r.mean_relmse(),
+        on_front(i) ? "*" : "", r.denoised_frame_ms, r.denoise_ms, mean_of(r.relmse_denoised),
+        mean_of(r.mean_ratio_denoised), mean_of(r.mean_ratio_raw), r.flicker_denoised,
+        flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0, r.flicker_mc_denoised,
+        flicker_mc_ref > 0.0 ? r.flicker_mc_denoised / flicker_mc_ref : 0.0);
   }
-  std::printf("reference flicker %.4g (frames %u-%u)\n", flicker_ref, flicker_frame,
-              flicker_frame + 1);
+  std::printf("reference flicker %.4g (frames %u-%u); motion-compensated %.4g over %zu of %u "
+              "pixels (the same surface in both frames, no emitter)\n",
+              flicker_ref, flicker_frame, flicker_frame + 1, flicker_mc_ref, warp.valid_count,
+              width * height);
   if (noise_known) {
     std::printf("reference noise >= %.4g (its own relMSE from the spread of its %u frames of %u "
                 "spp, more where rare bright samples never came up: errors near it are not "

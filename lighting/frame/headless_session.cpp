@@ -35,7 +35,8 @@ struct HeadlessSession::State {
                  o.height, o.seed),
         target(device, {.width = o.width, .height = o.height}),
         session(device, target, renderer),
-        raw(device) {
+        raw(device),
+        gbuffer(device) {
     renderer.set_output(o.output);
     renderer.set_internal_size(
         static_cast<std::uint32_t>(std::lround(o.render_scale * static_cast<float>(o.width))),
@@ -49,6 +50,7 @@ struct HeadlessSession::State {
   runtime::HeadlessTarget target;
   FrameSession session;
   HdrReadback raw;
+  GBufferReadback gbuffer;
 };
 
 HeadlessSession::HeadlessSession(runtime::Device& device, runtime::ShaderLibrary& shaders,
@@ -82,14 +84,19 @@ void HeadlessSession::skip(std::uint32_t frames) {
 }
 
 FrameTiming HeadlessSession::render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image,
-                                    runtime::ImageRGBA32F* raw) {
+                                    runtime::ImageRGBA32F* raw, GBufferTexels* gbuffer) {
   State& s = *state_;
   FrameTiming timing;
   FrameHooks hooks;
   const bool raw_pass = raw != nullptr && s.renderer.output() != FrameOutput::Raw;
-  if (raw_pass) {
-    hooks.hdr = [&s](runtime::graph::RenderGraph& graph, runtime::graph::BufferHandle hdr) {
-      s.raw.add(graph, s.renderer.last_raw(), s.renderer.width(), s.renderer.height());
+  if (raw_pass || gbuffer != nullptr) {
+    hooks.hdr = [&s, raw_pass, gbuffer](runtime::graph::RenderGraph& graph,
+                                        runtime::graph::BufferHandle hdr) {
+      if (raw_pass) s.raw.add(graph, s.renderer.last_raw(), s.renderer.width(), s.renderer.height());
+      if (gbuffer != nullptr) {
+        s.gbuffer.add(graph, s.renderer.last_inputs().gbuffer, s.renderer.width(),
+                      s.renderer.height());
+      }
       return hdr;
     };
   }
@@ -102,6 +109,7 @@ FrameTiming HeadlessSession::render(const FrameSnapshot& snapshot, runtime::Imag
   }
   if (image) *image = s.target.read_output();
   if (raw != nullptr) *raw = raw_pass ? s.raw.read() : image ? *image : s.target.read_output();
+  if (gbuffer != nullptr) *gbuffer = s.gbuffer.read();
   return timing;
 }
 

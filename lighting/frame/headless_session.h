@@ -17,6 +17,7 @@
 #include "engine/world/frame_snapshot.h"
 #include "lighting/frame/frame_renderer.h"
 #include "lighting/frame/frame_session.h"
+#include "lighting/frame/gbuffer_readback.h"
 #include "lighting/integrators/integrator_registry.h"
 #include "runtime/image/image.h"
 #include "runtime/runtime_fwd.h"
@@ -59,10 +60,11 @@ class HeadlessSession {
   // Steps `frames` frames without rendering, then requests a camera cut (`--frame K`).
   void skip(std::uint32_t frames);
   // Renders `snapshot` (usually the last step_world()'s); with `image`, reads the linear radiance
-  // of options().output back into it, and with `raw` the integrator's raw image of the same frame
-  // (the same as `image` when the output is raw).
+  // of options().output back into it, with `raw` the integrator's raw image of the same frame
+  // (the same as `image` when the output is raw), and with `gbuffer` the frame's G-buffer (at
+  // the internal size).
   FrameTiming render(const FrameSnapshot& snapshot, runtime::ImageRGBA32F* image = nullptr,
-                     runtime::ImageRGBA32F* raw = nullptr);
+                     runtime::ImageRGBA32F* raw = nullptr, GBufferTexels* gbuffer = nullptr);
 
   World& world();
   FrameRenderer& renderer();

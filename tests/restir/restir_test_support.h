@@ -18,6 +18,7 @@
 #include "engine/world/world.h"
 #include "lighting/frame/frame_renderer.h"
 #include "lighting/frame/frame_session.h"
+#include "lighting/frame/gbuffer_readback.h"
 #include "lighting/integrators/integrator_registry.h"
 #include "lighting/restir/restir_integrator.h"
 #include "runtime/gpu/buffer.h"
@@ -30,13 +31,8 @@
 
 namespace lantern::test {
 
-// Host copies of one frame's gbuffer.ids, gbuffer.motion and gbuffer.emission_metallic
-// (shared/gbuffer.h), row-major from the top-left.
-struct GBufferReadback {
-  std::vector<glm::uvec4> ids;      // x: instance (gpu::kNoInstance = sky)
-  std::vector<glm::vec4> motion;    // xy: previous pixel position minus current
-  std::vector<glm::vec4> emission;  // rgb: emitted radiance of the surface seen; a: metallic
-};
+// Host copies of one frame's G-buffer (ids, motion, emission, position).
+using GBufferReadback = lighting::GBufferTexels;
 
 class RenderHarness {
  public:
@@ -44,20 +40,21 @@ class RenderHarness {
                 std::shared_ptr<const Level> level,
                 std::unique_ptr<lighting::Integrator> integrator, std::uint32_t width,
                 std::uint32_t height, std::uint32_t seed = 1)
-      : device_(device),
+      : gbuffer_(device),
         renderer_(device, shaders, std::move(level), std::move(integrator), width, height, seed),
         target_(device, {.width = width, .height = height}),
         session_(device, target_, renderer_) {
     renderer_.warm_up();
   }
 
-  // One frame (the frame session's passes); with `gbuffer`, its ids, motion and emission images
-  // come back too (a readback pass in the HDR hook, after the G-buffer is written).
+  // One frame (the frame session's passes); with `gbuffer`, its G-buffer comes back too (a
+  // readback pass in the HDR hook, after the G-buffer is written).
   runtime::ImageRGBA32F render(const FrameSnapshot& snapshot, GBufferReadback* gbuffer = nullptr) {
     lighting::FrameHooks hooks;
     if (gbuffer != nullptr) {
       hooks.hdr = [this](runtime::graph::RenderGraph&, runtime::graph::BufferHandle hdr) {
-        add_gbuffer_readback();
+        gbuffer_.add(session_.graph(), renderer_.last_inputs().gbuffer, renderer_.width(),
+                     renderer_.height());
         return hdr;
       };
     }
@@ -65,15 +62,7 @@ class RenderHarness {
     if (!session_.render(snapshot, hooks, &timing)) {
       throw RuntimeError("harness: the headless target gave no frame");
     }
-    if (gbuffer != nullptr) {
-      const std::size_t n = std::size_t{renderer_.width()} * renderer_.height();
-      gbuffer->ids.resize(n);
-      gbuffer->motion.resize(n);
-      gbuffer->emission.resize(n);
-      std::memcpy(gbuffer->ids.data(), readback_[0].mapped(), n * sizeof(glm::uvec4));
-      std::memcpy(gbuffer->motion.data(), readback_[1].mapped(), n * sizeof(glm::vec4));
-      std::memcpy(gbuffer->emission.data(), readback_[2].mapped(), n * sizeof(glm::vec4));
-    }
+    if (gbuffer != nullptr) *gbuffer = gbuffer_.read();
     pass_ms_ = std::move(timing.passes);
     return target_.read_output();
   }
@@ -84,59 +73,7 @@ class RenderHarness {
   const std::vector<std::pair<std::string, double>>& pass_ms() const { return pass_ms_; }
 
  private:
-  // A Transfer pass copying gbuffer.ids, .motion and .emission_metallic (16 bytes a texel each)
-  // into host-visible buffers.
-  void add_gbuffer_readback() {
-    const std::size_t bytes = std::size_t{renderer_.width()} * renderer_.height() * 16;
-    if (readback_.empty()) {
-      for (const char* name :
-           {"test.ids_readback", "test.motion_readback", "test.emission_readback"}) {
-        readback_.emplace_back(device_, runtime::BufferDesc{
-                                            .size = bytes,
-                                            .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                            .memory = runtime::MemoryUsage::Readback,
-                                            .name = name});
-      }
-    }
-    const lighting::GBufferHandles& g = renderer_.last_inputs().gbuffer;
-    struct Copy {
-      runtime::graph::ImageHandle images[kImages];
-      runtime::graph::BufferHandle buffers[kImages];
-    };
-    const std::uint32_t width = renderer_.width(), height = renderer_.height();
-    runtime::graph::RenderGraph& graph = session_.graph();
-    graph.add_pass<Copy>(
-        "test.gbuffer_readback", runtime::graph::PassKind::Transfer,
-        [&](runtime::graph::PassBuilder& b, Copy& d) {
-          runtime::graph::ImportInfo host_read;
-          host_read.final = runtime::graph::AccessState{
-              VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
-          d.images[0] = g.ids;
-          d.images[1] = g.motion;
-          d.images[2] = g.emission_metallic;
-          for (int i = 0; i < kImages; ++i) {
-            b.read(d.images[i], runtime::graph::Access::TransferSrc);
-            d.buffers[i] = b.write(graph.import_buffer(readback_[i].name(), readback_[i].handle(),
-                                                        {readback_[i].size()}, host_read),
-                                   runtime::graph::Access::TransferDst);
-          }
-          b.side_effect();
-        },
-        [width, height](runtime::graph::PassContext& ctx, const Copy& d) {
-          for (int i = 0; i < kImages; ++i) {
-            VkBufferImageCopy region{};
-            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.imageExtent = {width, height, 1};
-            vkCmdCopyImageToBuffer(ctx.cmd(), ctx.image(d.images[i]),
-                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ctx.buffer(d.buffers[i]),
-                                   1, &region);
-          }
-        });
-  }
-
-  static constexpr int kImages = 3;  // ids, motion, emission_metallic
-  runtime::Device& device_;
-  std::vector<runtime::Buffer> readback_;
+  lighting::GBufferReadback gbuffer_;
   lighting::FrameRenderer renderer_;
   runtime::HeadlessTarget target_;
   lighting::FrameSession session_;
