@@ -1,9 +1,9 @@
 // `lantern render LEVEL --integrator NAME (integrator_registry.h) [--frame K] [--frames N]
 // [--spp N] [--average] [--static] [--output raw|denoised] [--render-scale S] --out PATH`
-// (CLI.md): steps the level's world K frames, then
-// renders N frames headless (objects, lights and camera animate unless --static) and writes them:
-// one .exr/.png file when one image results, else a directory of frame_NNNN.exr. --preset and
-// --set KEY=VALUE go to the integrator (an unknown key is an error).
+// (CLI.md): steps the level's world K frames, then renders N frames headless (objects, lights
+// and camera animate unless --static) and writes them: one .exr/.png file when one image results,
+// else a directory of frame_NNNN.exr. --preset and --set KEY=VALUE go to the integrator (an
+// unknown key is an error).
 #include <fmt/format.h>
 #include <unistd.h>
 

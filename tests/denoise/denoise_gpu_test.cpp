@@ -16,6 +16,7 @@
 
 #include "lighting/denoise/denoise_settings.h"
 #include "lighting/upscale/upscaler.h"
+#include "runtime/gpu/buffer.h"
 #include "runtime/graph/pass_context.h"
 #include "shared/reservoir_pack.h"
 #include "shared/scene.h"

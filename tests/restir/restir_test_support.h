@@ -7,7 +7,6 @@
 #pragma once
 
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -21,7 +20,6 @@
 #include "lighting/frame/gbuffer_readback.h"
 #include "lighting/integrators/integrator_registry.h"
 #include "lighting/restir/restir_integrator.h"
-#include "runtime/gpu/buffer.h"
 #include "runtime/gpu/gpu_timer.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/graph/graph_executor.h"
@@ -52,9 +50,8 @@ class RenderHarness {
   runtime::ImageRGBA32F render(const FrameSnapshot& snapshot, GBufferReadback* gbuffer = nullptr) {
     lighting::FrameHooks hooks;
     if (gbuffer != nullptr) {
-      hooks.hdr = [this](runtime::graph::RenderGraph&, runtime::graph::BufferHandle hdr) {
-        gbuffer_.add(session_.graph(), renderer_.last_inputs().gbuffer, renderer_.width(),
-                     renderer_.height());
+      hooks.hdr = [this](runtime::graph::RenderGraph& graph, runtime::graph::BufferHandle hdr) {
+        gbuffer_.add(graph, renderer_.last_inputs().gbuffer, renderer_.width(), renderer_.height());
         return hdr;
       };
     }
