@@ -25,6 +25,26 @@ void require_size(std::uint32_t w, std::uint32_t h, std::uint32_t width, std::ui
   }
 }
 
+// The world distance from pixel (x, y)'s point to the nearest of its four neighbours' on the
+// same instance (0 when none is): how far apart neighbouring texels lie on its surface.
+float texel_spacing(const GBufferTexels& g, std::uint32_t x, std::uint32_t y) {
+  const std::size_t i = g.index(x, y);
+  float nearest = 0.0f;
+  const glm::ivec2 offsets[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  for (const glm::ivec2 o : offsets) {
+    const glm::ivec2 q = glm::ivec2(x, y) + o;
+    if (q.x < 0 || q.y < 0 || q.x >= static_cast<int>(g.width) ||
+        q.y >= static_cast<int>(g.height)) {
+      continue;
+    }
+    const std::size_t j = g.index(static_cast<std::uint32_t>(q.x), static_cast<std::uint32_t>(q.y));
+    if (g.ids[j].x != g.ids[i].x) continue;
+    const float d = glm::length(glm::vec3(g.position[j]) - glm::vec3(g.position[i]));
+    if (nearest == 0.0f || d < nearest) nearest = d;
+  }
+  return nearest;
+}
+
 }  // namespace
 
 MotionWarp motion_warp(const GBufferTexels& previous, const GBufferTexels& current) {
@@ -53,13 +73,14 @@ MotionWarp motion_warp(const GBufferTexels& previous, const GBufferTexels& curre
             b.y + 1.0f <= static_cast<float>(current.height) - 1.0f)) {
         continue;
       }
+      const float reach =
+          kMotionWarpDepth * p.w + kMotionWarpSpacings * texel_spacing(current, x, y);
       bool same = true;
       for (int t = 0; t < 4 && same; ++t) {
         const std::size_t q = previous.index(static_cast<std::uint32_t>(b.x) + (t & 1),
                                              static_cast<std::uint32_t>(b.y) + (t >> 1));
         same = previous.ids[q].x == instance && !emits(previous.emission[q]) &&
-               glm::length(glm::vec3(previous.position[q]) - glm::vec3(p)) <=
-                   kMotionWarpDistance * p.w;
+               glm::length(glm::vec3(previous.position[q]) - glm::vec3(p)) <= reach;
       }
       if (!same) continue;
       warp.valid[i] = 1;

@@ -22,14 +22,19 @@ struct MotionWarp {
   std::vector<glm::vec2> source;
   // Per pixel: 1 where frame t shows a surface that is no emitter (the denoiser passes emitters
   // through) and frame t-1's four texels around `source` show the same instance, no emitter, and
-  // points within kMotionWarpDistance x the view depth of it (else a disocclusion); 0 otherwise.
+  // points near it (kMotionWarpDepth, kMotionWarpSpacings; else a disocclusion); 0 otherwise.
   std::vector<std::uint8_t> valid;
   std::size_t valid_count = 0;
 };
 
-// A texel of frame t-1 farther than this x the point's view depth from the point is another
-// surface: the point was hidden there.
-inline constexpr float kMotionWarpDistance = 0.05f;
+// A texel of frame t-1 farther from the point than kMotionWarpSpacings texel spacings (the world
+// distance to the nearest of the pixel's four neighbours on its instance: how far apart texels
+// lie on its surface at this size) plus kMotionWarpDepth x its view depth is another surface:
+// the point was hidden there. In texel units, so an image is judged alike at every size. The
+// figure a view gets depends on this choice more than one would like: a few pixels carry most of
+// a moving view's change (README, "The speed/accuracy trade").
+inline constexpr float kMotionWarpSpacings = 2.5f;
+inline constexpr float kMotionWarpDepth = 0.01f;
 
 // From the G-buffers of frames t-1 and t (same size). InputError on a size mismatch.
 MotionWarp motion_warp(const GBufferTexels& previous, const GBufferTexels& current);

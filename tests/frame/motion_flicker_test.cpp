@@ -2,7 +2,7 @@
 // G-buffers: a view panning over a wall whose image is a ramp in the wall's x. Moved back along
 // the motion, frame t-1 is frame t: no change, where the plain frame-to-frame change is large;
 // noise in frame t is measured exactly; emitters, other instances (a disocclusion), far points
-// and sources outside the image are left out.
+// and sources outside the image are left out, and the pixels of a coarse image are compared too.
 #include "lighting/frame/motion_flicker.h"
 
 #include <gtest/gtest.h>
@@ -22,18 +22,21 @@ using runtime::ImageRGBA32F;
 
 constexpr std::uint32_t kW = 24, kH = 10;
 constexpr float kDepth = 5.0f;
-constexpr float kPixel = 0.01f;  // world units a pixel spans on the wall (a 60-degree view)
+// World units a pixel spans on the wall: a 60-degree view at about 90 rows (coarser images,
+// fewer rows, spread their pixels farther apart).
+constexpr float kPixel = 0.01f;
 
 // The wall seen with the camera `pan` pixels to the right: pixel x shows wall x + pan; each point
-// moved by `motion` pixels since the frame before (prev = cur + motion).
-GBufferTexels wall(float pan, glm::vec2 motion) {
+// moved by `motion` pixels since the frame before (prev = cur + motion); a pixel spans
+// `pixel_size` world units.
+GBufferTexels wall(float pan, glm::vec2 motion, float pixel_size = kPixel) {
   GBufferTexels g;
   g.width = kW;
   g.height = kH;
   for (std::uint32_t y = 0; y < kH; ++y) {
     for (std::uint32_t x = 0; x < kW; ++x) {
-      g.position.emplace_back((static_cast<float>(x) + pan) * kPixel,
-                              static_cast<float>(y) * kPixel, 0.0f, kDepth);
+      g.position.emplace_back((static_cast<float>(x) + pan) * pixel_size,
+                              static_cast<float>(y) * pixel_size, 0.0f, kDepth);
       g.emission.emplace_back(0.0f);
       g.ids.emplace_back(1u, 0u, 0u, 0u);
       g.motion.emplace_back(motion, motion);
@@ -86,6 +89,21 @@ TEST(MotionFlickerTest, APanMovedBackIsNoChange) {
               1e-4)
         << "step " << step;
   }
+}
+
+// A coarse image (texels 6% of the view depth apart, as at 16 rows): its pixels are compared
+// too, the distance test being in texel spacings (a fixed share of the depth, 5%, rejected every
+// pixel whose source texels lie a texel away); a texel 4 spacings behind is another surface.
+TEST(MotionFlickerTest, CoarseImagesAreComparedToo) {
+  const float coarse = 0.06f * kDepth;
+  GBufferTexels previous = wall(0.0f, glm::vec2(0.0f), coarse);
+  const GBufferTexels current = wall(0.5f, glm::vec2(0.5f, 0.0f), coarse);
+  const MotionWarp warp = lighting::motion_warp(previous, current);
+  EXPECT_EQ(warp.valid_count, std::size_t{kW - 1} * (kH - 1));
+  const ImageRGBA32F a = wall_image(0.0f), b = wall_image(0.5f);
+  EXPECT_LT(lighting::motion_compensated_change(b, a, b, warp), 1e-12);
+  previous.position[previous.index(8, 4)].z -= 4.0f * coarse;
+  EXPECT_EQ(lighting::motion_warp(previous, current).valid_count, warp.valid_count - 4);
 }
 
 TEST(MotionFlickerTest, NoiseInTheNewFrameIsMeasured) {
