@@ -7,7 +7,9 @@
 // trade.csv and trade.png (error against ms, log-log, Pareto front marked). With --render-scale
 // below 1 the denoised frames are rendered at that internal size and upscaled (upscale.temporal)
 // to --size, as `play`'s dynamic resolution shows them; the raw columns stay at --size, the
-// unbiased image the denoised one is measured against.
+// unbiased image the denoised one is measured against. Flicker: the change between the last two
+// frames, plain and moved along the scene's motion (lighting/frame/motion_flicker.h), each over
+// the references' own.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -478,10 +480,12 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
         flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0, r.flicker_mc_denoised,
         flicker_mc_ref > 0.0 ? r.flicker_mc_denoised / flicker_mc_ref : 0.0);
   }
-  std::printf("reference flicker %.4g (frames %u-%u); motion-compensated %.4g over %zu of %u "
-              "pixels (the same surface in both frames, no emitter)\n",
-              flicker_ref, flicker_frame, flicker_frame + 1, flicker_mc_ref, warp.valid_count,
-              width * height);
+  if (flicker) {
+    std::printf("reference flicker %.4g (frames %u-%u); motion-compensated %.4g over %zu of %u "
+                "pixels (the same surface in both frames, no emitter)\n",
+                flicker_ref, flicker_frame, flicker_frame + 1, flicker_mc_ref, warp.valid_count,
+                width * height);
+  }
   if (noise_known) {
     std::printf("reference noise >= %.4g (its own relMSE from the spread of its %u frames of %u "
                 "spp, more where rare bright samples never came up: errors near it are not "
