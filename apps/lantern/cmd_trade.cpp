@@ -481,10 +481,11 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
         flicker_mc_ref > 0.0 ? r.flicker_mc_denoised / flicker_mc_ref : 0.0);
   }
   if (flicker) {
-    std::printf("reference flicker %.4g (frames %u-%u); motion-compensated %.4g over %zu of %u "
-                "pixels (the same surface in both frames, no emitter)\n",
-                flicker_ref, flicker_frame, flicker_frame + 1, flicker_mc_ref, warp.valid_count,
-                width * height);
+    std::printf(
+        "reference flicker %.4g (frames %u-%u); motion-compensated %.4g over %zu of %u "
+        "pixels (the same surface in both frames, no emitter)\n",
+        flicker_ref, flicker_frame, flicker_frame + 1, flicker_mc_ref, warp.valid_count,
+        width * height);
   }
   if (noise_known) {
     std::printf("reference noise >= %.4g (its own relMSE from the spread of its %u frames of %u "
