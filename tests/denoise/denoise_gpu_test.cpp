@@ -160,7 +160,7 @@ ImageRGBA32F internal_image(std::uint32_t w, std::uint32_t h, std::uint32_t in_w
 }
 
 // Pixels that show a surface (not sky).
-std::vector<std::uint8_t> surfaces(const test::GBufferReadback& g) {
+std::vector<std::uint8_t> surfaces(const lighting::GBufferTexels& g) {
   std::vector<std::uint8_t> mask(g.ids.size());
   for (std::size_t p = 0; p < mask.size(); ++p) mask[p] = g.ids[p].x != gpu::kNoInstance;
   return mask;
@@ -186,7 +186,7 @@ class DenoiseGpuTest : public runtime::test::GpuTest {
     return run;
   }
   ImageRGBA32F render(Run& run, const ImageRGBA32F& input, const FrameSnapshot& s,
-                      test::GBufferReadback* gbuffer = nullptr) {
+                      lighting::GBufferTexels* gbuffer = nullptr) {
     run.input->set(input);
     return run.harness->render(s, gbuffer);
   }
@@ -194,7 +194,7 @@ class DenoiseGpuTest : public runtime::test::GpuTest {
   // and the surface pixels.
   FrameSnapshot black_frames(Run& run, int frames, std::vector<std::uint8_t>& mask) {
     FrameSnapshot s = test::first_snapshot(level, kW, kH);
-    test::GBufferReadback g;
+    lighting::GBufferTexels g;
     for (int f = 0; f < frames; ++f) {
       if (f > 0) s = frozen(s);
       (void)render(run, constant(0.0f), s, &g);
@@ -276,7 +276,7 @@ TEST_F(DenoiseGpuTest, NoisyImageKeepsItsMean) {
   Run run = make_run();
   FrameSnapshot s = test::first_snapshot(level, kW, kH);
   const float c = 0.37f;
-  test::GBufferReadback g;
+  lighting::GBufferTexels g;
   ImageRGBA32F out;
   for (std::uint32_t f = 0; f < 16; ++f) {
     if (f > 0) s = frozen(s);
@@ -315,7 +315,7 @@ TEST_F(DenoiseGpuTest, ShadowLineOnALitWallStaysDark) {
   for (std::uint32_t y = 0; y < kH; ++y) {
     for (int k = 0; k < 3; ++k) in.pixels[4 * (y * kW + line) + k] = 0.0f;
   }
-  test::GBufferReadback g;
+  lighting::GBufferTexels g;
   ImageRGBA32F out;
   for (int f = 0; f < 16; ++f) {
     if (f > 0) s = frozen(s);
@@ -365,7 +365,7 @@ TEST_F(DenoiseGpuTest, SkyIsFilteredOnlyWhenTheLevelHasMedia) {
     harness.renderer().set_output(lighting::FrameOutput::Denoised);
     harness.renderer().set_denoise_settings(lighting::make_denoise_settings("balanced", {}));
     FrameSnapshot s = test::first_snapshot(scene, kW, kH);
-    test::GBufferReadback g;
+    lighting::GBufferTexels g;
     ImageRGBA32F out;
     for (std::uint32_t f = 0; f < 16; ++f) {
       if (f > 0) s = frozen(s);
@@ -440,7 +440,7 @@ TEST_F(DenoiseGpuTest, DisocclusionRejectsHistory) {
   Run run = make_run({{"atrous", "0"}, {"firefly", "0"}});
   FrameSnapshot s = test::first_snapshot(level, kW, kH);
   const float before = 0.2f, now = 0.6f;
-  test::GBufferReadback previous, current;
+  lighting::GBufferTexels previous, current;
   for (int f = 0; f < 4; ++f) {
     if (f > 0) s = frozen(s);
     (void)render(run, constant(before), s, &previous);
@@ -495,7 +495,7 @@ TEST_F(DenoiseGpuTest, MostlyHiddenFootprintHasNoHistory) {
   for (const float start : {0.0f, 0.019f, 0.038f, 0.057f}) {
     Run run = make_run({{"atrous", "0"}, {"firefly", "0"}});
     FrameSnapshot s = moved(test::first_snapshot(level, kW, kH), start);
-    test::GBufferReadback previous, current;
+    lighting::GBufferTexels previous, current;
     for (int f = 0; f < 4; ++f) {
       if (f > 0) s = frozen(s);
       (void)render(run, constant(before), s, &previous);
@@ -554,7 +554,7 @@ TEST_F(DenoiseGpuTest, DisocclusionRecoversWithinFourFrames) {
   Run run = make_run();
   FrameSnapshot s = test::first_snapshot(level, kW, kH);
   const float c = 0.37f;
-  test::GBufferReadback before, after;
+  lighting::GBufferTexels before, after;
   std::uint32_t f = 0;
   for (; f < 8; ++f) {
     if (f > 0) s = frozen(s);
@@ -1046,7 +1046,7 @@ TEST_F(DenoiseGpuTest, JitteredMotionIsTheJitterStep) {
     glm::vec2 previous(0.0f);
     for (int f = 0; f < 4; ++f) {
       if (f > 0) s = frozen(s);
-      test::GBufferReadback g;
+      lighting::GBufferTexels g;
       (void)run.render(s, &g);
       const glm::vec2 jitter = run.renderer().jitter();
       EXPECT_GT(glm::length(jitter), 0.0f) << "frame " << f;

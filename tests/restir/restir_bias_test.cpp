@@ -221,7 +221,7 @@ class RestirBiasTest : public runtime::test::GpuTest {
     // Reference: the reference integrator's frames (independent), kept for the lit sums once the
     // mask is known; the G-buffer of its first frame chooses the pixels.
     std::vector<ImageRGBA32F> ref_images;
-    test::GBufferReadback gbuffer;
+    lighting::GBufferTexels gbuffer;
     auto clock_start = std::chrono::steady_clock::now();
     auto seconds = [&clock_start]() {
       const auto now = std::chrono::steady_clock::now();

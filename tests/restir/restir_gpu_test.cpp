@@ -141,8 +141,8 @@ struct GeometryMasks {
   std::vector<std::uint8_t> newly_visible;
   std::vector<std::uint8_t> still_visible;
 };
-GeometryMasks geometry_masks(const test::GBufferReadback& previous, const test::GBufferReadback& current,
-                             std::uint32_t occluder) {
+GeometryMasks geometry_masks(const lighting::GBufferTexels& previous,
+                             const lighting::GBufferTexels& current, std::uint32_t occluder) {
   constexpr int kRadius = 2;
   GeometryMasks m{std::vector<std::uint8_t>(std::size_t{kW} * kH, 0),
                   std::vector<std::uint8_t>(std::size_t{kW} * kH, 0)};
@@ -189,7 +189,7 @@ TEST_F(RestirGpuTest, DisocclusionJudgedByGeometry) {
   constexpr int kT0 = 6;
   RenderHarness run(device, shaders, cornell(),
                     test::make_restir(device, shaders, {{"debug_view", "disocclusion"}}), kW, kH);
-  test::GBufferReadback previous, current;
+  lighting::GBufferTexels previous, current;
   ImageRGBA32F debug;
   for (int f = 0; f <= kT0; ++f) {
     FrameSnapshot s = world.step();
@@ -251,9 +251,9 @@ TEST_F(RestirGpuTest, DisocclusionRecoversWithinFourFrames) {
 
   RenderHarness run(device, shaders, cornell(), test::make_restir(device, shaders, {}), kW, kH);
   std::vector<ImageRGBA32F> images;
-  test::GBufferReadback before, after;
+  lighting::GBufferTexels before, after;
   for (int f = 0; f < kFrames; ++f) {
-    test::GBufferReadback* ids = f == kT0 - 1 ? &before : f == kT0 ? &after : nullptr;
+    lighting::GBufferTexels* ids = f == kT0 - 1 ? &before : f == kT0 ? &after : nullptr;
     images.push_back(run.render(frames[f], ids));
   }
   const std::vector<std::uint8_t> mask =

@@ -29,9 +29,6 @@
 
 namespace lantern::test {
 
-// Host copies of one frame's G-buffer (ids, motion, emission, position).
-using GBufferReadback = lighting::GBufferTexels;
-
 class RenderHarness {
  public:
   RenderHarness(runtime::Device& device, runtime::ShaderLibrary& shaders,
@@ -47,7 +44,8 @@ class RenderHarness {
 
   // One frame (the frame session's passes); with `gbuffer`, its G-buffer comes back too (a
   // readback pass in the HDR hook, after the G-buffer is written).
-  runtime::ImageRGBA32F render(const FrameSnapshot& snapshot, GBufferReadback* gbuffer = nullptr) {
+  runtime::ImageRGBA32F render(const FrameSnapshot& snapshot,
+                               lighting::GBufferTexels* gbuffer = nullptr) {
     lighting::FrameHooks hooks;
     if (gbuffer != nullptr) {
       hooks.hdr = [this](runtime::graph::RenderGraph& graph, runtime::graph::BufferHandle hdr) {
