@@ -7,17 +7,19 @@
 // trade.csv and trade.png (error against ms, log-log, Pareto front marked). With --render-scale
 // below 1 the denoised frames are rendered at that internal size and upscaled (upscale.temporal)
 // to --size, as `play`'s dynamic resolution shows them; the raw columns stay at --size, the
-// unbiased image the denoised one is measured against. Flicker: the change between the last two
-// frames, plain and moved along the scene's motion (lighting/frame/motion_flicker.h), each over
-// the references' own.
+// unbiased image the denoised one is measured against. Flicker: the change between consecutive
+// frames over the run's last --flicker-pairs pairs, plain and moved along the scene's motion
+// (lighting/frame/motion_flicker.h), each over the references' own.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <set>
 #include <string>
 #include <vector>
@@ -55,6 +57,21 @@ struct TradeOptions {
   bool no_baseline = false;
   bool images = false;  // write the last evaluated frame's images beside trade.json
   float render_scale = 1.0f;  // the denoised frames' internal size / --size
+  // Consecutive frame pairs the flicker is averaged over, the run's last; the default is cut to
+  // the frames there are, an explicit --flicker-pairs is not.
+  std::uint32_t flicker_pairs = 3;
+  bool flicker_pairs_given = false;
+};
+
+// The consecutive frame pairs (f, f+1), f = first .. last() - 1, the flicker is measured over.
+struct FlickerPairs {
+  std::uint32_t first = 0;
+  // 0: a run of one frame, no flicker.
+  std::uint32_t count = 0;
+  // The last pair's second frame.
+  std::uint32_t last() const { return first + count; }
+  bool holds(std::uint32_t k) const { return count > 0 && k >= first && k <= last(); }
+  bool ends_pair(std::uint32_t k) const { return count > 0 && k > first && k <= last(); }
 };
 
 struct Config {
@@ -79,12 +96,13 @@ struct Row {
   std::vector<double> relmse_denoised;
   std::vector<double> mean_ratio_denoised;  // mean(denoised) / mean(reference) per frame
   std::vector<double> mean_ratio_raw;       // mean(raw) / mean(reference) per frame
-  // Mean squared change between the last two frames relative to the reference's mean square.
-  double flicker_raw = 0.0;
-  double flicker_denoised = 0.0;
-  // The same with the last-but-one frame moved along the scene's motion (motion_flicker.h).
-  double flicker_mc_raw = 0.0;
-  double flicker_mc_denoised = 0.0;
+  // Per flicker pair (f, f+1): the mean squared change from frame f to f+1 relative to the mean
+  // square of frame f+1's reference; the columns are their means.
+  std::vector<double> flicker_raw;
+  std::vector<double> flicker_denoised;
+  // The same with frame f moved along the scene's motion (motion_flicker.h).
+  std::vector<double> flicker_mc_raw;
+  std::vector<double> flicker_mc_denoised;
   // --images: the last evaluated frame.
   runtime::ImageRGBA32F last_raw, last_denoised;
   double mean_relmse() const { return mean_of(relmse); }
@@ -186,13 +204,23 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   const std::vector<Config> cfgs = configs(o, common, *level);
   const std::vector<std::uint32_t> ks = eval_frames(frames, o.eval_frames);
 
-  // Flicker: the frame-to-frame change between the last two frames, of each preset's raw and
-  // denoised images and of the references (frame frames-2 gets its own reference).
-  const bool flicker = frames >= 2;
-  const std::uint32_t flicker_frame = frames - 2;
+  // Flicker: the change from frame f to f+1 over the run's last pairs, of each preset's raw and
+  // denoised images and of the references (each frame of a pair gets its reference).
+  if (o.flicker_pairs_given && o.flicker_pairs > frames - 1) {
+    throw InputError(
+        fmt::format("--flicker-pairs {}: {} frames hold {} consecutive pair(s); raise "
+                    "--frames or lower --flicker-pairs",
+                    o.flicker_pairs, frames, frames - 1));
+  }
+  const FlickerPairs pairs{.first = frames - 1 - std::min(o.flicker_pairs, frames - 1),
+                           .count = std::min(o.flicker_pairs, frames - 1)};
+  std::vector<std::uint32_t> extra_reference_frames;  // a pair's frames that are not evaluated
+  for (std::uint32_t k = pairs.first; pairs.count > 0 && k <= pairs.last(); ++k) {
+    if (!std::binary_search(ks.begin(), ks.end(), k)) extra_reference_frames.push_back(k);
+  }
   runtime::Device device({.selector = common.device});
   runtime::ShaderLibrary shaders;
-  Progress progress("trade", ks.size() + (flicker ? 1 : 0) + 2 * cfgs.size() * frames,
+  Progress progress("trade", ks.size() + extra_reference_frames.size() + 2 * cfgs.size() * frames,
                     common.quiet);
   std::uint64_t done = 0;
 
@@ -201,7 +229,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   // Each evaluated reference's own noise (relative_mse_of_noise; negative when unknown: a
   // reference of one frame).
   std::vector<double> reference_noise;
-  runtime::ImageRGBA32F flicker_reference;
+  std::map<std::uint32_t, runtime::ImageRGBA32F> pair_references;  // extra_reference_frames'
   lighting::ReferenceRequest ref_request{.width = width,
                                          .height = height,
                                          .frame = 0,
@@ -218,27 +246,34 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                                   : runtime::relative_mse_of_noise(ref.image, ref.standard_error));
     references.push_back(std::move(ref.image));
   }
-  if (flicker) {
-    ref_request.frame = flicker_frame;
+  for (std::uint32_t k : extra_reference_frames) {
+    ref_request.frame = k;
     lighting::ReferenceImage ref = lighting::reference_image(device, shaders, level, ref_request);
-    progress.update(++done, fmt::format("reference frame {}{}", flicker_frame,
-                                        ref.cache_hit ? " (cached)" : ""));
-    flicker_reference = std::move(ref.image);
+    progress.update(++done,
+                    fmt::format("reference frame {}{}", k, ref.cache_hit ? " (cached)" : ""));
+    pair_references[k] = std::move(ref.image);
   }
-  const double flicker_ref =
-      flicker ? frame_change(references.back(), flicker_reference, references.back()) : 0.0;
+  auto reference_at = [&](std::uint32_t k) -> const runtime::ImageRGBA32F& {
+    const auto it = std::lower_bound(ks.begin(), ks.end(), k);
+    if (it != ks.end() && *it == k) return references[static_cast<std::size_t>(it - ks.begin())];
+    return pair_references.at(k);
+  };
+  std::vector<double> flicker_ref;  // per pair
+  for (std::uint32_t f = pairs.first; pairs.count > 0 && f < pairs.last(); ++f) {
+    flicker_ref.push_back(frame_change(reference_at(f + 1), reference_at(f), reference_at(f + 1)));
+  }
   // The references' noise, over the evaluated frames as the rows' relMSE is (unknown if any is).
   const bool noise_known = std::none_of(reference_noise.begin(), reference_noise.end(),
                                         [](double n) { return n < 0.0; });
   const double noise_ref = noise_known ? mean_of(reference_noise) : -1.0;
 
-  // The motion-compensated flicker compares each pixel of the last frame with where its point
-  // was in the frame before: the first raw run's G-buffers of those two frames say where, and
-  // which pixels show the same surface in both (the raw run has no jitter; every run renders
-  // the same camera and objects, so one warp serves the references and every row).
-  lighting::MotionWarp warp;
-  lighting::GBufferTexels flicker_gbuffer;
-  double flicker_mc_ref = 0.0;
+  // The motion-compensated flicker compares each pixel of frame f+1 with where its point was in
+  // frame f: the first raw run's G-buffers of the two frames say where, and which pixels show
+  // the same surface in both (the raw run has no jitter; every run renders the same camera and
+  // objects, so one warp per pair serves the references and every row).
+  std::vector<lighting::MotionWarp> warps;  // per pair
+  lighting::GBufferTexels previous_gbuffer;
+  std::vector<double> flicker_mc_ref;  // per pair
 
   std::vector<Row> rows;
   std::pair<std::uint32_t, std::uint32_t> denoised_internal{width, height};
@@ -265,20 +300,19 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
       runtime::ImageRGBA32F previous;
       for (std::uint32_t k = 0; k < frames; ++k) {
         const bool evaluate = next < ks.size() && ks[next] == k;
-        const bool keep = evaluate || (flicker && k == flicker_frame);
+        const bool keep = evaluate || pairs.holds(k);
         runtime::ImageRGBA32F image;
-        const bool read_gbuffer =
-            flicker && rows.empty() && !denoised && (k == flicker_frame || k == flicker_frame + 1);
+        const bool read_gbuffer = pairs.holds(k) && rows.empty() && !denoised;
         lighting::GBufferTexels gbuffer;
         const lighting::FrameTiming t =
             session.render(session.step_world(), keep ? &image : nullptr, nullptr,
                            read_gbuffer ? &gbuffer : nullptr);
-        if (read_gbuffer && k == flicker_frame) flicker_gbuffer = std::move(gbuffer);
-        if (read_gbuffer && k == flicker_frame + 1) {
-          warp = lighting::motion_warp(flicker_gbuffer, gbuffer);
-          flicker_mc_ref = lighting::motion_compensated_change(references.back(), flicker_reference,
-                                                               references.back(), warp);
+        if (read_gbuffer && pairs.ends_pair(k)) {
+          warps.push_back(lighting::motion_warp(previous_gbuffer, gbuffer));
+          flicker_mc_ref.push_back(lighting::motion_compensated_change(
+              reference_at(k), reference_at(k - 1), reference_at(k), warps.back()));
         }
+        if (read_gbuffer) previous_gbuffer = std::move(gbuffer);
         if (denoised) {
           double denoise_ms = 0.0;
           for (const auto& [name, ms] : t.passes) {
@@ -290,11 +324,13 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
           gpu.push_back(t.gpu_ms);
           wall.push_back(t.wall_ms);
         }
-        if (flicker && k == flicker_frame + 1) {
-          (denoised ? row.flicker_denoised : row.flicker_raw) =
-              frame_change(image, previous, references.back());
-          (denoised ? row.flicker_mc_denoised : row.flicker_mc_raw) =
-              lighting::motion_compensated_change(image, previous, references.back(), warp);
+        if (pairs.ends_pair(k)) {
+          const runtime::ImageRGBA32F& ref = reference_at(k);
+          (denoised ? row.flicker_denoised : row.flicker_raw)
+              .push_back(frame_change(image, previous, ref));
+          (denoised ? row.flicker_mc_denoised : row.flicker_mc_raw)
+              .push_back(lighting::motion_compensated_change(image, previous, ref,
+                                                             warps.at(k - 1 - pairs.first)));
         }
         if (evaluate) {
           const runtime::ImageRGBA32F& ref = references[next++];
@@ -364,6 +400,22 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
     return std::find(front.begin(), front.end(), i) != front.end();
   };
 
+  // Flicker columns: the means over the pairs, and the rows' denoised means over the references'.
+  const double flicker_ref_mean = mean_of(flicker_ref);
+  const double flicker_mc_ref_mean = mean_of(flicker_mc_ref);
+  auto flicker_ratio = [](const std::vector<double>& row, double reference) {
+    return reference > 0.0 ? mean_of(row) / reference : 0.0;
+  };
+  std::vector<std::uint32_t> pair_first_frames;
+  for (std::uint32_t f = pairs.first; f < pairs.last(); ++f) pair_first_frames.push_back(f);
+  std::vector<std::size_t> compared_pixels;
+  for (const lighting::MotionWarp& w : warps) compared_pixels.push_back(w.valid_count);
+  const std::size_t compared_pixels_mean =
+      compared_pixels.empty()
+          ? 0
+          : std::accumulate(compared_pixels.begin(), compared_pixels.end(), std::size_t{0}) /
+                compared_pixels.size();
+
   fs::create_directories(out);
   nlohmann::json jrows = nlohmann::json::array();
   std::string csv =
@@ -373,31 +425,35 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     const std::string& integrator = r.config.integrator.name;
-    jrows.push_back({{"name", r.config.name},
-                     {"integrator", integrator},
-                     {"preset", r.config.integrator.preset},
-                     {"frame_ms", r.frame_ms},
-                     {"frame_wall_ms", r.frame_wall_ms},
-                     {"relmse", r.mean_relmse()},
-                     {"relmse_per_frame", r.relmse},
-                     {"denoise_ms", r.denoise_ms},
-                     {"denoised_frame_ms", r.denoised_frame_ms},
-                     {"relmse_denoised", mean_of(r.relmse_denoised)},
-                     {"relmse_denoised_per_frame", r.relmse_denoised},
-                     {"relmse_reduction",
-                      mean_of(r.relmse_denoised) > 0.0 ? r.mean_relmse() / mean_of(r.relmse_denoised)
-                                                       : 0.0},
-                     {"mean_ratio_denoised", mean_of(r.mean_ratio_denoised)},
-                     {"mean_ratio_raw", mean_of(r.mean_ratio_raw)},
-                     {"flicker_raw", r.flicker_raw},
-                     {"flicker_denoised", r.flicker_denoised},
-                     {"flicker_ratio", flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0},
-                     {"flicker_mc_raw", r.flicker_mc_raw},
-                     {"flicker_mc_denoised", r.flicker_mc_denoised},
-                     {"flicker_mc_ratio",
-                      flicker_mc_ref > 0.0 ? r.flicker_mc_denoised / flicker_mc_ref : 0.0},
-                     {"pareto", on_front(i)},
-                     {"settings", settings_json(r.config.integrator)}});
+    jrows.push_back(
+        {{"name", r.config.name},
+         {"integrator", integrator},
+         {"preset", r.config.integrator.preset},
+         {"frame_ms", r.frame_ms},
+         {"frame_wall_ms", r.frame_wall_ms},
+         {"relmse", r.mean_relmse()},
+         {"relmse_per_frame", r.relmse},
+         {"denoise_ms", r.denoise_ms},
+         {"denoised_frame_ms", r.denoised_frame_ms},
+         {"relmse_denoised", mean_of(r.relmse_denoised)},
+         {"relmse_denoised_per_frame", r.relmse_denoised},
+         {"relmse_reduction",
+          mean_of(r.relmse_denoised) > 0.0 ? r.mean_relmse() / mean_of(r.relmse_denoised) : 0.0},
+         {"mean_ratio_denoised", mean_of(r.mean_ratio_denoised)},
+         {"mean_ratio_raw", mean_of(r.mean_ratio_raw)},
+         {"flicker_raw", mean_of(r.flicker_raw)},
+         {"flicker_denoised", mean_of(r.flicker_denoised)},
+         {"flicker_ratio", flicker_ratio(r.flicker_denoised, flicker_ref_mean)},
+         {"flicker_mc_raw", mean_of(r.flicker_mc_raw)},
+         {"flicker_mc_denoised", mean_of(r.flicker_mc_denoised)},
+         {"flicker_mc_ratio", flicker_ratio(r.flicker_mc_denoised, flicker_mc_ref_mean)},
+         {"flicker_per_pair",
+          {{"raw", r.flicker_raw},
+           {"denoised", r.flicker_denoised},
+           {"mc_raw", r.flicker_mc_raw},
+           {"mc_denoised", r.flicker_mc_denoised}}},
+         {"pareto", on_front(i)},
+         {"settings", settings_json(r.config.integrator)}});
     std::string settings;
     for (const auto& [k, v] : r.config.integrator.settings) settings += fmt::format("{}={};", k, v);
     csv += fmt::format(
@@ -405,8 +461,8 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
         "{:.6g}\n",
         r.config.name, integrator, r.frame_ms, r.frame_wall_ms, r.mean_relmse(),
         on_front(i) ? 1 : 0, r.denoise_ms, mean_of(r.relmse_denoised),
-        mean_of(r.mean_ratio_denoised), r.flicker_raw, r.flicker_denoised, settings,
-        r.denoised_frame_ms, r.flicker_mc_raw, r.flicker_mc_denoised);
+        mean_of(r.mean_ratio_denoised), mean_of(r.flicker_raw), mean_of(r.flicker_denoised),
+        settings, r.denoised_frame_ms, mean_of(r.flicker_mc_raw), mean_of(r.flicker_mc_denoised));
   }
   const nlohmann::json j = {
       {"level", level->name},
@@ -418,24 +474,33 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
       {"seed", common.seed},
       {"device", device.info().name},
       {"evaluated_frames", ks},
-      // Frame-to-frame change between frames frames-2 and frames-1 relative to the reference's
-      // mean square; the rows' flicker_ratio is their denoised flicker over this.
-      // motion_compensated: the same with frame frames-2 moved along the scene's motion, over
-      // the pixels both frames show as the same surface (compared_pixels); the rows'
-      // flicker_mc_ratio is their denoised one over this reference's.
-      {"flicker", {{"frames", flicker ? nlohmann::json::array({flicker_frame, flicker_frame + 1})
-                                      : nlohmann::json()},
-                   {"reference", flicker_ref},
-                   {"motion_compensated",
-                    {{"reference", flicker_mc_ref}, {"compared_pixels", warp.valid_count}}}}},
-      {"reference", {{"integrator", "reference"},
-                     {"spp_per_frame", o.reference_spp},
-                     {"frames_averaged", o.reference_frames},
-                     {"seed", ref_request.seed},
-                     // The references' own relMSE against the converged image, from the spread
-                     // of their frames (a lower bound: a heavy tail's rare samples may never have
-                     // come up): no row is resolved below it (null: unknown).
-                     {"noise_relmse", noise_known ? nlohmann::json(noise_ref) : nlohmann::json()}}},
+      // Frame-to-frame change from frame f to f+1 relative to frame f+1's reference's mean
+      // square, averaged over the pairs (first frames f: pair_first_frames; frames: the first
+      // and the last frame they span); the rows' flicker_ratio is their denoised flicker over
+      // this. motion_compensated: the same with frame f moved along the scene's motion, over the
+      // pixels both frames show as the same surface (compared_pixels: their mean over the
+      // pairs); the rows' flicker_mc_ratio is their denoised one over this reference's.
+      {"flicker",
+       {{"frames",
+         pairs.count > 0 ? nlohmann::json::array({pairs.first, pairs.last()}) : nlohmann::json()},
+        {"pairs", pairs.count},
+        {"pair_first_frames", pair_first_frames},
+        {"reference", flicker_ref_mean},
+        {"reference_per_pair", flicker_ref},
+        {"motion_compensated",
+         {{"reference", flicker_mc_ref_mean},
+          {"reference_per_pair", flicker_mc_ref},
+          {"compared_pixels", compared_pixels_mean},
+          {"compared_pixels_per_pair", compared_pixels}}}}},
+      {"reference",
+       {{"integrator", "reference"},
+        {"spp_per_frame", o.reference_spp},
+        {"frames_averaged", o.reference_frames},
+        {"seed", ref_request.seed},
+        // The references' own relMSE against the converged image, from the spread
+        // of their frames (a lower bound: a heavy tail's rare samples may never have
+        // come up): no row is resolved below it (null: unknown).
+        {"noise_relmse", noise_known ? nlohmann::json(noise_ref) : nlohmann::json()}}},
       {"rows", jrows},
       {"equal_time", equal_time},
   };
@@ -476,16 +541,16 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
         "%10.3g\n",
         r.config.name.c_str(), r.config.integrator.name.c_str(), r.frame_ms, r.mean_relmse(),
         on_front(i) ? "*" : "", r.denoised_frame_ms, r.denoise_ms, mean_of(r.relmse_denoised),
-        mean_of(r.mean_ratio_denoised), mean_of(r.mean_ratio_raw), r.flicker_denoised,
-        flicker_ref > 0.0 ? r.flicker_denoised / flicker_ref : 0.0, r.flicker_mc_denoised,
-        flicker_mc_ref > 0.0 ? r.flicker_mc_denoised / flicker_mc_ref : 0.0);
+        mean_of(r.mean_ratio_denoised), mean_of(r.mean_ratio_raw), mean_of(r.flicker_denoised),
+        flicker_ratio(r.flicker_denoised, flicker_ref_mean), mean_of(r.flicker_mc_denoised),
+        flicker_ratio(r.flicker_mc_denoised, flicker_mc_ref_mean));
   }
-  if (flicker) {
+  if (pairs.count > 0) {
     std::printf(
-        "reference flicker %.4g (frames %u-%u); motion-compensated %.4g over %zu of %u "
-        "pixels (the same surface in both frames, no emitter)\n",
-        flicker_ref, flicker_frame, flicker_frame + 1, flicker_mc_ref, warp.valid_count,
-        width * height);
+        "reference flicker %.4g (mean of %u frame pair(s), frames %u-%u); motion-compensated "
+        "%.4g over %zu of %u pixels on average (the same surface in both frames, no emitter)\n",
+        flicker_ref_mean, pairs.count, pairs.first, pairs.last(), flicker_mc_ref_mean,
+        compared_pixels_mean, width * height);
   }
   if (noise_known) {
     std::printf("reference noise >= %.4g (its own relMSE from the spread of its %u frames of %u "
@@ -528,6 +593,11 @@ void add_trade_command(CLI::App& root, CommonOptions& options) {
                           "Internal size of the denoised frames as a fraction of --size "
                           "(upscale.temporal reconstructs them at --size); the raw frames stay at "
                           "--size");
+  cmd->add_option("--flicker-pairs", opts->flicker_pairs,
+                  "Consecutive frame pairs at the run's end the flicker is averaged over (each "
+                  "frame of a pair gets a reference; at most --frames - 1)")
+      ->capture_default_str()
+      ->each([opts](const std::string&) { opts->flicker_pairs_given = true; });
   cmd->add_flag("--images", opts->images,
                 "Also write the last evaluated frame: reference.exr, NAME_raw.exr, "
                 "NAME_denoised.exr");
