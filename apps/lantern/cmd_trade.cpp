@@ -236,6 +236,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
                                          .spp = o.reference_spp,
                                          .frames = o.reference_frames,
                                          .seed = common.seed + 1000u,
+                                         .world_seed = common.seed,
                                          .settings = {}};
   for (std::uint32_t k : ks) {
     ref_request.frame = k;

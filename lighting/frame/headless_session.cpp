@@ -28,7 +28,7 @@ struct HeadlessSession::State {
   State(runtime::Device& device, runtime::ShaderLibrary& shaders,
         std::shared_ptr<const Level> level, const SessionOptions& o)
       : world(level, {.threads = o.world_threads,
-                      .seed = o.seed,
+                      .seed = o.world_seed.value_or(o.seed),
                       .fixed_dt = o.fixed_dt,
                       .aspect = static_cast<float>(o.width) / static_cast<float>(o.height)}),
         renderer(device, shaders, level, make_integrator(device, shaders, o.integrator), o.width,

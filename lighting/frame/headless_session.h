@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +36,9 @@ struct SessionOptions {
   std::uint32_t width = 640;
   std::uint32_t height = 360;
   std::uint32_t seed = 1;
+  // The world's random numbers (flickering lights) when they differ from `seed`'s: a reference
+  // rendered with samples of its own for the world another run shows.
+  std::optional<std::uint32_t> world_seed;
   unsigned world_threads = 1;        // scheduler worker threads (results do not depend on it)
   double fixed_dt = 1.0 / 60.0;      // simulated seconds per frame
   // What render()'s `image` holds: the raw integrator image or the denoised one (denoiser knobs:

@@ -58,6 +58,7 @@ OfflineRenderResult render_offline(runtime::Device& device, runtime::ShaderLibra
                            .width = request.width,
                            .height = request.height,
                            .seed = request.seed,
+                           .world_seed = request.world_seed,
                            .output = request.output,
                            .render_scale = request.render_scale});
   session.warm_up();

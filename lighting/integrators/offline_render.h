@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,8 @@ struct OfflineRenderRequest {
   std::uint32_t first_frame = 0;
   bool average = false;  // one image: the mean of the frames
   std::uint32_t seed = 1;
+  // The world's seed when it differs from `seed` (SessionOptions::world_seed).
+  std::optional<std::uint32_t> world_seed;
   // true: the world steps every rendered frame (objects, lights and camera move). false: every
   // frame renders the first rendered frame's snapshot (a static scene; only the random numbers
   // change), the accumulation a converged image needs.

@@ -178,6 +178,8 @@ std::string reference_cache_name(const Level& level, const ReferenceRequest& req
   h.pod(request.spp);
   h.pod(request.frames);
   h.pod(request.seed);
+  // Only a world seed of its own makes another key (the entries of requests without one stay).
+  if (request.world_seed && *request.world_seed != request.seed) h.pod(*request.world_seed);
   for (const auto& [key, value] : request.settings) {
     h.text(key);
     h.text(value);
@@ -241,6 +243,7 @@ ReferenceImage reference_image(runtime::Device& device, runtime::ShaderLibrary& 
   render.first_frame = request.frame;
   render.average = true;
   render.seed = request.seed;
+  render.world_seed = request.world_seed;
   render.animate = false;
   OfflineRenderResult result = render_offline(device, shaders, level, render);
   if (result.images.size() != 1) {

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,7 +31,10 @@ struct ReferenceRequest {
   std::uint32_t frame = 0;    // level frame K (world steps before the snapshot)
   std::uint32_t spp = 64;     // samples per pixel per frame
   std::uint32_t frames = 16;  // frames averaged
-  std::uint32_t seed = 1;
+  std::uint32_t seed = 1;     // the reference's samples
+  // The world's seed (flickering lights follow it) when it differs from `seed`: the run the
+  // reference is measured against, so that both show the same world while their samples differ.
+  std::optional<std::uint32_t> world_seed;
   std::vector<std::pair<std::string, std::string>> settings;  // reference settings (--set)
 };
 

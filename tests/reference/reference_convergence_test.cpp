@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "engine/level/level_loader.h"
@@ -111,6 +113,37 @@ TEST_F(ReferenceConvergenceTest, BaselineMeanConvergesToReferenceOnCornellLights
   EXPECT_NEAR(base_sum / ref_sum, 1.0, 0.01);
 }
 
+// A reference renders the world of the run it is measured against: its samples have a seed of
+// their own, its world (the flickering light's power, frame by frame) the run's. flicker_box's
+// light moves between 0 and 1x twice a second at random by the world's seed: with the run's world
+// seed the reference's image mean matches the run's world rendered by the reference itself with
+// the run's seed (to its noise, 0.5%), while a reference of another world seed is far off (> 10%
+// at this frame; `lantern trade` compared such references with its rows until the world seed
+// was passed: night_market's flickering lights).
+TEST_F(ReferenceConvergenceTest, ReferenceShowsTheWorldOfTheMeasuredRun) {
+  auto level = std::make_shared<const Level>(
+      load_level_argument(std::string(LANTERN_SOURCE_DIR) + "/content/studies/flicker_box.json"));
+  lighting::ReferenceRequest request;
+  request.width = 48;
+  request.height = 27;
+  request.frame = 5;
+  request.spp = 64;
+  request.frames = 4;
+  request.seed = 1;  // the run's own world and samples
+  const double run_world =
+      image_mean(lighting::reference_image(device, shaders, level, request).image);
+  request.seed = 1001;  // other samples, the run's world
+  request.world_seed = 1;
+  const double same_world =
+      image_mean(lighting::reference_image(device, shaders, level, request).image);
+  request.world_seed.reset();  // other samples and another world
+  const double other_world =
+      image_mean(lighting::reference_image(device, shaders, level, request).image);
+  ASSERT_GT(run_world, 0.0);
+  EXPECT_NEAR(same_world / run_world, 1.0, 0.005);
+  EXPECT_GT(std::abs(other_world / run_world - 1.0), 0.1);
+}
+
 TEST(ReferenceCacheKey, EveryInputChangesTheName) {
   Level level;
   level.name = "key test";
@@ -130,6 +163,9 @@ TEST(ReferenceCacheKey, EveryInputChangesTheName) {
   EXPECT_NE(changed([](Level&, lighting::ReferenceRequest& r) { r.spp = 65; }), base);
   EXPECT_NE(changed([](Level&, lighting::ReferenceRequest& r) { r.frames = 17; }), base);
   EXPECT_NE(changed([](Level&, lighting::ReferenceRequest& r) { r.seed = 2; }), base);
+  EXPECT_NE(changed([](Level&, lighting::ReferenceRequest& r) { r.world_seed = 2; }), base);
+  EXPECT_EQ(changed([](Level&, lighting::ReferenceRequest& r) { r.world_seed = r.seed; }), base)
+      << "a world seed equal to the samples' seed is the same world";
   EXPECT_NE(changed([](Level&, lighting::ReferenceRequest& r) {
               r.settings.emplace_back("reference.spp", "8");
             }),
