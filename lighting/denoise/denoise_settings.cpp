@@ -60,6 +60,11 @@ const Row kRows[] = {
                          "some energy",
       0, 100, false},
      DENOISE_FIELD(neighbour_clamp), 2, 2, 2},
+    {{"antilag", "hold the long colour history within k standard errors of the short luminance "
+                 "history (0 off): lower follows changing light sooner, and adds some of the "
+                 "short history's noise to a still view",
+      0, 100, false},
+     DENOISE_FIELD(antilag), 1, 1, 1},
     {{"max_history", "history length cap in frames (with confidence on, frames of the history's "
                      "mean confidence): lower when stale light lingers", 1, 256,
       false},

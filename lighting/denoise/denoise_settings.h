@@ -26,6 +26,7 @@ struct DenoiseSettings {
   float phi_depth = 0.02f;
   float firefly = 4.0f;
   float neighbour_clamp = 2.0f;
+  float antilag = 1.0f;
   float max_history = 32.0f;
   bool confidence = true;  // weigh each frame by the integrator's confidence (ReSTIR's M)
 };

@@ -37,6 +37,7 @@ gpu::DenoisePush Denoiser::make_push(const DenoiseSettings& s, const FrameInputs
   p.phi_depth = s.phi_depth;
   p.firefly = s.firefly;
   p.neighbour_clamp = s.neighbour_clamp;
+  p.antilag = s.antilag;
   p.max_history = s.max_history;
   // Levels with volumes: the fog in front of the sky is as noisy as any lit surface, so sky
   // pixels are filtered as a surface where camera rays end (volume passes, light_eval.h).

@@ -5,7 +5,8 @@
 // history; so does a footprint less than kDenoiseMinHistoryFootprint of which passes), clamps a
 // firefly against the history's mean + firefly x sigma (where the history cannot judge, against
 // push.neighbour_clamp x the brightest of its 8 neighbours; a long history that has seen only
-// black takes the sample unclamped into its luminance moments), and blends (alpha = max(c / (c +
+// black takes the sample unclamped into its luminance moments), holds the colour history near its
+// short luminance mean (push.antilag: a light that changes is followed), and blends (alpha = max(c / (c +
 // (length - 1) x the history's mean confidence), push.color_alpha): 1 / history length when every
 // frame is worth the same, else each weighs by the integrator's M; the luminance moments keep 1 /
 // length). Emitters pass through unfiltered (denoise_passthrough), and so does the sky unless
@@ -206,6 +207,21 @@ void main() {
     // confidences this is 1 / frames; ReSTIR's warm-up frames (few candidates, mostly empty
     // picks in hard-to-light places) no longer hold the average down for the next 30 frames, and
     // one frame of low confidence weighs little without shrinking the history's worth.
+    // Antilag: the colour history averages up to max_history frames, the luminance moments about
+    // 2 / moments_alpha; where light changes (a lamp dims, a shadow moves in) the short mean
+    // leaves the long one behind. The colour history is held within `antilag` standard errors
+    // of the short mean (its samples' sigma over the root of its frames), so the image follows
+    // within the short window instead of lagging over the long one; on a still view the band
+    // rarely binds. An all-black colour history is left alone (it has no colour to scale).
+    if (push.antilag > 0.0 && history_moments.z >= kDenoiseShortHistory) {
+      float short_mean = history_moments.x;
+      float sigma = sqrt(max(history_moments.y - short_mean * short_mean, 0.0));
+      float short_frames = min(history_moments.z, 2.0 / push.moments_alpha - 1.0);
+      float band = push.antilag * sigma / sqrt(short_frames);
+      float long_mean = luminance(history_color);
+      float held = clamp(long_mean, max(short_mean - band, 0.0), short_mean + band);
+      if (long_mean > 0.0) history_color *= held / long_mean;
+    }
     float history_confidence = history_moments.w > 0.0 ? history_moments.w : confidence;
     float a = max(confidence / (confidence + (frames - 1.0) * history_confidence),
                   push.color_alpha);

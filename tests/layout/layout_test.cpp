@@ -106,7 +106,7 @@ const std::vector<StructLayout>& cpp_layouts() {
         LANTERN_MEMBER(DenoisePush, phi_depth), LANTERN_MEMBER(DenoisePush, firefly),
         LANTERN_MEMBER(DenoisePush, max_history), LANTERN_MEMBER(DenoisePush, sky_distance),
         LANTERN_MEMBER(DenoisePush, similarity), LANTERN_MEMBER(DenoisePush, neighbour_clamp),
-        LANTERN_MEMBER(DenoisePush, pad0), LANTERN_MEMBER(DenoisePush, pad1),
+        LANTERN_MEMBER(DenoisePush, antilag), LANTERN_MEMBER(DenoisePush, pad1),
         LANTERN_MEMBER(DenoisePush, pad2)}},
       {"UpscalePush",
        sizeof(gpu::UpscalePush),
