@@ -3,14 +3,9 @@
 # row's four flicker figures per pair, all positive), and a pair's figures do not depend on how
 # many pairs are averaged: the run's last pair measured alone (--flicker-pairs 1) gives the same
 # numbers as the last of three (same frames, same references, deterministic renders).
+include(${CMAKE_CURRENT_LIST_DIR}/trade_run.cmake)
 foreach(n 3 1)
-  file(REMOVE_RECURSE ${WORK}_${n})
-  separate_arguments(cmd UNIX_COMMAND "${COMMAND} --flicker-pairs ${n} --out ${WORK}_${n}")
-  execute_process(COMMAND ${cmd} RESULT_VARIABLE code ERROR_VARIABLE err)
-  if(NOT code EQUAL 0)
-    message(FATAL_ERROR "trade --flicker-pairs ${n} failed (${code}): ${err}")
-  endif()
-  file(READ ${WORK}_${n}/trade.json json_${n})
+  run_trade("${COMMAND} --flicker-pairs ${n}" ${WORK}_${n} json_${n})
   string(JSON pairs GET "${json_${n}}" flicker pairs)
   if(NOT pairs EQUAL n)
     message(FATAL_ERROR "--flicker-pairs ${n}: trade.json says ${pairs} pairs")

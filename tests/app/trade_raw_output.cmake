@@ -2,13 +2,8 @@
 # `denoised` (the default: on where the denoiser consumes the frame): their raw columns come from
 # raw output, where both render alike, so their raw relMSE must be equal; their denoised columns
 # from denoised output, where only one permutes, so those must differ.
-file(REMOVE_RECURSE ${WORK})
-separate_arguments(cmd UNIX_COMMAND "${COMMAND} --out ${WORK}")
-execute_process(COMMAND ${cmd} RESULT_VARIABLE code ERROR_VARIABLE err)
-if(NOT code EQUAL 0)
-  message(FATAL_ERROR "trade failed (${code}): ${err}")
-endif()
-file(READ ${WORK}/trade.json json)
+include(${CMAKE_CURRENT_LIST_DIR}/trade_run.cmake)
+run_trade("${COMMAND}" ${WORK} json)
 # The rows named `off` and `denoised` (the preset's own row comes first).
 string(JSON rows LENGTH "${json}" rows)
 math(EXPR last "${rows} - 1")

@@ -3,14 +3,9 @@
 # is taken against the full-size reference, so a frame left at the internal size would fail the
 # run), and they differ from the full-size ones; the raw columns stay at full size, so their
 # relMSE is the same in both runs.
+include(${CMAKE_CURRENT_LIST_DIR}/trade_run.cmake)
 foreach(scale 1 0.5)
-  file(REMOVE_RECURSE ${WORK}_${scale})
-  separate_arguments(cmd UNIX_COMMAND "${COMMAND} --render-scale ${scale} --out ${WORK}_${scale}")
-  execute_process(COMMAND ${cmd} RESULT_VARIABLE code ERROR_VARIABLE err)
-  if(NOT code EQUAL 0)
-    message(FATAL_ERROR "trade --render-scale ${scale} failed (${code}): ${err}")
-  endif()
-  file(READ ${WORK}_${scale}/trade.json json_${scale})
+  run_trade("${COMMAND} --render-scale ${scale}" ${WORK}_${scale} json_${scale})
   string(JSON raw_${scale} GET "${json_${scale}}" rows 0 relmse)
   string(JSON denoised_${scale} GET "${json_${scale}}" rows 0 relmse_denoised)
   string(JSON internal_w_${scale} GET "${json_${scale}}" denoised_internal_size 0)
