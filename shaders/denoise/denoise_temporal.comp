@@ -6,12 +6,12 @@
 // firefly against the history's mean + firefly x sigma (where the history cannot judge, against
 // push.neighbour_clamp x the brightest of its 8 neighbours; a long history that has seen only
 // black takes the sample unclamped into its luminance moments), holds the colour history near its
-// short luminance mean (push.antilag: a light that changes is followed), and blends (alpha = max(c / (c +
-// (length - 1) x the history's mean confidence), push.color_alpha): 1 / history length when every
-// frame is worth the same, else each weighs by the integrator's M; the luminance moments keep 1 /
-// length). Emitters pass through unfiltered (denoise_passthrough), and so does the sky unless
-// push.sky_distance > 0 (levels with volumes): then a sky pixel is a surface that far along its
-// view ray, facing the camera, albedo 1, reprojected as that point.
+// short luminance mean (push.antilag: a light that changes is followed), and blends (alpha =
+// max(c / (c + (length - 1) x the history's mean confidence), push.color_alpha): 1 / history
+// length when every frame is worth the same, else each weighs by the integrator's M; the
+// luminance moments keep 1 / length). Emitters pass through unfiltered (denoise_passthrough),
+// and so does the sky unless push.sky_distance > 0 (levels with volumes): then a sky pixel is a
+// surface that far along its view ray, facing the camera, albedo 1, reprojected as that point.
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
 // surface_keys_history, color_history, moments_history, frame constants (prev_view_proj),
 // confidence_in (with kDenoiseFlagConfidence: the integrator's PackedReservoirs, their M).
@@ -202,11 +202,6 @@ void main() {
   if (has_history) {
     float history_length = history_moments.z;
     frames = min(history_length + 1.0, push.max_history);
-    // Each frame's pixel weighs by its confidence: a = c / (c + (frames - 1) x the history's mean
-    // confidence), floored by color_alpha; the mean follows c over the same frames. With equal
-    // confidences this is 1 / frames; ReSTIR's warm-up frames (few candidates, mostly empty
-    // picks in hard-to-light places) no longer hold the average down for the next 30 frames, and
-    // one frame of low confidence weighs little without shrinking the history's worth.
     // Antilag: the colour history averages up to max_history frames, the luminance moments about
     // 2 / moments_alpha; where light changes (a lamp dims, a shadow moves in) the short mean
     // leaves the long one behind. The colour history is held within `antilag` standard errors
@@ -222,6 +217,11 @@ void main() {
       float held = clamp(long_mean, max(short_mean - band, 0.0), short_mean + band);
       if (long_mean > 0.0) history_color *= held / long_mean;
     }
+    // Each frame's pixel weighs by its confidence: a = c / (c + (frames - 1) x the history's mean
+    // confidence), floored by color_alpha; the mean follows c over the same frames. With equal
+    // confidences this is 1 / frames; ReSTIR's warm-up frames (few candidates, mostly empty
+    // picks in hard-to-light places) no longer hold the average down for the next 30 frames, and
+    // one frame of low confidence weighs little without shrinking the history's worth.
     float history_confidence = history_moments.w > 0.0 ? history_moments.w : confidence;
     float a = max(confidence / (confidence + (frames - 1.0) * history_confidence),
                   push.color_alpha);

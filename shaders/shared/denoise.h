@@ -65,9 +65,9 @@ struct DenoisePush {
   float neighbour_clamp;  // where the history cannot judge a new sample (none, shorter than
                           // kDenoiseShortHistory or all black): clamp it to this x the brightest
                           // of its 8 neighbours in this frame (0: off)
-  float antilag;  // denoise.temporal: the history's colour is held within this x the standard
-                  // error of its fast luminance mean (the moments, ~2/moments_alpha frames) of
-                  // that mean (0: off)
+  float antilag;  // denoise.temporal: the colour history is held within this many standard
+                  // errors of the luminance moments' short mean (~2 / moments_alpha frames;
+                  // 0: off)
   float pad1;
   float pad2;
 };
