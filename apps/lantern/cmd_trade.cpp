@@ -71,7 +71,7 @@ struct FlickerPairs {
   // The last pair's second frame.
   std::uint32_t last() const { return first + count; }
   bool holds(std::uint32_t k) const { return count > 0 && k >= first && k <= last(); }
-  bool ends_pair(std::uint32_t k) const { return count > 0 && k > first && k <= last(); }
+  bool ends_pair(std::uint32_t k) const { return k > first && k <= last(); }
 };
 
 struct Config {
@@ -215,8 +215,10 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
   const FlickerPairs pairs{.first = frames - 1 - std::min(o.flicker_pairs, frames - 1),
                            .count = std::min(o.flicker_pairs, frames - 1)};
   std::vector<std::uint32_t> extra_reference_frames;  // a pair's frames that are not evaluated
-  for (std::uint32_t k = pairs.first; pairs.count > 0 && k <= pairs.last(); ++k) {
-    if (!std::binary_search(ks.begin(), ks.end(), k)) extra_reference_frames.push_back(k);
+  for (std::uint32_t k = pairs.first; k <= pairs.last(); ++k) {
+    if (pairs.holds(k) && !std::binary_search(ks.begin(), ks.end(), k)) {
+      extra_reference_frames.push_back(k);
+    }
   }
   runtime::Device device({.selector = common.device});
   runtime::ShaderLibrary shaders;
@@ -260,7 +262,7 @@ void run_trade(const TradeOptions& o, const CommonOptions& common) {
     return pair_references.at(k);
   };
   std::vector<double> flicker_ref;  // per pair
-  for (std::uint32_t f = pairs.first; pairs.count > 0 && f < pairs.last(); ++f) {
+  for (std::uint32_t f = pairs.first; f < pairs.last(); ++f) {
     flicker_ref.push_back(frame_change(reference_at(f + 1), reference_at(f), reference_at(f + 1)));
   }
   // The references' noise, over the evaluated frames as the rows' relMSE is (unknown if any is).

@@ -4,17 +4,18 @@
 # many pairs are averaged: the run's last pair measured alone (--flicker-pairs 1) gives the same
 # numbers as the last of three (same frames, same references, deterministic renders).
 include(${CMAKE_CURRENT_LIST_DIR}/trade_run.cmake)
+# JSON paths, keys separated by '|' (a ';' would split the list).
+set(lists "flicker|reference_per_pair" "flicker|motion_compensated|reference_per_pair"
+  "flicker|motion_compensated|compared_pixels_per_pair" "rows|0|flicker_per_pair|raw"
+  "rows|0|flicker_per_pair|denoised" "rows|0|flicker_per_pair|mc_raw"
+  "rows|0|flicker_per_pair|mc_denoised")
 foreach(n 3 1)
   run_trade("${COMMAND} --flicker-pairs ${n}" ${WORK}_${n} json_${n})
   string(JSON pairs GET "${json_${n}}" flicker pairs)
   if(NOT pairs EQUAL n)
     message(FATAL_ERROR "--flicker-pairs ${n}: trade.json says ${pairs} pairs")
   endif()
-  # JSON paths, keys separated by '|' (a ';' would split the list).
-  set(lists "flicker|reference_per_pair" "flicker|motion_compensated|reference_per_pair"
-    "flicker|motion_compensated|compared_pixels_per_pair" "rows|0|flicker_per_pair|raw"
-    "rows|0|flicker_per_pair|denoised" "rows|0|flicker_per_pair|mc_raw"
-    "rows|0|flicker_per_pair|mc_denoised")
+  math(EXPR last "${n} - 1")
   foreach(path IN LISTS lists)
     string(REPLACE "|" " " shown "${path}")
     string(REPLACE "|" "_" key "${path}")
@@ -23,7 +24,6 @@ foreach(n 3 1)
     if(NOT length EQUAL n)
       message(FATAL_ERROR "--flicker-pairs ${n}: ${shown} has ${length} entries")
     endif()
-    math(EXPR last "${n} - 1")
     foreach(i RANGE ${last})
       string(JSON value GET "${json_${n}}" ${keys} ${i})
       if(value MATCHES "^-" OR value MATCHES "^0(\\.0*)?$")
