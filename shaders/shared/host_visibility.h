@@ -32,8 +32,9 @@ struct HostShadowRay {
 };
 LANTERN_STATIC_SIZE(HostShadowRay, 48);
 
-// Bindings of the ray buffer in the two variants: after any pass's own resources.
-LANTERN_CONST uint kHostRaysBinding = kPassBindingBase + 16u;
+// Bindings of the ray buffer in the two variants: after any pass's own resources (a pass
+// declares at most 24: PASS_BINDING(0..23)).
+LANTERN_CONST uint kHostRaysBinding = kPassBindingBase + 24u;
 
 // HostShadowRay.id of a slot that holds no ray.
 LANTERN_CONST uint kHostRayNone = 0xffffffffu;
@@ -109,7 +110,7 @@ struct HostClosestRay {
 LANTERN_STATIC_SIZE(HostClosestRay, 80);
 
 // Binding of the closest-hit ray buffer in the two variants (beside kHostRaysBinding).
-LANTERN_CONST uint kHostClosestRaysBinding = kPassBindingBase + 17u;
+LANTERN_CONST uint kHostClosestRaysBinding = kPassBindingBase + 25u;
 
 // The record of a slot that traces nothing (a miss).
 LANTERN_FUNC HostClosestRay host_closest_none() {
