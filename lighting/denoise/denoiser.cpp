@@ -38,6 +38,9 @@ gpu::DenoisePush Denoiser::make_push(const DenoiseSettings& s, const FrameInputs
   p.firefly = s.firefly;
   p.neighbour_clamp = s.neighbour_clamp;
   p.antilag = s.antilag;
+  // Stabilisation needs the à-trous chain: its last step blends (denoise.atrous_modulate).
+  p.stabilize = s.atrous_iterations > 0 ? s.stabilize : 0.0f;
+  p.stabilize_band = s.stabilize_band;
   p.max_history = s.max_history;
   // Levels with volumes: the fog in front of the sky is as noisy as any lit surface, so sky
   // pixels are filtered as a surface where camera rays end (volume passes, light_eval.h).
@@ -70,6 +73,15 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
   const bool history =
       surface_keys_history.valid() && color_history.valid() && moments_history.valid();
   if (history) push.flags |= gpu::kDenoiseFlagHistoryValid;
+  // denoise.stable: the stabilised output, kept from frame to frame only while stabilising (a
+  // level that does not pays nothing for it); denoise.temporal reprojects it into
+  // denoise.stable_reprojected, which the last à-trous step blends.
+  const bool stabilize = push.stabilize > 0.0f;
+  BufferHandle stable = stabilize ? graph.create_history_buffer("denoise.stable", vec4s)
+                                  : graph.create_buffer("denoise.stable", vec4s);
+  const BufferHandle stable_history = stabilize ? graph.history(stable) : BufferHandle{};
+  if (history && stable_history.valid()) push.flags |= gpu::kDenoiseFlagStableHistory;
+  BufferHandle stable_reprojected = graph.create_buffer("denoise.stable_reprojected", vec4s);
   if (!s.confidence) confidence = {};
   if (confidence.valid()) push.flags |= gpu::kDenoiseFlagConfidence;
 
@@ -92,10 +104,14 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
          {"confidence_in", confidence.valid() ? confidence : raw},
          {"accum_out", accum, DenoisePass::Buffer::Write},
          {"moments_out", moments, DenoisePass::Buffer::Write},
-         {"guide_out", guide, DenoisePass::Buffer::Write}});
+         {"guide_out", guide, DenoisePass::Buffer::Write},
+         // Read only with kDenoiseFlagStableHistory; written only while stabilising.
+         {"stable_history", push.flags & gpu::kDenoiseFlagStableHistory ? stable_history : raw},
+         {"stable_reprojected_out", stable_reprojected, DenoisePass::Buffer::Write}});
     accum = out[1];
     moments = out[2];
     guide = out[3];
+    stable_reprojected = out[4];
   }
 
   const BufferHandle output = graph.create_buffer("denoise.output", vec4s);
@@ -141,7 +157,9 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
                                {"guide", guide},
                                {"luminance_in", smooth_luminance},
                                {"hdr_in", raw},
-                               {"hdr_out", output, DenoisePass::Buffer::Write}})[0];
+                               {"hdr_out", output, DenoisePass::Buffer::Write},
+                               {"stable_in", stable_reprojected},
+                               {"stable_out", stable, DenoisePass::Buffer::Write}})[0];
 }
 
 }  // namespace lantern::lighting

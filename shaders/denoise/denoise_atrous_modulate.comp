@@ -3,8 +3,10 @@
 // illumination is not written out and read back.
 // Reads: accum_in (rgb illumination, a variance), guide, luminance_in (when it is also the first
 // step: atrous 1), hdr_in (raw radiance, for pass-through pixels), gbuffer
-// position/albedo_roughness/emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
-// History: none. Dispatch: one thread per pixel pair (atrous_pair), 8x8 groups.
+// position/albedo_roughness/emission_metallic, stable_in (push.stabilize > 0: last frame's
+// output reprojected, denoise.temporal). Writes: hdr_out (linear radiance, alpha 1), stable_out
+// (push.stabilize > 0: the stabilised illumination, "denoise.stable", next frame's history).
+// History: "denoise.stable" through denoise.temporal. Dispatch: one thread per pixel pair (atrous_pair), 8x8 groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -14,6 +16,26 @@ layout(binding = 3, rgba16f) readonly uniform image2D gbuffer_albedo_roughness;
 layout(binding = 5, rgba32f) readonly uniform image2D gbuffer_emission_metallic;
 layout(std430, binding = 6) readonly buffer HdrIn { vec4 p[]; } hdr_in;
 layout(std430, binding = 7) writeonly buffer HdrOut { vec4 p[]; } hdr_out;
+layout(std430, binding = 8) readonly buffer StableIn { vec4 p[]; } stable_in;
+layout(std430, binding = 9) writeonly buffer StableOut { vec4 p[]; } stable_out;
+
+// Temporal stabilisation (push.stabilize > 0): the filtered illumination r blended with last
+// frame's output h at this point (reprojected by denoise.temporal; a scales the weight: 1 on a
+// still point, 0 where there is no history or the point moved a pixel or more),
+// whose luminance is first held within stabilize_band standard deviations of r's (the filter's
+// own estimate of what noise r still carries). On a still view r's residual noise changes every
+// frame and h averages it further; where the light really changes, r leaves the band and h is
+// pulled along with it, lagging by at most the band.
+vec3 stabilize(vec4 r, vec4 h) {
+  if (!(h.a > 0.0)) return r.rgb;
+  float lr = luminance(r.rgb);
+  float band = push.stabilize_band * sqrt(max(r.a, 0.0));
+  if (!is_finite(band)) return r.rgb;  // no measure of r's noise: r as it is
+  float lh = luminance(h.rgb);
+  float held = clamp(lh, max(lr - band, 0.0), lr + band);
+  vec3 hc = lh > 0.0 ? h.rgb * (held / lh) : r.rgb;
+  return mix(r.rgb, hc, push.stabilize * h.a);
+}
 
 void main() {
   ivec2 p0;
@@ -25,6 +47,12 @@ void main() {
     if (k == 1 && !has_second) break;
     ivec2 pixel = p0 + ivec2(k * int(push.step), 0);
     uint index = denoise_index(pixel);
+    if (push.stabilize > 0.0) {
+      if (!denoise_guide_sky(vec4_fetch(guide, index))) {
+        result[k].rgb = stabilize(result[k], stable_in.p[index]);
+      }
+      stable_out.p[index] = vec4(result[k].rgb, 0.0);
+    }
     vec3 rgb = denoise_remodulate(imageLoad(gbuffer_position, pixel).w,
                                   imageLoad(gbuffer_emission_metallic, pixel).rgb,
                                   imageLoad(gbuffer_albedo_roughness, pixel).rgb,

@@ -33,6 +33,8 @@ LANTERN_CONST float kDenoiseMaxMomentLuminance = 1.0e18f;
 LANTERN_CONST uint kDenoiseFlagHistoryValid = 1u;  // the graph handed last frame's history
 LANTERN_CONST uint kDenoiseFlagSmoothLuminance = 2u;  // denoise.atrous: stop on 3x3 luminance
 LANTERN_CONST uint kDenoiseFlagConfidence = 4u;  // denoise.temporal: weigh pixels by their M
+// denoise.temporal: last frame's stabilised output ("denoise.stable") is there to reproject.
+LANTERN_CONST uint kDenoiseFlagStableHistory = 8u;
 
 // denoise.atrous and denoise.atrous_modulate filter pixel pairs: thread column c of a step with
 // tap spacing `step` takes pixels x0 = denoise_atrous_pair_first(c, step) and x0 + step, which
@@ -68,8 +70,9 @@ struct DenoisePush {
   float antilag;  // denoise.temporal: the colour history is held within this many standard
                   // errors of the luminance moments' short mean (~2 / moments_alpha frames;
                   // 0: off)
-  float pad1;
-  float pad2;
+  float stabilize;       // denoise.atrous_modulate: weight of last frame's output, reprojected and
+                         // held within stabilize_band standard deviations of this frame's (0: off)
+  float stabilize_band;  // that band, in the filtered illumination's standard deviations
 };
 LANTERN_STATIC_SIZE(DenoisePush, 80);
 
