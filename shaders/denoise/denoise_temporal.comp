@@ -21,8 +21,8 @@
 // temporal variance; "denoise.color", next frame's history), moments_out ("denoise.moments": x, y
 // luminance moments, z history length, w mean confidence),
 // guide_out ("denoise.guide", denoise_common.glsl), stable_reprojected_out (push.stabilize > 0:
-// last frame's stabilised output at this pixel through the same taps as the colour history, a 1
-// where it exists; denoise.atrous_modulate blends it).
+// last frame's stabilised output at this pixel through the same taps as the colour history; a:
+// the share of the blend denoise.atrous_modulate gives it, 0 where there is none).
 // History: "denoise.surface_keys", "denoise.color", "denoise.moments" (and "denoise.stable") of
 // last frame; without kDenoiseFlagHistoryValid (kDenoiseFlagStableHistory) the history bindings
 // are stand-ins and are not read.
@@ -174,9 +174,13 @@ void main() {
   // What denoise.atrous_modulate's stabilisation blends with, and how much (a): all of it on a
   // still point, less as the point moves, none from a pixel on (each frame's bilinear resampling
   // would blur a moving view: night_market walking, seeds 1-3, denoised relMSE +1.7-3.9% at
-  // stabilize 0.5 with a = 1, +0.2-2.7% with this), nothing where there is no history.
+  // stabilize 0.5 with a = 1, +0.2-2.7% with this), nothing where there is no history. The
+  // point's own motion (zw), not xy's jittered-sample step: a still view rendered with jitter
+  // (below output size) is still.
   if (push.stabilize > 0.0) {
-    float still = has_history && stable ? clamp(1.0 - length(motion), 0.0, 1.0) : 0.0;
+    vec2 own_motion = sky ? motion : imageLoad(gbuffer_motion, pixel).zw;
+    bool known = is_finite(own_motion.x) && is_finite(own_motion.y);
+    float still = has_history && stable && known ? clamp(1.0 - length(own_motion), 0.0, 1.0) : 0.0;
     stable_reprojected_out.p[index] = vec4(history_stable, still);
   }
   // Anti-firefly (biased, bounded): a new sample far above what this pixel has seen is clamped to
