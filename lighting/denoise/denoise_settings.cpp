@@ -69,11 +69,11 @@ const Row kRows[] = {
                    "frame's (0 off): higher steadies a still view's residual noise, and lags "
                    "changing light by up to stabilize_band",
       0, 0.95f, false},
-     DENOISE_FIELD(stabilize), 0.5f, 0.5f, 0.5f},
+     DENOISE_FIELD(stabilize), 0.7f, 0.7f, 0.7f},
     {{"stabilize_band", "how far last frame's output may stay from this frame's, in the filtered "
                         "image's standard deviations: higher steadies more, and lags more",
       0, 100, false},
-     DENOISE_FIELD(stabilize_band), 0.5f, 0.5f, 0.5f},
+     DENOISE_FIELD(stabilize_band), 1, 1, 1},
     {{"max_history", "history length cap in frames (with confidence on, frames of the history's "
                      "mean confidence): lower when stale light lingers", 1, 256,
       false},

@@ -27,8 +27,8 @@ struct DenoiseSettings {
   float firefly = 4.0f;
   float neighbour_clamp = 2.0f;
   float antilag = 1.0f;
-  float stabilize = 0.5f;       // weight of last frame's output in this frame's (0: off)
-  float stabilize_band = 0.5f;  // how far that output may differ, in standard deviations
+  float stabilize = 0.7f;       // weight of last frame's output in this frame's (0: off)
+  float stabilize_band = 1.0f;  // how far that output may differ, in standard deviations
   float max_history = 32.0f;
   bool confidence = true;  // weigh each frame by the integrator's confidence (ReSTIR's M)
 };

@@ -174,14 +174,17 @@ void main() {
   // What denoise.atrous_modulate's stabilisation blends with, and how much (a): all of it on a
   // still point, less as the point moves, none from a pixel on (each frame's bilinear resampling
   // would blur a moving view: night_market walking, seeds 1-3, denoised relMSE +1.7-3.9% at
-  // stabilize 0.5 with a = 1, +0.2-2.7% with this), nothing where there is no history. The
-  // point's own motion (zw), not xy's jittered-sample step: a still view rendered with jitter
-  // (below output size) is still.
+  // stabilize 0.5 with a = 1, +0.2-2.7% with this), nothing where there is no history, and a
+  // share growing with the history's length (kDenoiseStabilizeFullHistory). The point's own
+  // motion (zw), not xy's jittered-sample step: a still view rendered with jitter (below output
+  // size) is still.
   if (push.stabilize > 0.0) {
     vec2 own_motion = sky ? motion : imageLoad(gbuffer_motion, pixel).zw;
     bool known = is_finite(own_motion.x) && is_finite(own_motion.y);
     float still = has_history && stable && known ? clamp(1.0 - length(own_motion), 0.0, 1.0) : 0.0;
-    stable_reprojected_out.p[index] = vec4(history_stable, still);
+    float grown = (history_moments.z + 1.0 - kDenoiseShortHistory) /
+                  (kDenoiseStabilizeFullHistory - kDenoiseShortHistory);
+    stable_reprojected_out.p[index] = vec4(history_stable, still * clamp(grown, 0.0, 1.0));
   }
   // Anti-firefly (biased, bounded): a new sample far above what this pixel has seen is clamped to
   // the history's mean + firefly x sigma. A history that is missing, short or has seen nothing

@@ -724,9 +724,12 @@ TEST_F(DenoiseGpuTest, DimmedLightIsFollowedWithinTheShortHistory) {
 // Stabilisation (denoise.stabilize) on a still view of noise with a known mean: the frame-to-frame
 // change of the output (what trade's flicker measures) drops, the mean stays, and when the light
 // drops to a quarter the output follows: the band (stabilize_band standard deviations of the
-// filtered frame) lets the blend lag by no more than the filter's own noise.
+// filtered frame) lets the blend lag by no more than the filter's own noise. A history younger
+// than kDenoiseShortHistory frames is not stabilised at all: the first frames are exactly the
+// unstabilised ones.
 TEST_F(DenoiseGpuTest, StabilisationSteadiesAStillViewAndFollowsALightThatChanges) {
   const float c = 0.37f;
+  std::vector<ImageRGBA32F> young[2];
   double change[2] = {0.0, 0.0};
   double mean[2] = {0.0, 0.0};
   double dimmed[2] = {0.0, 0.0};
@@ -740,6 +743,7 @@ TEST_F(DenoiseGpuTest, StabilisationSteadiesAStillViewAndFollowsALightThatChange
       if (f > 0) s = frozen(s);
       previous = std::move(out);
       out = render(run, noisy(c, f), s, &g);
+      if (f + 1 < gpu::kDenoiseShortHistory) young[k].push_back(out);
       if (f < 16) continue;  // the last 4 frame pairs
       const std::vector<std::uint8_t> mask = surfaces(g);
       for (std::size_t p = 0; p < mask.size(); ++p) {
@@ -762,6 +766,10 @@ TEST_F(DenoiseGpuTest, StabilisationSteadiesAStillViewAndFollowsALightThatChange
       "%.5f); 8 frames after dimming to c/4 %.5f / %.5f (c/4 %.5f)\n",
       change[0], change[1], change[1] / change[0], mean[0], mean[1], c, dimmed[0], dimmed[1],
       c / 4.0f);
+  ASSERT_EQ(young[0].size(), young[1].size());
+  for (std::size_t f = 0; f < young[0].size(); ++f) {
+    EXPECT_TRUE(young[0][f].pixels == young[1][f].pixels) << "frame " << f << " was stabilised";
+  }
   EXPECT_LT(change[1], 0.6 * change[0]) << "stabilisation did not steady the still view";
   EXPECT_NEAR(mean[1] / c, 1.0, 0.01);
   EXPECT_NEAR(dimmed[1] / dimmed[0], 1.0, 0.05) << "stabilisation lags a light that changed";
