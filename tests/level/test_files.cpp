@@ -1,10 +1,10 @@
 // Level test helpers: data paths, scratch files, in-memory glTF documents.
 #include "tests/level/test_files.h"
 
-#include <unistd.h>
-
 #include <cstring>
 #include <fstream>
+
+#include "tests/runtime/scratch_dir.h"
 
 namespace lantern::test {
 namespace {
@@ -31,18 +31,7 @@ std::filesystem::path data_dir() {
 }
 
 std::filesystem::path scratch(const std::string& name) {
-  // Removed when the test process exits.
-  struct ScratchDir {
-    std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                 ("lantern_level_test_" + std::to_string(::getpid()));
-    ScratchDir() { std::filesystem::create_directories(path); }
-    ~ScratchDir() {
-      std::error_code ignored;
-      std::filesystem::remove_all(path, ignored);
-    }
-  };
-  static const ScratchDir dir;
-  return dir.path / name;
+  return process_scratch_dir() / name;
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {

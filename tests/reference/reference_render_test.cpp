@@ -25,6 +25,7 @@
 #include "tests/reference/polygon_irradiance.h"
 #include "tests/reference/reference_plane.h"
 #include "tests/runtime/gpu_test_support.h"
+#include "tests/runtime/scratch_dir.h"
 
 namespace lantern {
 namespace {
@@ -107,10 +108,7 @@ void add_environment(Level& level, const std::string& file, std::uint32_t w, std
       p[3] = 1.0f;
     }
   }
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / "lantern_reference_test";
-  std::filesystem::create_directories(dir);
-  const std::filesystem::path path = dir / file;
+  const std::filesystem::path path = test::process_scratch_dir() / file;
   runtime::write_image(path, image);
   level.environment = EnvironmentMap{path, 1.0f, rotation};
 }

@@ -35,6 +35,7 @@
 #include "runtime/image/image_io.h"
 #include "tests/reference/polygon_irradiance.h"
 #include "tests/runtime/gpu_test_support.h"
+#include "tests/runtime/scratch_dir.h"
 
 namespace lantern {
 namespace {
@@ -182,8 +183,7 @@ Level make_level(LightCase c) {
         p[3] = 1.0f;
       }
     }
-    const auto dir = std::filesystem::temp_directory_path() / "lantern_light_closed_form_test";
-    std::filesystem::create_directories(dir);
+    const std::filesystem::path& dir = test::process_scratch_dir();
     runtime::write_image(dir / "uniform.exr", map);
     level.environment = EnvironmentMap{dir / "uniform.exr", 1.0f, glm::quat(1, 0, 0, 0)};
   } else {

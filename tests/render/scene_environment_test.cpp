@@ -32,6 +32,7 @@
 #include "runtime/image/image_io.h"
 #include "shared/environment.h"
 #include "tests/runtime/gpu_test_support.h"
+#include "tests/runtime/scratch_dir.h"
 
 namespace lantern {
 namespace {
@@ -88,10 +89,7 @@ Level env_level(const std::string& file, glm::vec3 eye, glm::vec3 target, bool b
       p[3] = 1.0f;
     }
   }
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / "lantern_scene_environment_test";
-  std::filesystem::create_directories(dir);
-  const std::filesystem::path path = dir / file;
+  const std::filesystem::path path = test::process_scratch_dir() / file;
   runtime::write_image(path, image);
   level.environment =
       EnvironmentMap{path, 1.0f, glm::quat(glm::radians(glm::vec3(0.0f, 35.0f, 0.0f)))};

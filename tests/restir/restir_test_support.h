@@ -26,6 +26,7 @@
 #include "runtime/image/image.h"
 #include "runtime/image/image_metrics.h"
 #include "runtime/target/headless_target.h"
+#include "tests/runtime/scratch_dir.h"
 
 namespace lantern::test {
 
@@ -88,11 +89,10 @@ inline std::unique_ptr<lighting::Integrator> make_baseline(runtime::Device& devi
   return lighting::make_integrator(device, shaders, {.name = "baseline"});
 }
 
-// A level from JSON text (written to a temporary file and loaded like any level).
+// A level from JSON text (written to a file of this process's own and loaded like any level).
 inline std::shared_ptr<const Level> level_from_json(const std::string& name,
                                                     const std::string& json) {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / ("lantern_restir_" + name + ".json");
+  const std::filesystem::path file = process_scratch_dir() / ("restir_" + name + ".json");
   std::ofstream(file) << json;
   return std::make_shared<const Level>(load_level(file));
 }

@@ -2,32 +2,16 @@
 #include "tests/volume/vdb_fixtures.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <fstream>
 
 #include "engine/core/error.h"
+#include "tests/runtime/scratch_dir.h"
 
 namespace lantern::test {
 
-namespace {
-
-// A per-process directory, removed when the process exits.
-struct ScratchDir {
-  std::filesystem::path path = std::filesystem::temp_directory_path() /
-                               ("lantern-volume-test-" + std::to_string(::getpid()));
-  ScratchDir() { std::filesystem::create_directories(path); }
-  ~ScratchDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path, ignored);
-  }
-};
-
-}  // namespace
-
 std::filesystem::path volume_scratch(const std::string& name) {
-  static const ScratchDir dir;
-  return dir.path / name;
+  return process_scratch_dir() / name;
 }
 
 void write_text_file(const std::filesystem::path& path, const std::string& text) {

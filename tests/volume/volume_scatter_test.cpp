@@ -29,6 +29,7 @@
 #include "shared/volume.h"
 #include "tests/restir/restir_test_support.h"
 #include "tests/runtime/gpu_test_support.h"
+#include "tests/runtime/scratch_dir.h"
 #include "tests/volume/volume_render_support.h"
 
 namespace lantern {
@@ -212,8 +213,7 @@ TEST_F(VolumeScatterTest, UniformSkyOverAHomogeneousSlabSeenFromInside) {
       p[0] = p[1] = p[2] = sky;
       p[3] = 1.0f;
     }
-  runtime::write_image(std::filesystem::temp_directory_path() / "lantern_volume_uniform_sky.exr",
-                       map);
+  runtime::write_image(test::process_scratch_dir() / "lantern_volume_uniform_sky.exr", map);
   auto level_json = [&](const std::string& volume) {
     return test::with_volume(R"({
   "materials": { "floor": { "base_color": [0.6, 0.6, 0.6], "roughness": 1.0 } },
