@@ -49,9 +49,9 @@ void main() {
     ivec2 pixel = p0 + ivec2(k * int(push.step), 0);
     uint index = denoise_index(pixel);
     if (push.stabilize > 0.0) {
-      if (!denoise_guide_sky(vec4_fetch(guide, index))) {
-        result[k].rgb = stabilize(result[k], stable_in.p[index]);
-      }
+      // A pass-through pixel (emitter, unfiltered sky) has no stabilised history (a = 0 from
+      // denoise.temporal), so it keeps its result.
+      result[k].rgb = stabilize(result[k], stable_in.p[index]);
       stable_out.p[index] = vec4(result[k].rgb, 0.0);
     }
     vec3 rgb = denoise_remodulate(imageLoad(gbuffer_position, pixel).w,

@@ -107,7 +107,10 @@ void main() {
   uint material = imageLoad(gbuffer_ids, pixel).y;
   vec3 n = oct_decode(normals.xy);
   vec3 ng = oct_decode(normals.zw);
-  vec2 motion = imageLoad(gbuffer_motion, pixel).xy;
+  // xy: from this frame's sample to last frame's (the reprojection below); zw: the point's own
+  // motion, without the jitter step (the stabilisation's stillness).
+  vec4 motions = imageLoad(gbuffer_motion, pixel);
+  vec2 motion = motions.xy;
   // Before a filtered sky pixel takes its stand-in surface below (albedo 1, as demodulated here).
   vec3 illumination = denoise_demodulate(position.w, albedo_roughness.rgb, radiance);
   bool sky = gbuffer_is_sky(position.w);
@@ -179,7 +182,7 @@ void main() {
   // motion (zw), not xy's jittered-sample step: a still view rendered with jitter (below output
   // size) is still.
   if (push.stabilize > 0.0) {
-    vec2 own_motion = sky ? motion : imageLoad(gbuffer_motion, pixel).zw;
+    vec2 own_motion = sky ? motion : motions.zw;
     bool known = is_finite(own_motion.x) && is_finite(own_motion.y);
     float still = has_history && stable && known ? clamp(1.0 - length(own_motion), 0.0, 1.0) : 0.0;
     float grown = (history_moments.z + 1.0 - kDenoiseShortHistory) /
