@@ -73,15 +73,19 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
   const bool history =
       surface_keys_history.valid() && color_history.valid() && moments_history.valid();
   if (history) push.flags |= gpu::kDenoiseFlagHistoryValid;
-  // denoise.stable: the stabilised output, kept from frame to frame only while stabilising (a
-  // level that does not pays nothing for it); denoise.temporal reprojects it into
-  // denoise.stable_reprojected, which the last à-trous step blends.
+  // denoise.stable: the stabilised output, kept from frame to frame only while stabilising;
+  // denoise.temporal reprojects it into denoise.stable_reprojected, which the last à-trous step
+  // blends. Off, neither shader touches them: one-element stand-ins are bound (a level that does
+  // not stabilise pays nothing for them).
   const bool stabilize = push.stabilize > 0.0f;
-  BufferHandle stable = stabilize ? graph.create_history_buffer("denoise.stable", vec4s)
-                                  : graph.create_buffer("denoise.stable", vec4s);
+  const runtime::graph::BufferDesc stable_desc =
+      stabilize ? vec4s : runtime::graph::BufferDesc{4 * sizeof(float)};
+  BufferHandle stable = stabilize ? graph.create_history_buffer("denoise.stable", stable_desc)
+                                  : graph.create_buffer("denoise.stable", stable_desc);
   const BufferHandle stable_history = stabilize ? graph.history(stable) : BufferHandle{};
   if (history && stable_history.valid()) push.flags |= gpu::kDenoiseFlagStableHistory;
-  BufferHandle stable_reprojected = graph.create_buffer("denoise.stable_reprojected", vec4s);
+  BufferHandle stable_reprojected =
+      graph.create_buffer("denoise.stable_reprojected", stable_desc);
   if (!s.confidence) confidence = {};
   if (confidence.valid()) push.flags |= gpu::kDenoiseFlagConfidence;
 
