@@ -110,6 +110,8 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   p.short_history_m = 2 * s.candidates();
   p.radius = s.radius;
   p.m_cap = s.m_cap();
+  // A lower cap where points move only where the denoiser averages the frames (RestirSettings).
+  p.m_cap_moving = inputs.denoised ? s.m_cap_moving : 1.0f;
   p.boiling_filter = s.boiling_filter;
   p.presample_tiles = presample_tiles(s, inputs);
   p.local_candidates = local_candidates(s, inputs);

@@ -167,6 +167,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
         parse_choice(key, value, kTemporalPermutations, "a temporal permutation mode");
   } else if (key == "m_cap" || key == "m_cap_factor") {
     s.m_cap_factor = parse_float(key, value, 1.0f, 1000.0f);
+  } else if (key == "m_cap_moving") {
+    s.m_cap_moving = parse_float(key, value, 0.01f, 1.0f);
   } else if (key == "spatial_passes") {
     s.spatial_passes = parse_uint(key, value, 0, gpu::kRestirMaxSpatialPasses);
   } else if (key == "neighbours" || key == "neighbors") {
@@ -228,6 +230,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"temporal", flag(s.temporal)},
       {"temporal_permutation", choice_name(kTemporalPermutations, s.temporal_permutation)},
       {"m_cap", format_float(s.m_cap_factor)},
+      {"m_cap_moving", format_float(s.m_cap_moving)},
       {"spatial_passes", std::to_string(s.spatial_passes)},
       {"neighbours", std::to_string(s.neighbours)},
       {"disocclusion_boost", std::to_string(s.disocclusion_boost)},

@@ -5,8 +5,10 @@
 // camera saw this point at, normal, material, roughness). The history sample's light is remapped
 // through light_previous_to_current (an environment sample stays one); a removed light drops the
 // history sample (M kept, as for an empty history reservoir). History confidence M is capped
-// (push.m_cap). MIS weights per push.bias_correction. Optional boiling filter over the tile.
-// Reads: restir_surfaces, surfaces_history, reservoirs_in, reservoirs_history, gbuffer_motion,
+// (push.m_cap, lower where the point moves: restir_history_m_cap with push.m_cap_moving). MIS
+// weights per push.bias_correction. Optional boiling filter over the tile.
+// Reads: restir_surfaces, surfaces_history, reservoirs_in, reservoirs_history, gbuffer_motion
+// (xy: the reprojection; zw: the point's own motion, for the cap),
 // light_previous_to_current, frame constants, lights, environment (env_*).
 // Writes: reservoirs_out, temporal_status.
 // History: "restir.surfaces" and "restir.reservoirs" of last frame; without
@@ -112,7 +114,9 @@ void main() {
           if (light >= restir_light_count()) light = kInvalidLight;
         }
         reservoir_remap_light(history, light);
-        reservoir_cap_m(history, push.m_cap);
+        reservoir_cap_m(history,
+                        restir_history_m_cap(push.m_cap, push.m_cap_moving,
+                                             imageLoad(gbuffer_motion, ivec2(pixel)).zw));
         if (history.M > 0.0) {
           g_canonical = r;
           g_canonical_point =

@@ -84,6 +84,21 @@ LANTERN_FUNC ivec2 restir_permuted_history_pixel(ivec2 q, uint frame_bits) {
   return ivec2(((q.x + shift_x) ^ flip_x) - shift_x, ((q.y + shift_y) ^ flip_y) - shift_y);
 }
 
+// The M cap restir.temporal applies to a pixel's history: m_cap where the surface point holds
+// still on screen, m_cap x moving_fraction where it moves a pixel or more (own_motion: the
+// G-buffer motion's zw, the point's own motion in pixels, without the jitter step; non-finite
+// counts as moving), linearly between. With a moving view a sample then turns over sooner, so
+// consecutive frames' errors differ and a denoiser's temporal accumulation averages them
+// (RestirPush.m_cap_moving: the settings' m_cap_moving in frames the denoiser consumes, else 1).
+// Any cap keeps the MIS weights a partition of unity: unbiased.
+LANTERN_FUNC float restir_history_m_cap(float m_cap, float moving_fraction, vec2 own_motion) {
+  float moving = 1.0f;
+  if (is_finite(own_motion.x) && is_finite(own_motion.y)) {
+    moving = clamp(length(own_motion), 0.0f, 1.0f);
+  }
+  return m_cap * (1.0f + (moving_fraction - 1.0f) * moving);
+}
+
 // Light presampling (RIS tiles, Wyman and Panteleev, HPG 2021): restir.presample draws
 // kRestirPresampleTileSize lights per tile from the power alias table into push.presample_tiles
 // tiles, each entry a copy of the light record with its density; restir.initial then draws one
@@ -147,7 +162,8 @@ struct RestirPush {
   uint local_candidates;  // > 0: draws per slot of restir.initial's local light lists (0: off)
   uint permutation_bits;  // with kRestirFlagTemporalPermutation: this frame's word for
                           // restir_permuted_history_pixel (restir_permutation_bits)
-  uint pad1;
+  float m_cap_moving;     // m_cap's fraction where a point moves a pixel or more
+                          // (restir_history_m_cap; 1: the same cap everywhere)
   uint pad2;
 };
 LANTERN_STATIC_SIZE(RestirPush, 96);

@@ -90,7 +90,7 @@ const std::vector<StructLayout>& cpp_layouts() {
         LANTERN_MEMBER(RestirPush, presample_tiles),
         LANTERN_MEMBER(RestirPush, visibility_reuse), LANTERN_MEMBER(RestirPush, tile_bands),
         LANTERN_MEMBER(RestirPush, similarity), LANTERN_MEMBER(RestirPush, local_candidates),
-        LANTERN_MEMBER(RestirPush, permutation_bits), LANTERN_MEMBER(RestirPush, pad1),
+        LANTERN_MEMBER(RestirPush, permutation_bits), LANTERN_MEMBER(RestirPush, m_cap_moving),
         LANTERN_MEMBER(RestirPush, pad2)}},
       {"PresampledLight",
        sizeof(gpu::PresampledLight),

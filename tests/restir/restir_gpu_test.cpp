@@ -508,6 +508,46 @@ TEST_F(RestirGpuTest, TemporalPermutationDecorrelatesFramesOnlyForTheDenoiser) {
   EXPECT_FALSE(h.renderer().last_inputs().denoised) << "the denoiser is off: raw is shown";
 }
 
+// The lower history cap where points move (m_cap_moving, restir_history_m_cap in
+// shared/restir.h) reaches only frames the denoiser consumes, and there only points that move:
+// along cornell_lights' dolly path raw frames are the same bit for bit with 0.25 and with 1 (off),
+// and so are denoised frames of a still view; denoised frames of the dolly differ once the
+// history has grown past the lower cap.
+TEST_F(RestirGpuTest, MovingPointsCapActsOnlyWhereTheDenoiserSeesMotion) {
+  constexpr int kFrames = 8;
+  World world(cornell(),
+              {.threads = 1, .seed = 1, .fixed_dt = 1.0 / 30.0, .aspect = float(kW) / float(kH)});
+  world.set_camera_path("dolly");
+  std::vector<FrameSnapshot> dolly;
+  for (int f = 0; f < kFrames; ++f) dolly.push_back(world.step());
+  std::vector<FrameSnapshot> still{dolly[0]};
+  for (int f = 1; f < kFrames; ++f) still.push_back(frozen(still.back()));
+  auto run = [&](const std::vector<FrameSnapshot>& path, const char* fraction, bool denoised) {
+    RenderHarness h(device, shaders, cornell(),
+                    test::make_restir(device, shaders, {{"m_cap_moving", fraction}}), kW, kH);
+    if (denoised) h.renderer().set_output(lighting::FrameOutput::Denoised);
+    std::vector<ImageRGBA32F> frames;
+    for (const FrameSnapshot& s : path) {
+      frames.push_back(h.render(s));
+      EXPECT_TRUE(test::all_finite(frames.back())) << fraction;
+    }
+    return frames;
+  };
+  const auto raw_on = run(dolly, "0.25", false), raw_off = run(dolly, "1", false);
+  const auto still_on = run(still, "0.25", true), still_off = run(still, "1", true);
+  const auto moving_on = run(dolly, "0.25", true), moving_off = run(dolly, "1", true);
+  int moving_differ = 0;
+  for (int f = 0; f < kFrames; ++f) {
+    EXPECT_EQ(raw_on[f].pixels, raw_off[f].pixels) << "raw frame " << f;
+    EXPECT_EQ(still_on[f].pixels, still_off[f].pixels) << "denoised still frame " << f;
+    moving_differ += moving_on[f].pixels != moving_off[f].pixels;
+  }
+  EXPECT_EQ(moving_on[0].pixels, moving_off[0].pixels) << "the first frame has no history";
+  EXPECT_NE(moving_on[kFrames - 1].pixels, moving_off[kFrames - 1].pixels);
+  std::printf("[restir moving cap] %d of %d denoised dolly frames differ\n", moving_differ,
+              kFrames);
+}
+
 // NaN/Inf in: a light with infinite intensity and one at a NaN position next to a normal one.
 // Nothing non-finite reaches the output (radiance and the W/M debug views, which show the
 // reservoirs' contents), and the normal light still lights the scene as it does alone.

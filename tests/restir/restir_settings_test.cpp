@@ -1,9 +1,12 @@
 // RestirSettings: presets, every key settable, bad keys and values rejected with InputError
-// naming the key and value; the presampling tiles a frame gets.
+// naming the key and value; the presampling tiles a frame gets; what reaches the push constants
+// in raw and denoised frames (temporal permutation, the cap where points move) and that cap's
+// closed form (shared/restir.h).
 #include "lighting/restir/restir_settings.h"
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <set>
 
 #include "engine/core/error.h"
@@ -92,6 +95,9 @@ TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
            {"radius", "nan"},
            {"radius", "inf"},
            {"m_cap", "0.5"},
+           {"m_cap_moving", "0"},
+           {"m_cap_moving", "1.5"},
+           {"m_cap_moving", "nan"},
            {"boiling_filter", "1.5"},
            {"bias_correction", "unbiased"},
            {"temporal", "maybe"},
@@ -235,6 +241,42 @@ TEST(RestirSettings, TemporalPermutationFollowsTheDenoiser) {
   EXPECT_FALSE(permuted(s, raw));
   EXPECT_FALSE(permuted(s, denoised));
   EXPECT_THROW(apply_setting(s, "temporal_permutation", "sometimes"), InputError);
+}
+
+// The lower cap where points move reaches the shaders only in frames the denoiser consumes: raw
+// frames (EXR, bias studies) keep the full cap everywhere (m_cap_moving 1).
+TEST(RestirSettings, MovingPointsCapFollowsTheDenoiser) {
+  FrameInputs raw = inputs_of(320, 180, 89);
+  FrameInputs denoised = raw;
+  denoised.denoised = true;
+  for (const std::string& preset : restir_preset_names()) {
+    const RestirSettings s = restir_preset(preset);
+    EXPECT_FLOAT_EQ(s.m_cap_moving, 0.25f) << preset;
+    EXPECT_FLOAT_EQ(RestirIntegrator::make_push(s, raw).m_cap_moving, 1.0f) << preset;
+    EXPECT_FLOAT_EQ(RestirIntegrator::make_push(s, denoised).m_cap_moving, 0.25f) << preset;
+    EXPECT_FLOAT_EQ(RestirIntegrator::make_push(s, denoised).m_cap, s.m_cap()) << preset;
+  }
+  RestirSettings s = restir_preset("balanced");
+  apply_setting(s, "m_cap_moving", "1");
+  EXPECT_FLOAT_EQ(RestirIntegrator::make_push(s, denoised).m_cap_moving, 1.0f);
+  apply_setting(s, "m_cap_moving", "0.5");
+  EXPECT_FLOAT_EQ(RestirIntegrator::make_push(s, denoised).m_cap_moving, 0.5f);
+}
+
+// restir.temporal's cap (shared/restir.h): the full cap on a still point, the fraction from one
+// pixel of own motion on, linear between; a point whose motion is unknown counts as moving.
+TEST(RestirHistoryCap, FullWhereStillLowerWhereMoving) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 0.25f, glm::vec2(0.0f)), 160.0f);
+  EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 0.25f, glm::vec2(0.6f, 0.8f)), 40.0f);
+  EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 0.25f, glm::vec2(-30.0f, 4.0f)), 40.0f);
+  EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 0.25f, glm::vec2(0.0f, 0.5f)), 100.0f);
+  EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 0.25f, glm::vec2(inf, 0.0f)), 40.0f);
+  EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 0.25f, glm::vec2(0.0f, nan)), 40.0f);
+  // 1: the same cap everywhere (raw frames).
+  EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 1.0f, glm::vec2(5.0f, 0.0f)), 160.0f);
+  EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 1.0f, glm::vec2(nan)), 160.0f);
 }
 
 }  // namespace
