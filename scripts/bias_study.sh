@@ -20,7 +20,7 @@ export LANTERN_BIAS_STUDY=1
 export LANTERN_BIAS_MODES=${LANTERN_BIAS_MODES:-balance,pairwise,none,t-M1}
 export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-cache}"
 run=("$exe" --gtest_filter="${1:-*}")
-[ -n "${DISPLAY:-}" ] || run=(xvfb-run -a -s "-screen 0 1280x720x24" "${run[@]}")
+[ -n "${DISPLAY:-}" ] || run=(xvfb-run -a -s "-screen 0 1280x720x24 -noreset" "${run[@]}")
 start=$(date +%s)
 set +e
 "${run[@]}" 2>&1 | grep -E '^\[restir bias\]|cannot resolve|biased by|brighter than|^\[  (PASSED|FAILED)'

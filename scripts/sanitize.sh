@@ -36,7 +36,7 @@ export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-ca
 skip="_NOT_BUILT"
 [ -x "$build/bin/lantern" ] || skip="$skip|^Cli\."
 run=(ctest --test-dir "$build" --output-on-failure --timeout 900 -j "$(nproc)" "$@")
-command -v xvfb-run >/dev/null && run=(xvfb-run -a -s "-screen 0 1280x720x24" "${run[@]}")
+command -v xvfb-run >/dev/null && run=(xvfb-run -a -s "-screen 0 1280x720x24 -noreset" "${run[@]}")
 # Two GraphGpu tests (history + Vulkan 1.0 barriers) and the visibility frame tests (every
 # integrator, every backend), all with synchronization validation on, end with indirect leaks
 # allocated inside a dlopen()ed Vulkan layer/driver (Mesa or the Khronos validation layer; frames
