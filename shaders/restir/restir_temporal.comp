@@ -56,11 +56,12 @@ layout(std430, binding = PASS_BINDING(6)) writeonly buffer StatusOut {
 
 shared float s_weights[kRestirTileSize * kRestirTileSize];
 
-// Finds last frame's pixel for this surface; -1 when disoccluded. status: kRestirStatus*.
-ivec2 find_history(uvec2 pixel, RestirSurface surface, inout uint rng, out uint status) {
+// Finds last frame's pixel for this surface along `motion` (the G-buffer motion's xy); -1 when
+// disoccluded. status: kRestirStatus*.
+ivec2 find_history(uvec2 pixel, vec2 motion, RestirSurface surface, inout uint rng,
+                   out uint status) {
   status = kRestirStatusNoHistory;
   ivec2 size = ivec2(restir_size());
-  vec2 motion = imageLoad(gbuffer_motion, ivec2(pixel)).xy;
   if (!(is_finite(motion.x) && is_finite(motion.y))) return ivec2(-1);
   vec2 previous = vec2(pixel) + 0.5 + motion;
   vec4 clip = frame_constants.frame.prev_view_proj * vec4(restir_surface_position(surface), 1.0);
@@ -92,7 +93,9 @@ void main() {
     r = reservoir_unpack(reservoir_fetch(reservoirs_in, index));
     if (restir_surface_valid(surface) && (push.flags & kRestirFlagHistoryValid) != 0u) {
       uint rng = frame_rng(pixel, kRestirRngTemporal);
-      ivec2 q = find_history(pixel, surface, rng, status);
+      // xy: the reprojection; zw: the point's own motion, for the cap below.
+      vec4 motions = imageLoad(gbuffer_motion, ivec2(pixel));
+      ivec2 q = find_history(pixel, motions.xy, surface, rng, status);
       if (q.x >= 0) {
         uint q_index = uint(q.y) * restir_size().x + uint(q.x);
         Reservoir history = reservoir_unpack(reservoir_fetch(reservoirs_history, q_index));
@@ -115,8 +118,7 @@ void main() {
         }
         reservoir_remap_light(history, light);
         reservoir_cap_m(history,
-                        restir_history_m_cap(push.m_cap, push.m_cap_moving,
-                                             imageLoad(gbuffer_motion, ivec2(pixel)).zw));
+                        restir_history_m_cap(push.m_cap, push.m_cap_moving, motions.zw));
         if (history.M > 0.0) {
           g_canonical = r;
           g_canonical_point =
