@@ -6,6 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "tests/runtime/scratch_dir.h"
+
 namespace lantern::perf {
 namespace {
 
@@ -34,15 +36,13 @@ TEST(ChromeTrace, CompleteEventsOnNamedTracks) {
 }
 
 TEST(ChromeTrace, WritesAtomically) {
-  const auto dir = std::filesystem::temp_directory_path() / "lantern_trace_test";
-  std::filesystem::create_directories(dir);
+  const auto& dir = lantern::test::process_scratch_dir();
   ChromeTrace trace;
   trace.event(trace.track("t"), "e", 0.0, 1.0);
   trace.write(dir / "trace.json");
   EXPECT_TRUE(std::filesystem::exists(dir / "trace.json"));
   EXPECT_FALSE(std::filesystem::exists(dir / "trace.json.tmp"));
   EXPECT_ANY_THROW(trace.write(dir / "missing_dir" / "trace.json"));
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

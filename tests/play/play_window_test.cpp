@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "apps/lantern/play/play_session.h"
+#include "tests/runtime/scratch_dir.h"
 
 namespace lantern::app {
 namespace {
@@ -102,7 +103,7 @@ TEST(PlayWindow, DynamicResolutionStaysWithinItsLimits) {
 
 TEST(PlayWindow, BrokenShaderKeepsRenderingAndFixedShaderReloads) {
   if (!have_display()) FAIL() << "needs a display: run under xvfb-run (scripts/test.sh does)";
-  const fs::path dir = fs::temp_directory_path() / "lantern_play_reload_test";
+  const fs::path dir = lantern::test::process_scratch_dir() / "shaders";
   fs::remove_all(dir);
   fs::copy(LANTERN_TEST_SHADER_SOURCE_DIR, dir, fs::copy_options::recursive);
   const fs::path shader = dir / "frame" / "frame_output.comp";

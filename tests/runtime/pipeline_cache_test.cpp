@@ -9,14 +9,13 @@
 #include "gpu_test_support.h"
 #include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/shader_library.h"
+#include "tests/runtime/scratch_dir.h"
 
 namespace lantern::runtime {
 namespace {
 
 TEST(PipelineCache, WrittenOnShutdownAndReloaded) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("lantern_pipeline_cache_test_" +
-                    std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const auto dir = lantern::test::process_scratch_dir() / "pipeline_cache";
   std::filesystem::remove_all(dir);
   DeviceOptions options = test::test_device_options();
   options.cache_dir = dir;

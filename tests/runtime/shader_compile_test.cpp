@@ -13,6 +13,7 @@
 #include "runtime/gpu/glsl_compiler.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/gpu/spirv_reflect.h"
+#include "tests/runtime/scratch_dir.h"
 
 namespace lantern::runtime {
 namespace {
@@ -80,8 +81,7 @@ TEST(ShaderCompile, EveryManifestShaderIsValidReflectsAndRecompiles) {
 }
 
 TEST(ShaderCompile, ErrorsNameFileAndLine) {
-  const auto dir = std::filesystem::temp_directory_path() / "lantern_shader_compile_test";
-  std::filesystem::create_directories(dir);
+  const auto& dir = lantern::test::process_scratch_dir();
   const auto file = dir / "broken.comp";
   std::ofstream(file)
       << "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {\n  undeclared_thing = 1;\n}\n";
@@ -91,8 +91,7 @@ TEST(ShaderCompile, ErrorsNameFileAndLine) {
 }
 
 TEST(ShaderCompile, DefinesReachThePreprocessor) {
-  const auto dir = std::filesystem::temp_directory_path() / "lantern_shader_compile_test";
-  std::filesystem::create_directories(dir);
+  const auto& dir = lantern::test::process_scratch_dir();
   const auto file = dir / "needs_define.comp";
   std::ofstream(file) << "#version 460\n#ifndef LANTERN_TEST_SIZE\n#error missing define\n#endif\n"
                          "layout(local_size_x = LANTERN_TEST_SIZE) in;\nvoid main() {}\n";

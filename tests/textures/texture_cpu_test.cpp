@@ -20,6 +20,7 @@
 #include "lighting/textures/texture_set.h"
 #include "runtime/image/image_decode.h"
 #include "runtime/image/image_encode.h"
+#include "tests/runtime/scratch_dir.h"
 #include "tests/textures/textured_assets.h"
 
 namespace lantern {
@@ -30,9 +31,7 @@ using test::ImageStorage;
 using test::TexturedQuadOptions;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "lantern_texture_cpu_test";
-  fs::create_directories(dir);
-  return dir / name;
+  return lantern::test::process_scratch_dir() / name;
 }
 
 template <class F>

@@ -29,6 +29,7 @@
 #include "shared/gbuffer.h"
 #include "tests/gbuffer/gbuffer_harness.h"
 #include "tests/runtime/gpu_test_support.h"
+#include "tests/runtime/scratch_dir.h"
 #include "tests/textures/textured_assets.h"
 
 namespace lantern {
@@ -671,8 +672,7 @@ TEST_F(TextureRenderTest, EnvironmentQuadrantsFollowBlendersConvention) {
       p[2] = static_cast<float>(c.b);
       p[3] = 1.0f;
     }
-  const auto dir = std::filesystem::temp_directory_path() / "lantern_texture_render_test";
-  std::filesystem::create_directories(dir);
+  const auto& dir = lantern::test::process_scratch_dir();
   runtime::write_image(dir / "quadrants.exr", map);
   // Blender's (u, v-from-top) -> our world direction (map not rotated).
   auto blender_direction = [](double u, double v_top) {
