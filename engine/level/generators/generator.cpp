@@ -7,6 +7,7 @@
 #include "engine/level/generators/light_panels.h"
 #include "engine/level/generators/night_market.h"
 #include "engine/level/json_level_reader.h"
+#include "engine/scene/camera.h"
 #include "engine/scene/level.h"
 
 namespace lantern {
@@ -108,6 +109,23 @@ void use_generated_camera_path(Level& level, const std::string& path_name) {
     level.camera.yfov = glm::radians(60.0f);
     level.has_camera = true;
   }
+}
+
+void add_generated_camera_loop(Level& level, const std::string& path_name, float duration,
+                               int steps, const std::function<LoopPose(int)>& pose) {
+  if (!level.find_path(path_name)) {
+    CameraPath path;
+    path.name = path_name;
+    path.loop = true;
+    for (int i = 0; i <= steps; ++i) {
+      const LoopPose at = pose(i);
+      path.keys.push_back({duration * static_cast<float>(i) / static_cast<float>(steps), at.eye,
+                           look_at_orientation(at.eye, at.target), std::nullopt});
+    }
+    path.keys.back().orientation = path.keys.front().orientation;
+    level.paths.push_back(std::move(path));
+  }
+  use_generated_camera_path(level, path_name);
 }
 
 }  // namespace lantern

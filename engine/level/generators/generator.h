@@ -2,6 +2,8 @@
 // in, content appended to the level; deterministic given the seed.
 #pragma once
 
+#include <functional>
+#include <glm/vec3.hpp>
 #include <string>
 
 namespace lantern {
@@ -17,5 +19,17 @@ void run_generator(JsonObject& params, JsonLevelReader& reader);
 // level chose another path, and a level without a camera of its own starts at the path's first
 // pose (60 degree vertical field of view).
 void use_generated_camera_path(Level& level, const std::string& path_name);
+
+// Where a generated camera loop is at step i of `steps`: the eye and the point it looks at.
+struct LoopPose {
+  glm::vec3 eye;
+  glm::vec3 target;
+};
+
+// Adds the looping camera path `path_name` (unless the level already has one of that name):
+// steps + 1 keys evenly spaced over `duration` seconds at pose(0) .. pose(steps), the last key
+// turned as the first so the loop closes; then use_generated_camera_path.
+void add_generated_camera_loop(Level& level, const std::string& path_name, float duration,
+                               int steps, const std::function<LoopPose(int)>& pose);
 
 }  // namespace lantern

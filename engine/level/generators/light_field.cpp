@@ -113,24 +113,13 @@ void generate_light_field(const LightFieldParams& p, LevelBuilder& builder,
                        floor_mat, Transform{});
 
   // A loop around the field at pillar-top height, looking towards the centre.
-  Level& level = builder.level();
-  if (!level.find_path(p.path_name)) {
-    CameraPath path;
-    path.name = p.path_name;
-    path.loop = true;
-    constexpr int kSteps = 12;
-    for (int i = 0; i <= kSteps; ++i) {
-      const float a = glm::two_pi<float>() * static_cast<float>(i) / kSteps;
-      const glm::vec3 pos(0.55f * half * std::cos(a), 2.5f + 0.8f * std::sin(2.0f * a),
-                          0.55f * half * std::sin(a));
-      const glm::vec3 look = glm::vec3(0.0f, 1.0f, 0.0f);
-      path.keys.push_back({p.path_duration * static_cast<float>(i) / kSteps, pos,
-                           look_at_orientation(pos, look), std::nullopt});
-    }
-    path.keys.back().orientation = path.keys.front().orientation;
-    level.paths.push_back(std::move(path));
-  }
-  use_generated_camera_path(level, p.path_name);
+  constexpr int kSteps = 12;
+  add_generated_camera_loop(builder.level(), p.path_name, p.path_duration, kSteps, [&](int i) {
+    const float a = glm::two_pi<float>() * static_cast<float>(i) / kSteps;
+    return LoopPose{
+        {0.55f * half * std::cos(a), 2.5f + 0.8f * std::sin(2.0f * a), 0.55f * half * std::sin(a)},
+        {0.0f, 1.0f, 0.0f}};
+  });
 }
 
 }  // namespace lantern

@@ -122,22 +122,12 @@ void generate_light_panels(const LightPanelsParams& p, LevelBuilder& builder,
                        floor_mat, Transform{});
 
   // A slow walk around the field at eye height, looking towards the centre.
-  Level& level = builder.level();
-  if (!level.find_path(p.path_name)) {
-    CameraPath path;
-    path.name = p.path_name;
-    path.loop = true;
-    constexpr int kSteps = 12;
-    for (int i = 0; i <= kSteps; ++i) {
-      const float a = glm::two_pi<float>() * static_cast<float>(i) / kSteps;
-      const glm::vec3 pos(0.45f * half * std::cos(a), 1.7f, 0.45f * half * std::sin(a));
-      path.keys.push_back({p.path_duration * static_cast<float>(i) / kSteps, pos,
-                           look_at_orientation(pos, glm::vec3(0.0f, 2.5f, 0.0f)), std::nullopt});
-    }
-    path.keys.back().orientation = path.keys.front().orientation;
-    level.paths.push_back(std::move(path));
-  }
-  use_generated_camera_path(level, p.path_name);
+  constexpr int kSteps = 12;
+  add_generated_camera_loop(builder.level(), p.path_name, p.path_duration, kSteps, [&](int i) {
+    const float a = glm::two_pi<float>() * static_cast<float>(i) / kSteps;
+    return LoopPose{{0.45f * half * std::cos(a), 1.7f, 0.45f * half * std::sin(a)},
+                    {0.0f, 2.5f, 0.0f}};
+  });
 }
 
 }  // namespace lantern

@@ -264,38 +264,26 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
   }
 
   // A loop along the first aisle, across, back along the last aisle and across again.
-  Level& level = builder.level();
-  if (!level.find_path(p.path_name)) {
-    const float z0 = 0.5f * kPitchZ - half_d;
-    const float z1 = std::max(
-        z0, (static_cast<float>(2 * std::max<std::uint32_t>(1, rows / 2) - 2) + 0.5f) * kPitchZ -
-                half_d);
-    const float x0 = -half_w - 2.0f, x1 = half_w + 2.0f;
-    const std::array<glm::vec3, 5> corners = {
-        {{x0, 1.7f, z0}, {x1, 1.7f, z0}, {x1, 2.5f, z1}, {x0, 1.7f, z1}, {x0, 1.7f, z0}}};
-    CameraPath path;
-    path.name = p.path_name;
-    path.loop = true;
-    const int per_side = 3;
-    const int steps = 4 * per_side;
-    for (int i = 0; i <= steps; ++i) {
-      const int side = std::min(i / per_side, 3);
-      const float u = static_cast<float>(i - side * per_side) / per_side;
-      const glm::vec3 pos = glm::mix(corners[static_cast<std::size_t>(side)],
-                                     corners[static_cast<std::size_t>(side + 1)], u);
-      const glm::vec3 ahead =
-          glm::mix(corners[static_cast<std::size_t>(side)],
-                   corners[static_cast<std::size_t>(side + 1)], std::min(u + 0.5f, 1.0f)) +
-          glm::vec3(0.0f, -0.3f, 0.0f);
-      const glm::vec3 look =
-          glm::length(ahead - pos) > 0.5f ? ahead : pos + glm::vec3(1.0f, -0.2f, 0.0f);
-      path.keys.push_back({p.path_duration * static_cast<float>(i) / steps, pos,
-                           look_at_orientation(pos, look), std::nullopt});
-    }
-    path.keys.back().orientation = path.keys.front().orientation;
-    level.paths.push_back(std::move(path));
-  }
-  use_generated_camera_path(level, p.path_name);
+  const float z0 = 0.5f * kPitchZ - half_d;
+  const float z1 = std::max(
+      z0,
+      (static_cast<float>(2 * std::max<std::uint32_t>(1, rows / 2) - 2) + 0.5f) * kPitchZ - half_d);
+  const float x0 = -half_w - 2.0f, x1 = half_w + 2.0f;
+  const std::array<glm::vec3, 5> corners = {
+      {{x0, 1.7f, z0}, {x1, 1.7f, z0}, {x1, 2.5f, z1}, {x0, 1.7f, z1}, {x0, 1.7f, z0}}};
+  constexpr int kPerSide = 3;
+  add_generated_camera_loop(
+      builder.level(), p.path_name, p.path_duration, 4 * kPerSide, [&](int i) {
+        const int side = std::min(i / kPerSide, 3);
+        const float u = static_cast<float>(i - side * kPerSide) / kPerSide;
+        const glm::vec3& from = corners[static_cast<std::size_t>(side)];
+        const glm::vec3& to = corners[static_cast<std::size_t>(side + 1)];
+        const glm::vec3 eye = glm::mix(from, to, u);
+        const glm::vec3 ahead =
+            glm::mix(from, to, std::min(u + 0.5f, 1.0f)) + glm::vec3(0.0f, -0.3f, 0.0f);
+        return LoopPose{
+            eye, glm::length(ahead - eye) > 0.5f ? ahead : eye + glm::vec3(1.0f, -0.2f, 0.0f)};
+      });
 }
 
 }  // namespace lantern
