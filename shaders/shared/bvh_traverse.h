@@ -53,6 +53,41 @@ inline bool bvh_accept_hit(const BvhSceneView&, uint, uint, float, float) { retu
 
 LANTERN_BEGIN_SHARED
 
+// The step of both traversals below at inner node `node_index` (node `node`) of the tree at
+// node_base: the children whose boxes the ray reaches within [tmin, tmax], nearer first (the left
+// one on a tie). Returns how many (0, 1 or 2); with one or two, node_index and node move to the
+// nearer child, and with two, far_index and far_t name the farther one and its entry distance
+// (the caller pushes them). With none, node_index and node stay.
+LANTERN_FUNC uint bvh_children_reached(LANTERN_BVH_SCENE_PARAM uint node_base, vec3 origin,
+                                       vec3 inv_direction, float tmin, float tmax,
+                                       LANTERN_INOUT(uint) node_index, LANTERN_INOUT(BvhNode) node,
+                                       LANTERN_OUT(uint) far_index, LANTERN_OUT(float) far_t) {
+  uint left_index = node_index + 1u;
+  uint right_index = bvh_node_index(node);
+  BvhNode left = bvh_fetch_node(LANTERN_BVH_SCENE node_base + left_index);
+  BvhNode right = bvh_fetch_node(LANTERN_BVH_SCENE node_base + right_index);
+  float t_left =
+      bvh_ray_box(origin, inv_direction, tmin, tmax, vec3(left.bounds_min), vec3(left.bounds_max));
+  float t_right = bvh_ray_box(origin, inv_direction, tmin, tmax, vec3(right.bounds_min),
+                              vec3(right.bounds_max));
+  far_index = 0u;
+  far_t = kBvhMiss;
+  if (t_left <= t_right) {
+    if (t_left == kBvhMiss) return 0u;
+    node_index = left_index;
+    node = left;
+    far_index = right_index;
+    far_t = t_right;
+    return t_right != kBvhMiss ? 2u : 1u;
+  }
+  // t_right < t_left <= kBvhMiss: the right child is reached.
+  node_index = right_index;
+  node = right;
+  far_index = left_index;
+  far_t = t_left;
+  return t_left != kBvhMiss ? 2u : 1u;
+}
+
 // Traverses one tree (the BLAS at node_offset) for the closest hit with t < hit.t, or stops at the
 // first hit when any_hit is set. Returns whether it found a hit (and then updated `hit`). The
 // nearer child is visited first; the farther one is pushed with its entry distance and skipped when
@@ -92,36 +127,16 @@ LANTERN_FUNC bool bvh_traverse_blas(LANTERN_BVH_SCENE_PARAM uint node_offset, ui
         }
       }
     } else {
-      uint left_index = node_index + 1u;
-      uint right_index = bvh_node_index(node);
-      BvhNode left = bvh_fetch_node(LANTERN_BVH_SCENE node_offset + left_index);
-      BvhNode right = bvh_fetch_node(LANTERN_BVH_SCENE node_offset + right_index);
-      float t_left = bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(left.bounds_min),
-                                 vec3(left.bounds_max));
-      float t_right = bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(right.bounds_min),
-                                  vec3(right.bounds_max));
-      if (t_left <= t_right) {
-        if (t_left != kBvhMiss) {
-          if (t_right != kBvhMiss) {
-            stack_node[stack_size] = right_index;
-            stack_t[stack_size] = t_right;
-            ++stack_size;
-          }
-          node_index = left_index;
-          node = left;
-          continue;
-        }
-      } else {
-        // t_right < t_left <= kBvhMiss: the right child is hit.
-        if (t_left != kBvhMiss) {
-          stack_node[stack_size] = left_index;
-          stack_t[stack_size] = t_left;
-          ++stack_size;
-        }
-        node_index = right_index;
-        node = right;
-        continue;
+      uint far_index;
+      float far_t;
+      uint reached = bvh_children_reached(LANTERN_BVH_SCENE node_offset, origin, inv_direction,
+                                          tmin, hit.t, node_index, node, far_index, far_t);
+      if (reached == 2u) {
+        stack_node[stack_size] = far_index;
+        stack_t[stack_size] = far_t;
+        ++stack_size;
       }
+      if (reached > 0u) continue;
     }
     // Pop the next subtree that still starts before the closest hit so far.
     bool popped = false;
@@ -195,35 +210,16 @@ LANTERN_FUNC bool bvh_traverse_scene(LANTERN_BVH_SCENE_PARAM BvhRay ray, bool an
         if (any_hit) return true;
       }
     } else {
-      uint left_index = node_index + 1u;
-      uint right_index = bvh_node_index(node);
-      BvhNode left = bvh_fetch_node(LANTERN_BVH_SCENE tlas + left_index);
-      BvhNode right = bvh_fetch_node(LANTERN_BVH_SCENE tlas + right_index);
-      float t_left = bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(left.bounds_min),
-                                 vec3(left.bounds_max));
-      float t_right = bvh_ray_box(origin, inv_direction, tmin, hit.t, vec3(right.bounds_min),
-                                  vec3(right.bounds_max));
-      if (t_left <= t_right) {
-        if (t_left != kBvhMiss) {
-          if (t_right != kBvhMiss) {
-            stack_node[stack_size] = right_index;
-            stack_t[stack_size] = t_right;
-            ++stack_size;
-          }
-          node_index = left_index;
-          node = left;
-          continue;
-        }
-      } else {
-        if (t_left != kBvhMiss) {
-          stack_node[stack_size] = left_index;
-          stack_t[stack_size] = t_left;
-          ++stack_size;
-        }
-        node_index = right_index;
-        node = right;
-        continue;
+      uint far_index;
+      float far_t;
+      uint reached = bvh_children_reached(LANTERN_BVH_SCENE tlas, origin, inv_direction, tmin,
+                                          hit.t, node_index, node, far_index, far_t);
+      if (reached == 2u) {
+        stack_node[stack_size] = far_index;
+        stack_t[stack_size] = far_t;
+        ++stack_size;
       }
+      if (reached > 0u) continue;
     }
     bool popped = false;
     while (stack_size > 0u && !popped) {
