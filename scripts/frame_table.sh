@@ -10,25 +10,12 @@
 # Usage: scripts/frame_table.sh [LEVEL] [--sizes "320x180 640x360"] [--frames N] [--warmup N]
 #                               [--rounds N] [--presets "fast balanced quality"]
 set -euo pipefail
-cd "$(dirname "$0")/.."
-export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-cache}"
-lantern=build/bin/lantern
-[ -x "$lantern" ] || { echo "frame_table: build first (bash scripts/build.sh)" >&2; exit 2; }
+source "$(dirname "$0")/bench_common.sh"
 level=night_market sizes="320x180 640x360" frames=12 warmup=3 rounds=3
 presets="fast balanced quality"
 if [ $# -gt 0 ] && [ "${1#--}" = "$1" ]; then level=$1; shift; fi
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --sizes) sizes=$2; shift 2 ;;
-    --frames) frames=$2; shift 2 ;;
-    --warmup) warmup=$2; shift 2 ;;
-    --rounds) rounds=$2; shift 2 ;;
-    --presets) presets=$2; shift 2 ;;
-    *) echo "frame_table: unknown argument '$1' (see the usage line in $0)" >&2; exit 2 ;;
-  esac
-done
-out=$(mktemp -d /tmp/frame_table.XXXXXX)
-trap 'rm -rf "$out"' EXIT
+bench_options frame_table sizes frames warmup rounds presets -- "$@"
+bench_setup frame_table
 for r in $(seq 1 "$rounds"); do
   for size in $sizes; do
     for config in baseline $presets; do

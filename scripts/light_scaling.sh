@@ -10,26 +10,11 @@
 #                                 [--preset P] [--counts "1000 10000 100000 1000000"]
 #                                 [--set KEY=VALUE]... (passed to every bench, e.g. gbuffer=visibility)
 set -euo pipefail
-cd "$(dirname "$0")/.."
-export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-cache}"
-lantern=build/bin/lantern
-[ -x "$lantern" ] || { echo "light_scaling: build first (bash scripts/build.sh)" >&2; exit 2; }
+source "$(dirname "$0")/bench_common.sh"
 size=320x180 frames=20 warmup=5 rounds=1 preset=balanced counts="1000 10000 100000 1000000"
 sets=()
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --size) size=$2; shift 2 ;;
-    --frames) frames=$2; shift 2 ;;
-    --warmup) warmup=$2; shift 2 ;;
-    --rounds) rounds=$2; shift 2 ;;
-    --preset) preset=$2; shift 2 ;;
-    --counts) counts=$2; shift 2 ;;
-    --set) sets+=(--set "$2"); shift 2 ;;
-    *) echo "light_scaling: unknown argument '$1' (see the usage line in $0)" >&2; exit 2 ;;
-  esac
-done
-out=$(mktemp -d /tmp/light_scaling.XXXXXX)
-trap 'rm -rf "$out"' EXIT
+bench_options light_scaling size frames warmup rounds preset counts set -- "$@"
+bench_setup light_scaling
 for n in $counts; do
   # The shipped level with only its emitter count changed (the generator checks the count).
   python3 - "$n" "$out/light_panels_$n.json" <<'PY'

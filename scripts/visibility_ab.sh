@@ -7,25 +7,11 @@
 # Usage: scripts/visibility_ab.sh [LEVEL] [--size WxH] [--frames N] [--warmup N] [--rounds N]
 #                                 [--preset P] [--backends "bvh host"]
 set -euo pipefail
-cd "$(dirname "$0")/.."
-export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-cache}"
-lantern=build/bin/lantern
-[ -x "$lantern" ] || { echo "visibility_ab: build first (bash scripts/build.sh)" >&2; exit 2; }
+source "$(dirname "$0")/bench_common.sh"
 level=night_market size=320x180 frames=12 warmup=3 rounds=3 preset=balanced backends="bvh host"
 if [ $# -gt 0 ] && [ "${1#--}" = "$1" ]; then level=$1; shift; fi
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --size) size=$2; shift 2 ;;
-    --frames) frames=$2; shift 2 ;;
-    --warmup) warmup=$2; shift 2 ;;
-    --rounds) rounds=$2; shift 2 ;;
-    --preset) preset=$2; shift 2 ;;
-    --backends) backends=$2; shift 2 ;;
-    *) echo "visibility_ab: unknown argument '$1' (see the usage line in $0)" >&2; exit 2 ;;
-  esac
-done
-out=$(mktemp -d /tmp/visibility_ab.XXXXXX)
-trap 'rm -rf "$out"' EXIT
+bench_options visibility_ab size frames warmup rounds preset backends -- "$@"
+bench_setup visibility_ab
 for r in $(seq 1 "$rounds"); do
   for integrator in baseline restir; do
     for v in $backends; do
