@@ -1,5 +1,6 @@
 // Generators: night_market meets the counts issue 4 asks for, light_field (million_lights) makes
-// exactly the emitter count asked for; both are deterministic given their seed.
+// exactly the emitter count asked for; both are deterministic given their seed; every generator's
+// surfaces are dielectric unless they are meant to be metal.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -46,6 +47,7 @@ std::uint64_t hash_level(const Level& level) {
     h.add(m.emissive_factor);
     h.add(m.emissive_strength);
     h.add(m.roughness);
+    h.add(m.metallic);
   }
   for (const Instance& i : level.instances) {
     h.add(i.mesh);
@@ -148,6 +150,22 @@ TEST(LightField, BadParametersAreNamed) {
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("radiance"), std::string::npos) << e.what();
+  }
+}
+
+// glTF's default metallic is 1: a generator that forgets to set it makes stone and floors metal
+// (light_field's and light_panels' did, until they shared night_market's material helpers).
+TEST(Generators, SurfacesAreDielectricUnlessMeantToBeMetal) {
+  const auto panels = test::scratch("panels_dielectric.json");
+  test::write_text(panels,
+                   R"({"generators": [{"type": "light_panels", "emitter_triangles": 40}]})");
+  const std::pair<const char*, Level> levels[] = {{"night_market", market_with_seed(1)},
+                                                  {"light_field", field_with(3, 1000)},
+                                                  {"light_panels", load_level(panels)}};
+  for (const auto& [generator, level] : levels) {
+    ASSERT_FALSE(level.materials.empty()) << generator;
+    for (const Material& m : level.materials)
+      EXPECT_EQ(m.metallic, m.name == "market_metal" ? 1.0f : 0.0f) << generator << ": " << m.name;
   }
 }
 

@@ -100,6 +100,22 @@ void run_generator(JsonObject& params, JsonLevelReader& reader) {
       fmt::format("unknown generator type '{}' (night_market, light_field, light_panels)", type));
 }
 
+Material generated_surface(const std::string& name, glm::vec3 color, float roughness) {
+  Material m;
+  m.name = name;
+  m.base_color = glm::vec4(color, 1.0f);
+  m.metallic = 0.0f;
+  m.roughness = roughness;
+  return m;
+}
+
+Material generated_emitter(const std::string& name, glm::vec3 color, float radiance) {
+  Material m = generated_surface(name, glm::vec3(0.05f), 0.6f);
+  m.emissive_factor = color;
+  m.emissive_strength = radiance;
+  return m;
+}
+
 void use_generated_camera_path(Level& level, const std::string& path_name) {
   if (level.camera_path.empty()) level.camera_path = path_name;
   if (!level.has_camera) {

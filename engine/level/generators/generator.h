@@ -6,6 +6,8 @@
 #include <glm/vec3.hpp>
 #include <string>
 
+#include "engine/scene/material.h"
+
 namespace lantern {
 
 struct Level;
@@ -14,6 +16,14 @@ class JsonLevelReader;
 
 // Dispatches on params["type"] and reads the generator's parameters (unknown ones are errors).
 void run_generator(JsonObject& params, JsonLevelReader& reader);
+
+// A generated surface: a dielectric (metallic 0; glTF's default of 1 would make it a metal) of
+// base colour `color` and perceptual `roughness`.
+Material generated_surface(const std::string& name, glm::vec3 color, float roughness);
+
+// A generated emitter: `color` x `radiance` (emissive factor and strength) over a dark rough
+// generated surface.
+Material generated_emitter(const std::string& name, glm::vec3 color, float radiance);
 
 // After a generator added its camera path `path_name`: the level's camera follows it unless the
 // level chose another path, and a level without a camera of its own starts at the path's first

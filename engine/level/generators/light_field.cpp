@@ -25,14 +25,6 @@ constexpr std::array<glm::vec3, 8> kColors = {{{1.00f, 0.55f, 0.25f},
                                                {0.30f, 1.00f, 0.95f},
                                                {1.00f, 1.00f, 1.00f}}};
 
-Material plain(const std::string& name, glm::vec3 color, float roughness) {
-  Material m;
-  m.name = name;
-  m.base_color = glm::vec4(color, 1.0f);
-  m.roughness = roughness;
-  return m;
-}
-
 // A random unit vector in the lower hemisphere tilted towards -Y (emitters face the floor).
 glm::vec3 downward_normal(SplitMix& rng) {
   const float cos_theta = rng.uniform(0.3f, 1.0f);
@@ -74,9 +66,8 @@ void generate_light_field(const LightFieldParams& p, LevelBuilder& builder,
   for (std::size_t g = 0; g < groups.size(); ++g) {
     if (groups[g].indices.empty()) continue;
     const float t = static_cast<float>(g) / static_cast<float>(groups.size() - 1);
-    Material e = plain(fmt::format("field_emitter_{}", g), glm::vec3(0.05f), 0.6f);
-    e.emissive_factor = kColors[g];
-    e.emissive_strength = p.radiance.x * std::pow(p.radiance.y / p.radiance.x, t);
+    Material e = generated_emitter(fmt::format("field_emitter_{}", g), kColors[g],
+                                   p.radiance.x * std::pow(p.radiance.y / p.radiance.x, t));
     groups[g].name = e.name;
     const std::uint32_t mat = builder.add_material(e);
     const std::uint32_t mesh =
@@ -101,13 +92,13 @@ void generate_light_field(const LightFieldParams& p, LevelBuilder& builder,
     }
     pillars.name = "field_pillars";
     const std::uint32_t mat =
-        builder.add_material(plain("field_stone", {0.5f, 0.48f, 0.45f}, 0.8f));
+        builder.add_material(generated_surface("field_stone", {0.5f, 0.48f, 0.45f}, 0.8f));
     builder.add_instance("field_pillars",
                          builder.add_mesh(std::move(pillars), where + ": pillars"), mat,
                          Transform{});
   }
   const std::uint32_t floor_mat =
-      builder.add_material(plain("field_floor", {0.35f, 0.35f, 0.37f}, 0.6f));
+      builder.add_material(generated_surface("field_floor", {0.35f, 0.35f, 0.37f}, 0.6f));
   builder.add_instance("field_floor",
                        builder.add_mesh(make_plane(glm::vec2(p.extent + 10.0f)), where + ": floor"),
                        floor_mat, Transform{});

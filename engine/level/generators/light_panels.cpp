@@ -16,14 +16,6 @@
 namespace lantern {
 namespace {
 
-Material plain(const std::string& name, glm::vec3 color, float roughness) {
-  Material m;
-  m.name = name;
-  m.base_color = glm::vec4(color, 1.0f);
-  m.roughness = roughness;
-  return m;
-}
-
 // A mesh of boxes of `size` at `centres`, one instance.
 void add_boxes(LevelBuilder& builder, const std::string& name, const std::string& where,
                glm::vec3 size, const std::vector<glm::vec3>& centres, glm::vec3 color) {
@@ -33,7 +25,7 @@ void add_boxes(LevelBuilder& builder, const std::string& name, const std::string
   for (const glm::vec3& c : centres)
     append_transformed(boxes, box, glm::translate(glm::mat4(1.0f), c));
   boxes.name = name;
-  const std::uint32_t mat = builder.add_material(plain(name, color, 0.8f));
+  const std::uint32_t mat = builder.add_material(generated_surface(name, color, 0.8f));
   builder.add_instance(name, builder.add_mesh(std::move(boxes), where + ": " + name), mat,
                        Transform{});
 }
@@ -89,9 +81,7 @@ void generate_light_panels(const LightPanelsParams& p, LevelBuilder& builder,
     g.pattern = "uniform";
     g.levels = 1;
     for (EmissiveQuadBin& bin : make_emissive_quad_grid(g)) {
-      Material e = plain(fmt::format("panel_{}", i), glm::vec3(0.05f), 0.6f);
-      e.emissive_factor = color;
-      e.emissive_strength = bin.radiance;
+      Material e = generated_emitter(fmt::format("panel_{}", i), color, bin.radiance);
       bin.mesh.name = e.name;
       const std::uint32_t mat = builder.add_material(e);
       builder.add_instance(
@@ -116,7 +106,7 @@ void generate_light_panels(const LightPanelsParams& p, LevelBuilder& builder,
   add_boxes(builder, "panel_pillars", where, {0.8f, 4.0f, 0.8f}, pillars, {0.5f, 0.48f, 0.45f});
   add_boxes(builder, "panel_awnings", where, {3.0f, 0.1f, 1.5f}, awnings, {0.6f, 0.3f, 0.2f});
   const std::uint32_t floor_mat =
-      builder.add_material(plain("panel_floor", {0.35f, 0.35f, 0.37f}, 0.6f));
+      builder.add_material(generated_surface("panel_floor", {0.35f, 0.35f, 0.37f}, 0.6f));
   builder.add_instance("panel_floor",
                        builder.add_mesh(make_plane(glm::vec2(p.extent)), where + ": floor"),
                        floor_mat, Transform{});

@@ -39,22 +39,6 @@ float log_uniform(SplitMix& rng, glm::vec2 range) {
   return range.x * std::pow(range.y / range.x, rng.uniform());
 }
 
-Material diffuse(const std::string& name, glm::vec3 color, float roughness) {
-  Material m;
-  m.name = name;
-  m.base_color = glm::vec4(color, 1.0f);
-  m.metallic = 0.0f;
-  m.roughness = roughness;
-  return m;
-}
-
-Material emitter(const std::string& name, glm::vec3 color, float radiance) {
-  Material m = diffuse(name, glm::vec3(0.05f), 0.6f);
-  m.emissive_factor = color;
-  m.emissive_strength = radiance;
-  return m;
-}
-
 glm::mat4 box_at(const glm::mat4& frame, glm::vec3 center, glm::vec3 size) {
   return glm::scale(glm::translate(frame, center), size);
 }
@@ -98,14 +82,14 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
     sign_image = static_cast<std::int32_t>(builder.level().images.size() - 1);
   }
   MergedMeshes merged;
-  const Material wood = diffuse("market_wood", {0.35f, 0.22f, 0.12f}, 0.7f);
+  const Material wood = generated_surface("market_wood", {0.35f, 0.22f, 0.12f}, 0.7f);
   const Material metal = [] {
-    Material m = diffuse("market_metal", {0.55f, 0.55f, 0.58f}, 0.35f);
+    Material m = generated_surface("market_metal", {0.55f, 0.55f, 0.58f}, 0.35f);
     m.metallic = 1.0f;
     return m;
   }();
-  const Material crate = diffuse("market_crate", {0.45f, 0.33f, 0.2f}, 0.8f);
-  const Material goods = diffuse("market_goods", {0.6f, 0.5f, 0.35f}, 0.6f);
+  const Material crate = generated_surface("market_crate", {0.45f, 0.33f, 0.2f}, 0.8f);
+  const Material goods = generated_surface("market_goods", {0.6f, 0.5f, 0.35f}, 0.6f);
 
   for (std::uint32_t s = 0; s < p.stalls; ++s) {
     const std::uint32_t col = s % cols, row = s / cols;
@@ -115,8 +99,8 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
     const glm::mat4 frame = glm::rotate(glm::translate(glm::mat4(1.0f), center),
                                         row % 2 ? glm::pi<float>() : 0.0f, glm::vec3(0, 1, 0));
     const int hue = static_cast<int>(rng.below(kPalette));
-    const Material canvas =
-        diffuse(fmt::format("market_canvas_{}", hue), kCanvas[static_cast<std::size_t>(hue)], 0.9f);
+    const Material canvas = generated_surface(fmt::format("market_canvas_{}", hue),
+                                              kCanvas[static_cast<std::size_t>(hue)], 0.9f);
 
     merged.add(wood, unit_box, box_at(frame, {0.0f, 0.5f, 0.6f}, {3.2f, 1.0f, 0.8f}));  // counter
     merged.add(canvas, unit_box,
@@ -157,8 +141,8 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
               ? p.lantern_radiance.x * std::pow(p.lantern_radiance.y / p.lantern_radiance.x,
                                                 (static_cast<float>(bin) + 0.5f) / kRadianceBins)
               : p.lantern_radiance.y;
-      merged.add(emitter(fmt::format("market_lantern_{}_{}", glow, bin),
-                         kGlow[static_cast<std::size_t>(glow)], bin_radiance),
+      merged.add(generated_emitter(fmt::format("market_lantern_{}_{}", glow, bin),
+                                   kGlow[static_cast<std::size_t>(glow)], bin_radiance),
                  lantern, glm::translate(frame, {x, y, 1.25f}));
     }
     // Sign: a strip of emissive quads on the back wall, facing the aisle (or one textured panel
@@ -171,8 +155,8 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
       const glm::mat4 m = glm::scale(
           glm::translate(frame, {0.0f, 2.05f + 0.085f * static_cast<float>(sign_rows - 1), -0.94f}),
           size);
-      Material sign = emitter(fmt::format("market_sign_texture_{}", hue),
-                              kGlow[static_cast<std::size_t>(hue)], 60.0f);
+      Material sign = generated_emitter(fmt::format("market_sign_texture_{}", hue),
+                                        kGlow[static_cast<std::size_t>(hue)], 60.0f);
       sign.emissive_texture.image = sign_image;
       merged.add(sign, sign_panel, m);
     }
@@ -183,9 +167,9 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
       const glm::mat4 m = glm::scale(
           glm::rotate(glm::translate(frame, {x, y, -0.94f}), glm::half_pi<float>(), {1, 0, 0}),
           glm::vec3(0.28f, 1.0f, 0.14f));
-      merged.add(
-          emitter(fmt::format("market_sign_{}", hue), kGlow[static_cast<std::size_t>(hue)], 60.0f),
-          sign_quad, m);
+      merged.add(generated_emitter(fmt::format("market_sign_{}", hue),
+                                   kGlow[static_cast<std::size_t>(hue)], 60.0f),
+                 sign_quad, m);
     }
     // Lights: a spot over the counter, then bulbs along the lantern string.
     for (std::uint32_t k = 0; k < p.lights_per_stall; ++k) {
@@ -222,7 +206,7 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
   {
     const glm::vec2 ground(2.0f * half_w + 24.0f, 2.0f * half_d + 24.0f);
     const std::uint32_t mat =
-        builder.add_material(diffuse("market_ground", {0.18f, 0.17f, 0.16f}, 0.9f));
+        builder.add_material(generated_surface("market_ground", {0.18f, 0.17f, 0.16f}, 0.9f));
     const std::uint32_t mesh = builder.add_mesh(make_plane(ground), where + ": ground");
     builder.add_instance("market_ground", mesh, mat, Transform{});
   }
@@ -239,11 +223,11 @@ void generate_night_market(const NightMarketParams& p, LevelBuilder& builder,
     const std::uint32_t cart_mesh =
         builder.add_mesh(make_box({1.2f, 1.0f, 0.8f}), where + ": cart");
     const std::uint32_t cart_mat =
-        builder.add_material(diffuse("market_cart", {0.5f, 0.1f, 0.08f}, 0.5f));
+        builder.add_material(generated_surface("market_cart", {0.5f, 0.1f, 0.08f}, 0.5f));
     const std::uint32_t spinner_mesh =
         builder.add_mesh(make_box({1.0f, 0.6f, 0.05f}), where + ": spinner");
     const std::uint32_t spinner_mat =
-        builder.add_material(emitter("market_spinner", {0.4f, 0.9f, 1.0f}, 150.0f));
+        builder.add_material(generated_emitter("market_spinner", {0.4f, 0.9f, 1.0f}, 150.0f));
     const std::uint32_t aisles = std::max<std::uint32_t>(1, rows / 2);
     for (std::uint32_t i = 0; i < p.movers; ++i) {
       const std::uint32_t aisle = rng.below(aisles);
