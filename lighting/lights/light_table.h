@@ -5,6 +5,7 @@
 // idea). The power alias table is rebuilt only when some emitter's power changed.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -20,11 +21,24 @@ struct LightEmitter {
   float power = 0.0f;  // sampling weight: flux (W) for finite lights, a proxy for directional
 };
 
+// Lights [first, first + count) of a light list.
+struct LightRange {
+  std::size_t first = 0;
+  std::size_t count = 0;
+};
+
 class LightTable {
  public:
   // Replaces the light list with `emitters` (ids must be unique; InputError otherwise).
   // Returns true when the alias table was rebuilt.
   bool update(std::span<const LightEmitter> emitters);
+
+  // The same light list as the last update (the same ids in the same order) of which only the
+  // lights in `changed` may have moved or changed power: reads just those (O(changed) instead of
+  // O(lights) every frame a few lights flicker or move; the alias table is still rebuilt when a
+  // power changed), and every light keeps its index. Falls back to update() when the list's size
+  // or an id in a changed range differs.
+  bool update_ranges(std::span<const LightEmitter> emitters, std::span<const LightRange> changed);
 
   const std::vector<gpu::GpuLight>& lights() const { return lights_; }
   const std::vector<std::uint64_t>& stable_ids() const { return ids_; }
@@ -43,8 +57,14 @@ class LightTable {
   std::vector<float> powers_;
   std::vector<std::uint32_t> prev_to_cur_;
   std::vector<std::uint32_t> cur_to_prev_;
+  bool identity_maps_ = false;  // prev_to_cur_ and cur_to_prev_ are the identity over the lights
   AliasTable alias_;
   std::uint64_t alias_rebuilds_ = 0;
+
+  // Same ids in the same order: re-reads the lights in `changed`, keeps every index.
+  bool apply_ranges(std::span<const LightEmitter> emitters, std::span<const LightRange> changed);
+  void set_identity_maps();
+  bool rebuild_alias();
 };
 
 }  // namespace lantern::lighting

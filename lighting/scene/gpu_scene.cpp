@@ -290,6 +290,9 @@ void GpuScene::update_volumes(const FrameSnapshot& snapshot) {
 
 void GpuScene::update_lights(const FrameSnapshot& snapshot) {
   bool changed = false;
+  // What changed in place (same lights, same order): the light table re-reads only these.
+  std::vector<LightRange> changed_ranges;
+  bool same_lights = true;
   // Emissive triangles: re-extract the instances that moved or changed emission scale.
   std::vector<LightEmitter> scratch;
   for (EmissiveInstance& e : emissive_) {
@@ -308,6 +311,7 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
                std::uint64_t{e.first + e.count} * sizeof(gpu::GpuLight));
     ++stats_.reextracted_instances;
     stats_.reextracted_triangles += e.count;
+    changed_ranges.push_back({e.first, e.count});
     changed = true;
   }
   // Analytic lights: the snapshot's, in stable-id order.
@@ -319,19 +323,37 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
                                         l.outer_cone, l.range, scene_radius_));
   }
   const std::size_t old_analytic = emitters_.size() - triangle_emitters_;
-  if (analytic.size() != old_analytic ||
-      !std::equal(analytic.begin(), analytic.end(), emitters_.begin() + triangle_emitters_,
-                  [](const LightEmitter& a, const LightEmitter& b) {
-                    return a.stable_id == b.stable_id && a.power == b.power &&
-                           std::memcmp(&a.light, &b.light, sizeof(a.light)) == 0;
-                  })) {
+  const auto first_analytic = emitters_.begin() + triangle_emitters_;
+  const bool same_ids = analytic.size() == old_analytic &&
+                        std::equal(analytic.begin(), analytic.end(), first_analytic,
+                                   [](const LightEmitter& a, const LightEmitter& b) {
+                                     return a.stable_id == b.stable_id;
+                                   });
+  if (!same_ids || !std::equal(analytic.begin(), analytic.end(), first_analytic,
+                               [](const LightEmitter& a, const LightEmitter& b) {
+                                 return a.power == b.power &&
+                                        std::memcmp(&a.light, &b.light, sizeof(a.light)) == 0;
+                               })) {
+    same_lights = same_ids;
     emitters_.resize(triangle_emitters_);
     emitters_.insert(emitters_.end(), analytic.begin(), analytic.end());
+    changed_ranges.push_back({triangle_emitters_, analytic.size()});
     mark_dirty(gpu::kSceneLights, std::uint64_t{triangle_emitters_} * sizeof(gpu::GpuLight),
                emitters_.size() * sizeof(gpu::GpuLight));
     changed = true;
   }
 
+  if (changed) {
+    stats_.lights_changed = true;
+    // Lights that only moved or changed power keep their indices: the table re-reads just them.
+    stats_.alias_rebuilt = same_lights ? data_.lights.update_ranges(emitters_, changed_ranges)
+                                       : data_.lights.update(emitters_);
+    ensure_capacity(gpu::kSceneLights);  // ranges marked above (everything when the buffer grew)
+    if (stats_.alias_rebuilt) {
+      ensure_capacity(gpu::kSceneLightAlias);
+      mark_all_dirty(gpu::kSceneLightAlias);
+    }
+  }
   // The previous -> current index map; uploaded only when it differs from last frame's.
   auto set_remap = [&](std::vector<std::uint32_t>&& next) {
     if (next == remap_) return;
@@ -339,18 +361,11 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
     ensure_capacity(gpu::kSceneLightPreviousToCurrent);
     mark_all_dirty(gpu::kSceneLightPreviousToCurrent);
   };
-  if (changed) {
-    stats_.lights_changed = true;
-    stats_.alias_rebuilt = data_.lights.update(emitters_);
+  if (changed && !same_lights) {
     set_remap(std::vector<std::uint32_t>(data_.lights.previous_to_current()));
     remap_is_identity_ = false;
-    ensure_capacity(gpu::kSceneLights);  // ranges marked above (everything when the buffer grew)
-    if (stats_.alias_rebuilt) {
-      ensure_capacity(gpu::kSceneLightAlias);
-      mark_all_dirty(gpu::kSceneLightAlias);
-    }
   } else if (!remap_is_identity_ || remap_.size() != data_.lights.lights().size()) {
-    // Nothing changed: every light keeps its index (O(lights) once, not every frame).
+    // Every light keeps its index (O(lights) once, not every frame).
     std::vector<std::uint32_t> identity(data_.lights.lights().size());
     std::iota(identity.begin(), identity.end(), 0u);
     set_remap(std::move(identity));

@@ -1,5 +1,6 @@
 // Light table: stable ids survive reordering, removal and addition; the prev<->cur maps are
-// inverse where both exist; the alias table is rebuilt only when power changes.
+// inverse where both exist; the alias table is rebuilt only when power changes; a frame of lights
+// that only moved or flickered is read range by range.
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
@@ -75,4 +76,47 @@ TEST(LightTable, DuplicateIdsAreRejected) {
   LightTable table;
   std::vector<LightEmitter> lights = {emitter(7, 1), emitter(7, 2)};
   EXPECT_THROW(table.update(lights), lantern::InputError);
+}
+
+// update_ranges: a frame whose lights only moved or flickered re-reads just the ranges it is
+// given (what lies outside them is not read: the table keeps its own copy), keeps every index,
+// and matches a full update of the same list; a changed id in a range falls back to update().
+TEST(LightTable, UpdateRangesReadsOnlyTheChangedLights) {
+  std::vector<LightEmitter> lights = {emitter(1, 1), emitter(2, 2), emitter(3, 3), emitter(4, 4)};
+  LightTable ranged;
+  LightTable full;
+  ranged.update(lights);
+  full.update(lights);
+
+  lights[2].power = 6.0f;       // flicker
+  lights[3].light.p0.y = 9.0f;  // moved
+  std::vector<LightEmitter> given = lights;
+  given[0].light.p0.y = -1.0f;  // outside the ranges: must not be read
+  const lantern::lighting::LightRange changed[] = {{2, 2}};
+  EXPECT_TRUE(ranged.update_ranges(given, changed));
+  EXPECT_TRUE(full.update(lights));
+  ASSERT_EQ(ranged.lights().size(), 4u);
+  EXPECT_EQ(ranged.lights()[0].p0.y, 0.0f);
+  EXPECT_EQ(ranged.lights()[3].p0.y, 9.0f);
+  for (std::uint32_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(ranged.previous_to_current()[i], i);
+    EXPECT_EQ(ranged.current_to_previous()[i], i);
+    EXPECT_EQ(ranged.alias_table().pdf(i), full.alias_table().pdf(i)) << i;
+  }
+  EXPECT_NEAR(ranged.alias_table().pdf(2), 6.0f / 13.0f, 1e-6f);
+
+  // Moved only: no rebuild.
+  lights[1].light.p0.y = 3.0f;
+  const lantern::lighting::LightRange moved[] = {{1, 1}};
+  EXPECT_FALSE(ranged.update_ranges(lights, moved));
+  EXPECT_EQ(ranged.lights()[1].p0.y, 3.0f);
+  EXPECT_EQ(ranged.alias_rebuilds(), 2u);
+
+  // Light 2 replaced by light 5 of the same power inside the range: a full update with the
+  // remap (no rebuild: the powers are the same).
+  lights[1] = emitter(5, 2);
+  EXPECT_FALSE(ranged.update_ranges(lights, moved));
+  EXPECT_EQ(ranged.previous_to_current()[1], kInvalidLight);
+  EXPECT_EQ(ranged.current_to_previous()[1], kInvalidLight);
+  EXPECT_EQ(ranged.stable_ids()[1], 5u);
 }
