@@ -129,9 +129,13 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
                                                       const FrameSnapshot& snapshot) {
   const bool history_valid = frames_ > 0 && !snapshot.camera_cut && !resized_;
   scene_->update(snapshot);
-  const FrameCounts counts{scene_->light_count(), scene_->instance_count(),
-                           scene_->emissive_triangles(), scene_->previous_light_count(),
-                           scene_->scene_radius(), scene_->volume_count()};
+  const FrameCounts counts{scene_->light_count(),
+                           scene_->instance_count(),
+                           scene_->emissive_triangles(),
+                           scene_->previous_light_count(),
+                           scene_->scene_radius(),
+                           scene_->volume_count(),
+                           scene_->data().lights.first_group_share()};
   const bool upscaling = width_ != output_width_ || height_ != output_height_;
   const bool jitter = jitter_mode_ == Jitter::On || (jitter_mode_ == Jitter::WhenUpscaling && upscaling);
   previous_jitter_ = history_valid ? jitter_ : glm::vec2(0.0f);

@@ -27,7 +27,7 @@ gpu::FrameConstants make_frame_constants(const Camera& camera, std::uint32_t wid
   fc.counts = glm::uvec4(counts.lights, counts.instances, counts.emissive_triangles, 1u);
   fc.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   fc.history = glm::uvec4(counts.previous_lights, 0u, 0u, 0u);
-  fc.scene = glm::vec4(counts.scene_radius, 0.0f, 0.0f, 0.0f);
+  fc.scene = glm::vec4(counts.scene_radius, counts.triangle_light_share, 0.0f, 0.0f);
   fc.media = glm::uvec4(counts.volumes, 0u, 0u, 0u);
   return fc;
 }
@@ -60,7 +60,7 @@ gpu::FrameConstants make_frame_constants(const FrameSnapshot& snapshot, std::uin
                          history_valid ? 0u : 1u);
   fc.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   fc.history = glm::uvec4(counts.previous_lights, 0u, 0u, 0u);
-  fc.scene = glm::vec4(counts.scene_radius, 0.0f, 0.0f, 0.0f);
+  fc.scene = glm::vec4(counts.scene_radius, counts.triangle_light_share, 0.0f, 0.0f);
   fc.media = glm::uvec4(counts.volumes, 0u, 0u, 0u);
   return fc;
 }

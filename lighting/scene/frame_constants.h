@@ -18,6 +18,9 @@ struct FrameCounts {
   std::uint32_t previous_lights = 0;  // last frame's lights: entries of the prev -> cur remap
   float scene_radius = 1.0f;          // the world's bounding-sphere radius
   std::uint32_t volumes = 0;          // participating media (scene_volumes records)
+  float triangle_light_share = 0.0f;  // the emissive triangles' share of the lights' power: how
+                                      // often a light draw picks from their alias table
+                                      // (shared/alias_table.h; LightTable::first_group_share)
 };
 
 // World -> clip for `camera` rendering a width x height image (the image's aspect ratio wins

@@ -347,11 +347,14 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
     stats_.lights_changed = true;
     // Lights that only moved or changed power keep their indices: the table re-reads just them.
     stats_.alias_rebuilt = same_lights ? data_.lights.update_ranges(emitters_, changed_ranges)
-                                       : data_.lights.update(emitters_);
+                                       : data_.lights.update(emitters_, triangle_emitters_);
     ensure_capacity(gpu::kSceneLights);  // ranges marked above (everything when the buffer grew)
     if (stats_.alias_rebuilt) {
+      // Only the rebuilt groups' entries (the flickering analytic lights', not the triangles').
+      const LightRange r = data_.lights.alias_rewritten();
+      mark_dirty(gpu::kSceneLightAlias, std::uint64_t{r.first} * sizeof(gpu::AliasEntry),
+                 std::uint64_t{r.first + r.count} * sizeof(gpu::AliasEntry));
       ensure_capacity(gpu::kSceneLightAlias);
-      mark_all_dirty(gpu::kSceneLightAlias);
     }
   }
   // The previous -> current index map; uploaded only when it differs from last frame's.
@@ -376,8 +379,7 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
 
 void GpuScene::update_environment_probability() {
   if (!env_) return;  // the stand-in is never selected (params.x stays 0)
-  const double lights_power =
-      data_.lights.has_power() ? data_.lights.alias_table().total_weight() : 0.0;
+  const double lights_power = data_.lights.total_power();
   const float p = environment_selection_probability(env_power_, lights_power);
   if (p == env_header_.params.x) return;
   env_header_.params.x = p;

@@ -42,7 +42,7 @@ constexpr std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers = {{
     {gpu::kSceneLights, "scene.lights", "scene_lights", "scene_light_texels", false,
      [](const Sources& s) { return bytes_of(s.data->lights.lights()); }, kBuffer},
     {gpu::kSceneLightAlias, "scene.light_alias", "light_alias", "light_alias_texels", false,
-     [](const Sources& s) { return bytes_of(s.data->lights.alias_table().entries()); }, kBuffer},
+     [](const Sources& s) { return bytes_of(s.data->lights.alias_entries()); }, kBuffer},
     {gpu::kSceneLightPreviousToCurrent, "scene.light_previous_to_current",
      "light_previous_to_current", nullptr, false,
      [](const Sources& s) { return bytes_of(*s.light_previous_to_current); }, kBuffer},

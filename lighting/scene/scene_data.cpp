@@ -349,7 +349,7 @@ SceneData build_scene_data(const Level& level, const std::vector<runtime::Volume
       scene.emissive_triangles += count;
     }
   }
-  scene.lights.update(emitters);
+  scene.lights.update(emitters, scene.emissive_triangles);
   return scene;
 }
 

@@ -49,7 +49,9 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
     const std::uint64_t bytes =
         array_bytes<gpu::GpuLight>(lights) + array_bytes<gpu::AliasEntry>(lights);
     summary.enabled["light_sampling"] = {
-        {"structure", "power (flux) alias table, O(1) per sample"},
+        {"structure",
+         "power (flux) alias tables, one for the emissive triangles and one for the analytic "
+         "lights (a flicker rebuilds only its group's), O(1) per sample"},
         {"why", fmt::format("{} emissive triangles + {} analytic lights", scene.emissive_triangles,
                             analytic)},
         {"emitters", lights},

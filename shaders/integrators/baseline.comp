@@ -105,9 +105,8 @@ vec3 shade_pixel(uvec2 pixel) {
     } else if (frame_constants.frame.counts.x > 0u) {
       // Reuse u_select, rescaled to [0,1), for the alias slot.
       float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
-      uint slot = alias_slot(frame_constants.frame.counts.x, u0);
-      uint index = alias_select(u1, scene_light_alias(slot), slot);
-      float select_pdf = (1.0 - p_env) * scene_light_alias(index).pdf;
+      uint index = scene_light_sample(u0, u1);
+      float select_pdf = (1.0 - p_env) * scene_light_selection_pdf(index);
       result += sample_light(index, select_pdf, x, n, ng, v, mat, u_light, rng);
     }
   }

@@ -169,9 +169,8 @@ vec3 sample_light(Shading sh, inout uint rng) {
   float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
   float u1 = rng_next_float(rng);
   vec2 u_point = rng_next_vec2(rng);
-  uint slot = alias_slot(frame_constants.frame.counts.x, u0);
-  uint index = alias_select(u1, scene_light_alias(slot), slot);
-  float select = (1.0 - p_env) * scene_light_alias(index).pdf;
+  uint index = scene_light_sample(u0, u1);
+  float select = (1.0 - p_env) * scene_light_selection_pdf(index);
   if (index >= analytic_walk_first()) return vec3(0.0);  // analytic_lights() counts it
   GpuLight light = scene_light(index);
   float pdf_point = select * light_eval_point_pdf(light);

@@ -52,7 +52,7 @@ vec3 emitted(SurfaceHit s, GpuMaterial mat, vec3 dir) {
 // at squared distance dist2 (both selection steps), as a solid-angle density.
 float triangle_light_pdf(uint index, float dist2, vec3 l) {
   if (frame_constants.frame.counts.x == 0u) return 0.0;
-  float select = (1.0 - env_header.env.params.x) * scene_light_alias(index).pdf;
+  float select = (1.0 - env_header.env.params.x) * scene_light_selection_pdf(index);
   return select * light_eval_solid_angle_pdf(scene_light(index), l, dist2);
 }
 

@@ -3,7 +3,8 @@
 // (lighting/scene/scene_buffers.h):
 //   frame_constants.frame (FrameConstants), scene_vertices.v[], scene_indices.i[],
 //   scene_materials.m[], scene_instances.i[], scene_light(i) and scene_light_alias(i) (the
-//   lights and their alias table through rgba32ui texel views),
+//   lights and their alias tables through rgba32ui texel views; scene_light_sample and
+//   scene_light_selection_pdf draw and weigh a light by power),
 //   light_previous_to_current.index[] (uint per last frame's light: its current index or
 //   kInvalidLight), the BVH (lib/bvh_traverse.glsl: bvh_header, bvh_*_texels; in the rayquery
 //   variant instead the TLAS scene_tlas at kSceneTlas) and the
@@ -58,6 +59,19 @@ layout(binding = kSceneLightAlias) uniform utextureBuffer light_alias_texels;
 AliasEntry scene_light_alias(uint slot) {
   uvec4 t = texelFetch(light_alias_texels, int(slot));
   return AliasEntry(uintBitsToFloat(t.x), t.y, uintBitsToFloat(t.z), t.w);
+}
+// A light drawn in proportion to its power from u0, u1 in [0,1), through the two groups'
+// tables (shared/alias_table.h: the emissive triangles, counts.z of them, then the analytic
+// lights; scene.y the triangles' share), and the probability of drawing light `index` so. Only
+// while frame.counts.x > 0 (some light has power).
+uint scene_light_sample(float u0, float u1) {
+  uint slot = alias_group_slot(frame_constants.frame.counts.x, frame_constants.frame.counts.z,
+                               frame_constants.frame.scene.y, u0);
+  return alias_select(u1, scene_light_alias(slot), slot);
+}
+float scene_light_selection_pdf(uint index) {
+  return alias_group_pdf(scene_light_alias(index).pdf, index, frame_constants.frame.counts.z,
+                         frame_constants.frame.scene.y);
 }
 layout(std430, binding = kSceneLightPreviousToCurrent) restrict readonly buffer RemapBuffer {
   uint index[];

@@ -66,7 +66,7 @@ float bsdf_area_pdf(ShadingPoint p, GpuLight light, vec3 y) {
 // is over the emitters; the environment takes p_env of the selections first). Presampled
 // candidates have the same marginal density (restir.presample stores it).
 float light_strategy_pdf(uint index, float p_env) {
-  return (1.0 - p_env) * scene_light_alias(index).pdf * light_eval_point_pdf(scene_light(index));
+  return (1.0 - p_env) * scene_light_selection_pdf(index) * light_eval_point_pdf(scene_light(index));
 }
 
 // restir.initial's local light list (shared/restir.h, push.local_candidates > 0): per slot, the
@@ -85,8 +85,7 @@ uint draw_strategy_entry(float u0, float u1, uint tile_base) {
     uint slot = min(uint(u0 * float(kRestirPresampleTileSize)), kRestirPresampleTileSize - 1u);
     return tile_base + slot;
   }
-  uint slot = alias_slot(restir_light_count(), u0);
-  return alias_select(u1, scene_light_alias(slot), slot);
+  return scene_light_sample(u0, u1);
 }
 
 // A draw_strategy_entry result's light index, record and density (selection pdf x point density).
@@ -100,7 +99,7 @@ uint strategy_entry_light(uint entry, out GpuLight light, out float pdf) {
     return index_pdf.x;
   }
   light = scene_light(entry);
-  pdf = scene_light_alias(entry).pdf * light_eval_point_pdf(light);
+  pdf = scene_light_selection_pdf(entry) * light_eval_point_pdf(light);
   return entry;
 }
 
@@ -113,7 +112,7 @@ vec4 strategy_entry_position(uint entry, out float pdf) {
     return uintBitsToFloat(texelFetch(presampled_lights, int(base)));
   }
   vec4 p0 = uintBitsToFloat(texelFetch(scene_light_texels, int(kGpuLightTexels * entry)));
-  pdf = scene_light_alias(entry).pdf *
+  pdf = scene_light_selection_pdf(entry) *
         (floatBitsToUint(p0.w) == kLightTriangle ? light_eval_point_pdf(scene_light(entry)) : 1.0);
   return p0;
 }

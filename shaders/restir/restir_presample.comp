@@ -23,12 +23,11 @@ void main() {
                        kRestirRngPresample);
   float u0 = rng_next_float(rng);
   float u1 = rng_next_float(rng);
-  uint slot = alias_slot(light_count, u0);
-  uint index = alias_select(u1, scene_light_alias(slot), slot);
+  uint index = scene_light_sample(u0, u1);
   PresampledLight p;
   p.light = scene_light(index);
   p.index = index;
-  p.pdf = scene_light_alias(index).pdf * light_eval_point_pdf(p.light);
+  p.pdf = scene_light_selection_pdf(index) * light_eval_point_pdf(p.light);
   p.pad0 = 0u;
   p.pad1 = 0u;
   presampled_lights.e[entry] = p;

@@ -26,7 +26,9 @@ struct FrameConstants {
   vec4 environment;        // rgb: uniform sky radiance scale; w: exposure
   uvec4 history;           // x: last frame's lights (entries of light_previous_to_current); yzw: 0
   vec4 scene;              // x: radius of the world's bounding sphere (directional and environment
-                           // shadow rays end kDirectionalShadowRadii radii away); yzw: 0
+                           // shadow rays end kDirectionalShadowRadii radii away); y: the
+                           // emissive triangles' share of the lights' power (the first of the
+                           // light draw's two groups, shared/alias_table.h); zw: 0
   vec4 jitter;             // xy: this frame's G-buffer sample offset from the pixel centres, in
                            // pixels (+x right, +y down; 0 unless upscaling); zw: last frame's
                            // (gbuffer.h: gbuffer_jitter_clip, and the motion convention)

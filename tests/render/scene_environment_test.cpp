@@ -190,7 +190,7 @@ TEST_F(SceneEnvironmentTest, SelectionProbabilityWeighsTheMapAgainstTheEmitters)
   auto lit = std::make_shared<const Level>(level);
   const lighting::GpuScene scene(device, lit);
   const double env_power = scene.environment_map()->power_estimate(scene.scene_radius());
-  const double lights_power = scene.data().lights.alias_table().total_weight();
+  const double lights_power = scene.data().lights.total_power();
   ASSERT_GT(lights_power, 0.0);
   const double expected = env_power / (env_power + lights_power);
   EXPECT_NEAR(scene.environment().params.x, expected, 1e-6);

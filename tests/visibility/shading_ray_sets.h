@@ -83,7 +83,6 @@ inline ShadingRaySet shading_shadow_rays(const Level& level, const SceneData& da
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const auto& lights = data.lights.lights();
-  const AliasTable& alias = data.lights.alias_table();
   const float radius = data.scene_radius();
   ShadingRaySet set;
   if (lights.empty()) return set;
@@ -103,7 +102,7 @@ inline ShadingRaySet shading_shadow_rays(const Level& level, const SceneData& da
     };
     const auto draw = [&](std::uint32_t& index, glm::vec3& y) {
       const float u0 = u(rng), u1 = u(rng);
-      index = alias.sample(u0, u1);
+      index = data.lights.sample(u0, u1);
       y = gpu::light_eval_position(lights[index], glm::vec2(u(rng), u(rng)), x, radius);
     };
     std::uint32_t pick = 0;
@@ -118,7 +117,7 @@ inline ShadingRaySet shading_shadow_rays(const Level& level, const SceneData& da
         glm::vec3 yi(0.0f);
         draw(index, yi);
         const glm::vec3 ci = contribution(index, yi);
-        const float p = alias.pdf(index) * gpu::light_eval_point_pdf(lights[index]);
+        const float p = data.lights.selection_pdf(index) * gpu::light_eval_point_pdf(lights[index]);
         const float w = p > 0.0f ? gpu::light_eval_target(ci) / p : 0.0f;
         weight_sum += w;
         if (w > 0.0f && u(rng) * weight_sum < w) pick = index, y = yi, c = ci;

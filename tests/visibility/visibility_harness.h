@@ -85,7 +85,7 @@ inline std::vector<gpu::BvhRay> shadow_rays(const SceneBvh& bvh,
       index = fixed_lights[rays.size() % fixed_lights.size()];
     } else {
       const float u0 = u(rng), u1 = u(rng);
-      index = lights.alias_table().sample(u0, u1);
+      index = lights.sample(u0, u1);
     }
     const glm::vec3 target = light_point(lights.lights()[index], p, radius, rng);
     rays.push_back(gpu::bvh_make_ray(p, target - p, 0.0f, 1.0f));
