@@ -1,7 +1,9 @@
 // FrameRenderer on a running World: frames along cornell_lights' camera path are finite and lit
 // with no validation error; a moving instance's GpuInstance (read back from the device) carries
 // last frame's transform as its previous one; a light removed from the snapshot maps to
-// kInvalidLight in the prev->current remap and its contribution leaves the image.
+// kInvalidLight in the prev->current remap and its contribution leaves the image; a flicker
+// rewrites (and uploads) only the analytic lights' alias table, and the device's table is the
+// CPU's.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -224,6 +226,56 @@ TEST_F(FrameRendererTest, LightBuffersGrowWhenLightsAppear) {
   EXPECT_EQ(scene.light_previous_to_current()[0], 0u);
   EXPECT_EQ(scene.light_previous_to_current()[1], 1u);
   EXPECT_EQ(scene.light_previous_to_current()[2], gpu::kInvalidLight);
+}
+
+// Lights are drawn through two alias tables, the emissive triangles' and the analytic lights':
+// a point light that flickers rewrites only the analytic lights' entries, and scene.upload copies
+// only those, yet the device's table equals the CPU's in both groups afterwards.
+TEST_F(FrameRendererTest, AFlickerRewritesOnlyTheAnalyticLightsTable) {
+  Level with_panel = two_light_level();
+  with_panel.meshes.push_back(make_plane(glm::vec2(1.0f, 1.0f)));  // two emissive triangles
+  Material glow;
+  glow.metallic = 0.0f;
+  glow.emissive_factor = glm::vec3(1.0f, 0.8f, 0.6f);
+  glow.emissive_strength = 5.0f;
+  with_panel.materials.push_back(glow);
+  Instance panel;
+  panel.name = "panel";
+  panel.mesh = 1;
+  panel.material = 1;
+  panel.world = glm::mat4(1.0f);
+  panel.world[3] = glm::vec4(3.0f, 6.0f, 0.0f, 1.0f);
+  panel.transform.translation = glm::vec3(3.0f, 6.0f, 0.0f);
+  with_panel.instances.push_back(panel);
+  auto level = std::make_shared<const Level>(std::move(with_panel));
+  World world(level, {.threads = 1, .seed = 1, .fixed_dt = 1.0 / 60.0, .aspect = 41.0f / 31.0f});
+  test::FrameHarness harness(device, shaders, level, 41, 31);
+  const FrameSnapshot first = world.step();
+  harness.render(first);
+  const auto& scene = harness.renderer().scene();
+  const lighting::LightTable& table = scene.data().lights;
+  ASSERT_EQ(table.lights().size(), 4u);
+  ASSERT_EQ(table.first_group_size(), 2u);
+
+  FrameSnapshot brighter = first;
+  brighter.camera_cut = false;
+  brighter.lights[0].intensity *= 3.0f;
+  const runtime::ImageRGBA32F image = harness.render(brighter);
+  EXPECT_EQ(image.count_non_finite(), 0u);
+  EXPECT_TRUE(scene.last_update().alias_rebuilt);
+  EXPECT_EQ(table.alias_rewritten().first, 2u);
+  EXPECT_EQ(table.alias_rewritten().count, 2u);
+  const std::vector<gpu::AliasEntry> on_device =
+      runtime::read_buffer<gpu::AliasEntry>(device, scene.device_buffer(gpu::kSceneLightAlias));
+  ASSERT_GE(on_device.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(on_device[i].threshold, table.alias_entries()[i].threshold) << i;
+    EXPECT_EQ(on_device[i].alias, table.alias_entries()[i].alias) << i;
+    EXPECT_EQ(on_device[i].pdf, table.alias_entries()[i].pdf) << i;
+  }
+  double sum = 0.0;
+  for (std::uint32_t i = 0; i < 4; ++i) sum += table.selection_pdf(i);
+  EXPECT_NEAR(sum, 1.0, 1e-6);
 }
 
 }  // namespace
