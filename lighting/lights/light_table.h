@@ -1,8 +1,8 @@
 // The frame's light list with stable identities. Each emitter has a stable 64-bit id (e.g. the
-// entity and the triangle within its mesh); every frame the table is rebuilt from the scene's
-// emitters and derives, from the previous frame's ids, the prev->current and current->prev index
-// maps that temporal reuse needs when lights appear, move and disappear (RTXDI's PrepareLights
-// idea). Lights are drawn in proportion to their power through two alias tables
+// entity and the triangle within its mesh); every frame the table takes the scene's emitters
+// (only the changed ranges when no light came or went: update_ranges) and derives, from the
+// previous frame's ids, the prev->current and current->prev index maps that temporal reuse needs
+// when lights appear, move and disappear (RTXDI's PrepareLights idea). Lights are drawn in proportion to their power through two alias tables
 // (shared/alias_table.h): the first group (the emissive triangles) and the rest (the analytic
 // lights); a group's table is rebuilt only when one of its lights' power changed by more than
 // rounding (light_table.cpp: power_moved), so analytic lights that flicker every frame rebuild
