@@ -70,6 +70,16 @@ GpuScene::GpuScene(runtime::Device& device, std::shared_ptr<const Level> level,
     emissive_.push_back(e);
   }
   triangle_emitters_ = first;
+  // The shaders split the light draw's two groups at frame.counts.z (emissive_triangles): the
+  // light table's first group must end there too.
+  if (triangle_emitters_ != data_.emissive_triangles ||
+      data_.lights.first_group_size() != data_.emissive_triangles) {
+    throw RuntimeError(fmt::format(
+        "scene '{}': {} emissive triangles in the light list but {} in the scene data ({} in the "
+        "light table's first group)",
+        level_->name, triangle_emitters_, data_.emissive_triangles,
+        data_.lights.first_group_size()));
+  }
   bvh_descs_ = bvh_instance_descs(*level_);
   remap_.resize(data_.lights.lights().size());
   for (std::uint32_t i = 0; i < remap_.size(); ++i) remap_[i] = i;
