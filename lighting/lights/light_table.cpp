@@ -146,12 +146,12 @@ bool LightTable::rebuild_groups(bool first, bool second) {
       for (std::size_t i = begin; i < end; ++i)
         entries_[i] = {1.0f, static_cast<std::uint32_t>(i), 0.0f, 0u};
     }
-    const std::size_t last = rewritten_.count > 0 ? rewritten_.first + rewritten_.count : begin;
-    rewritten_.first = rewritten_.count > 0 ? rewritten_.first : begin;
-    rewritten_.count = std::max(last, end) - rewritten_.first;
     ++alias_rebuilds_;
   }
   if (!first && !second) return false;
+  // The groups lie side by side: the rewritten entries run from the first rebuilt to the last.
+  const std::size_t from = first ? 0 : split_;
+  rewritten_ = {from, (second ? ids_.size() : split_) - from};
   // The first group's share, exactly 0 or 1 when a group has no power (so a draw never lands in
   // an empty or powerless group), else kept a float step inside (0, 1): a group whose share
   // rounds to 0 would never be drawn although its pdf says it is.

@@ -243,9 +243,8 @@ TEST_F(FrameRendererTest, AFlickerRewritesOnlyTheAnalyticLightsTable) {
   panel.name = "panel";
   panel.mesh = 1;
   panel.material = 1;
-  panel.world = glm::mat4(1.0f);
-  panel.world[3] = glm::vec4(3.0f, 6.0f, 0.0f, 1.0f);
   panel.transform.translation = glm::vec3(3.0f, 6.0f, 0.0f);
+  panel.world = panel.transform.matrix();
   with_panel.instances.push_back(panel);
   auto level = std::make_shared<const Level>(std::move(with_panel));
   World world(level, {.threads = 1, .seed = 1, .fixed_dt = 1.0 / 60.0, .aspect = 41.0f / 31.0f});
