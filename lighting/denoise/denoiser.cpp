@@ -44,9 +44,12 @@ gpu::DenoisePush Denoiser::make_push(const DenoiseSettings& s, const FrameInputs
   p.max_history = s.max_history;
   // Levels with volumes: the fog in front of the sky is as noisy as any lit surface, so sky
   // pixels are filtered as a surface where camera rays end (volume passes, light_eval.h).
-  p.sky_distance = inputs.scene != nullptr && inputs.scene->volume_count() > 0
-                       ? gpu::kDirectionalShadowRadii * inputs.scene->scene_radius()
-                       : 0.0f;
+  const bool media = inputs.scene != nullptr && inputs.scene->volume_count() > 0;
+  p.sky_distance = media ? gpu::kDirectionalShadowRadii * inputs.scene->scene_radius() : 0.0f;
+  // Emitters are filtered for the light they reflect (their radiance less the G-buffer emission)
+  // except with media: there the camera's pass has scaled the emission by a sampled transmittance
+  // and added in-scattered light, so the difference is not the reflected light.
+  if (!media) p.flags |= gpu::kDenoiseFlagFilterEmitters;
   // Reprojection rejects history exactly where ReSTIR's temporal reuse does by default (the same
   // test, restir_surfaces_similar, with RestirSettings' default thresholds; roughness 0.25 as
   // RestirIntegrator::make_push).

@@ -1,13 +1,14 @@
 // Denoiser: the denoise.* pass chain between the integrator's raw HDR image and what a player, a
 // PNG or a video sees (SVGF/ReLAX-style, Schied et al. 2017), with its own history in the render
 // graph:
-//   denoise.temporal   raw radiance -> demodulated illumination (/ albedo; sky, emitters kept),
+//   denoise.temporal   raw radiance -> demodulated illumination ((radiance - emission) / albedo;
+//                      the sky kept, and emitters where the level has media),
 //                      reprojected history (motion vectors, ReSTIR's restir_surfaces_similar
 //                      disocclusion test), anti-firefly clamp, blend; luminance moments
 //   denoise.variance   spatial variance where the history is short (< 4 frames)
 //   denoise.atrous xN-1  variance-guided edge-avoiding à-trous
-//   denoise.atrous_modulate  the last à-trous step, back to radiance (illumination x albedo;
-//                      emitters and the sky raw) -> "denoise.output"
+//   denoise.atrous_modulate  the last à-trous step, back to radiance (emission + illumination x
+//                      albedo; pass-through pixels raw) -> "denoise.output"
 //   denoise.modulate   the same without à-trous steps (atrous 0: temporal accumulation only)
 // History ("denoise.surface_keys", "denoise.color", "denoise.moments") is the graph's: the frame
 // renderer's invalidate_history() on a cut, a resize or the first frame leaves none, and a frame

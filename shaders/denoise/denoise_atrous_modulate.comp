@@ -30,7 +30,7 @@ layout(std430, binding = 9) writeonly buffer StableOut { vec4 p[]; } stable_out;
 vec3 stabilize(vec4 r, vec4 h) {
   if (!(h.a > 0.0)) return r.rgb;
   float lr = luminance(r.rgb);
-  float band = push.stabilize_band * sqrt(max(r.a, 0.0));
+  float band = push.stabilize_band * sqrt(denoise_record_variance(r));
   if (!is_finite(band)) return r.rgb;  // no measure of r's noise: r as it is
   float lh = luminance(h.rgb);
   float held = clamp(lh, max(lr - band, 0.0), lr + band);
@@ -49,7 +49,7 @@ void main() {
     ivec2 pixel = p0 + ivec2(k * int(push.step), 0);
     uint index = denoise_index(pixel);
     if (push.stabilize > 0.0) {
-      // A pass-through pixel (emitter, unfiltered sky) has no stabilised history (a = 0 from
+      // A pass-through pixel (denoise_passthrough) has no stabilised history (a = 0 from
       // denoise.temporal), so it keeps its result.
       result[k].rgb = stabilize(result[k], stable_in.p[index]);
       stable_out.p[index] = vec4(result[k].rgb, 0.0);

@@ -30,13 +30,27 @@ vec3 denoise_finite(vec3 c) {
   return vec3(is_finite(c.r) ? c.r : 0.0, is_finite(c.g) ? c.g : 0.0, is_finite(c.b) ? c.b : 0.0);
 }
 
-// Pixels the denoiser leaves as they are: sky (no surface) and emitters. An emitter's radiance is
-// its emission (exact, from the G-buffer) plus light it reflects, orders of magnitude smaller
-// where it matters; filtering it would spread its residual noise (and its value, 10^4 above its
-// surroundings on cornell_lights) into the dark surfaces around it.
+// Whether a (non-sky) pixel shows an emitter: its G-buffer emission is not black.
+bool denoise_is_emitter(vec3 emission) {
+  return max(emission.r, max(emission.g, emission.b)) > 0.0;
+}
+
+// Pixels the denoiser leaves as they are: the sky unless push.sky_distance > 0, and emitters
+// unless kDenoiseFlagFilterEmitters. Otherwise an emitter is filtered for the light it reflects
+// (its radiance less its emission, denoise_emission): ReSTIR's samples there are as noisy as on
+// any surface, and heavier-tailed where emitters meet (night_market's spinners: a face lit by the
+// face beside it, 1/d^2 from their shared edge, came out 30x its emission on single pixels);
+// its emission itself is exact and never spreads (filtering it spread a value 10^4 above its
+// surroundings on cornell_lights into the dark surfaces around it).
 bool denoise_passthrough(float view_depth, vec3 emission) {
   if (gbuffer_is_sky(view_depth)) return !(push.sky_distance > 0.0);
-  return max(emission.r, max(emission.g, emission.b)) > 0.0;
+  return denoise_is_emitter(emission) && (push.flags & kDenoiseFlagFilterEmitters) == 0u;
+}
+
+// The part of a filtered pixel's radiance that is not filtered: its G-buffer emission (0 for a
+// surface that emits nothing and for a filtered sky pixel).
+vec3 denoise_emission(float view_depth, vec3 emission) {
+  return gbuffer_is_sky(view_depth) ? vec3(0.0) : emission;
 }
 
 // The view depth the edge stops scale with: the G-buffer's, or for a filtered sky pixel (the
@@ -55,42 +69,76 @@ vec3 denoise_albedo(float view_depth, vec3 gbuffer_albedo) {
 const float kDenoiseKernel[2] = float[2](0.5, 0.25);
 
 // A filtered pixel's raw radiance as illumination (denoise.temporal, for the pixel and for the
-// neighbours its clamp compares): radiance / the demodulation factor (1 for a filtered sky pixel).
-vec3 denoise_demodulate(float view_depth, vec3 gbuffer_albedo, vec3 raw) {
-  return denoise_finite(raw) / denoise_demodulation(denoise_albedo(view_depth, gbuffer_albedo));
+// neighbours its clamp compares): (radiance - its emission) / the demodulation factor (1 for a
+// filtered sky pixel); never negative (an emitter's radiance is its emission plus reflected light,
+// up to rounding).
+vec3 denoise_demodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, vec3 raw) {
+  return max(denoise_finite(raw) - denoise_emission(view_depth, emission), vec3(0.0)) /
+         denoise_demodulation(denoise_albedo(view_depth, gbuffer_albedo));
 }
 
-// A denoised pixel back to radiance (denoise.modulate, denoise.atrous_modulate): the filtered
-// illumination x the demodulation factor denoise_demodulate divided by; a pass-through pixel (an
-// emitter, an unfiltered sky) keeps its raw radiance.
+// A denoised pixel back to radiance (denoise.modulate, denoise.atrous_modulate): its emission +
+// the filtered illumination x the demodulation factor denoise_demodulate divided by; a
+// pass-through pixel (an unfiltered emitter or sky) keeps its raw radiance.
 vec3 denoise_remodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, vec3 raw,
                         vec3 illumination) {
   if (denoise_passthrough(view_depth, emission)) return denoise_finite(raw);
-  return denoise_finite(denoise_demodulation(denoise_albedo(view_depth, gbuffer_albedo)) *
+  return denoise_finite(denoise_emission(view_depth, emission) +
+                        denoise_demodulation(denoise_albedo(view_depth, gbuffer_albedo)) *
                         illumination);
 }
 
 // The edge-stopping guide denoise.temporal writes once per pixel ("denoise.guide", read by
 // every tap of denoise.variance and denoise.atrous instead of two G-buffer images): xyz world
-// position, w the octahedral shading normal (snorm 2x16) as float bits; kDenoiseSky bits for the
-// pass-through pixels (sky, emitters: no tap reads them).
+// position, w the octahedral shading normal (snorm 2x16) as float bits, its lowest bit (the
+// normal's x loses 1/32767) set on an emitter; kDenoiseSky bits for the pass-through pixels
+// (no tap reads them).
 const uint kDenoiseSky = 0xffffffffu;
+const uint kDenoiseGuideEmitter = 1u;
 
-vec4 denoise_guide(vec4 position_depth, vec3 n) {
-  return vec4(position_depth.xyz, uintBitsToFloat(oct_pack_snorm(n)));
+vec4 denoise_guide(vec4 position_depth, vec3 n, bool emitter) {
+  uint w = (oct_pack_snorm(n) & ~kDenoiseGuideEmitter) | (emitter ? kDenoiseGuideEmitter : 0u);
+  return vec4(position_depth.xyz, uintBitsToFloat(w));
 }
 vec4 denoise_guide_passthrough() { return vec4(0.0, 0.0, 0.0, uintBitsToFloat(kDenoiseSky)); }
 bool denoise_guide_sky(vec4 g) { return floatBitsToUint(g.w) == kDenoiseSky; }
 vec3 denoise_guide_normal(vec4 g) { return oct_unpack_snorm(floatBitsToUint(g.w)); }
+// Whether guides a and b are of different kinds (an emitter and a surface that emits nothing):
+// light never spreads between them (an emitter's reflected light, heavy-tailed where emitters
+// meet, would brighten the dark surface beside it), and for the variance blur of denoise.atrous
+// the other kind counts as no variance, as a pass-through pixel does.
+bool denoise_guides_differ(vec4 a, vec4 b) {
+  return ((floatBitsToUint(a.w) ^ floatBitsToUint(b.w)) & kDenoiseGuideEmitter) != 0u;
+}
+
+// The filtered illumination records between denoise.temporal and the last step (rgb
+// illumination, a its variance) carry the pixel's kind too, in the variance's sign bit (set on an
+// emitter, -0 for none): the variance blur of the à-trous steps after the first reads its 8
+// neighbours' variances and so learns their kinds without reading their guides (8 more reads a
+// pixel: about 1 ms more for the denoiser at 320x180 on lavapipe).
+const uint kDenoiseSignBit = 0x80000000u;
+vec4 denoise_record(vec3 illumination, float variance, bool emitter) {
+  return vec4(illumination, uintBitsToFloat(floatBitsToUint(abs(variance)) |
+                                            (emitter ? kDenoiseSignBit : 0u)));
+}
+float denoise_record_variance(vec4 r) { return abs(r.a); }
+bool denoise_record_emitter(vec4 r) { return (floatBitsToUint(r.a) & kDenoiseSignBit) != 0u; }
+// A neighbour's variance as the blur of a centre of kind `emitter` counts it: 0 for the other kind
+// (as for a pass-through pixel, whose record holds variance 0).
+float denoise_record_variance_as(vec4 r, bool emitter) {
+  return denoise_record_emitter(r) == emitter ? abs(r.a) : 0.0;
+}
 
 // Edge-stopping weight of a tap with guide q seen from the centre (guide c, normal n, view depth
-// depth), times exp(-extra): its distance from the centre's tangent plane relative to
-// phi_depth x depth x spacing, and the normals' agreement max(0, n.nq)^phi_normal. One exp per
-// tap: the power is exp(phi_normal ln cos) with ln cos = -(x + x^2/2 + x^3/3 + ...), x = 1 - cos,
-// cut after x^3 (the weight within 0.2% wherever it exceeds 1e-3 at phi_normal 64, and ~0 where
-// the normals part: e^-117 at a right angle). exp and pow were the à-trous steps' largest cost
-// on lavapipe (three transcendentals per tap).
+// depth), times exp(-extra), 0 between different kinds (denoise_guides_differ): its distance
+// from the centre's tangent plane relative to phi_depth x depth x spacing, and the normals'
+// agreement max(0, n.nq)^phi_normal. One exp per tap: the power is exp(phi_normal ln cos) with
+// ln cos = -(x + x^2/2 + x^3/3 + ...), x = 1 - cos, cut after x^3 (the weight within 0.2%
+// wherever it exceeds 1e-3 at phi_normal 64, and ~0 where the normals part: e^-117 at a right
+// angle). exp and pow were the à-trous steps' largest cost on lavapipe (three transcendentals
+// per tap).
 float denoise_geometry_weight(vec4 c, vec3 n, float depth, vec4 q, float spacing, float extra) {
+  if (denoise_guides_differ(c, q)) return 0.0;
   float plane = abs(dot(n, q.xyz - c.xyz));
   float x = 1.0 - clamp(dot(n, denoise_guide_normal(q)), 0.0, 1.0);
   float log_cosine = -x * (1.0 + x * (0.5 + x * (1.0 / 3.0)));

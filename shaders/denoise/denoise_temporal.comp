@@ -1,5 +1,5 @@
-// denoise.temporal: demodulates this frame's raw radiance by the surface's albedo (an emitter
-// passes through), reprojects last frame's denoised illumination and luminance moments along the
+// denoise.temporal: demodulates this frame's raw radiance (less an emitter's emission) by the
+// surface's albedo, reprojects last frame's denoised illumination and luminance moments along the
 // motion vector (bilinear over the 2x2 previous pixels, each kept only when it passes ReSTIR's
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
 // history; so does a footprint less than kDenoiseMinHistoryFootprint of which passes), clamps a
@@ -9,9 +9,11 @@
 // short luminance mean (push.antilag: a light that changes is followed), and blends (alpha =
 // max(c / (c + (length - 1) x the history's mean confidence), push.color_alpha): 1 / history
 // length when every frame is worth the same, else each weighs by the integrator's M; the
-// luminance moments keep 1 / length). Emitters pass through unfiltered (denoise_passthrough),
-// and so does the sky unless push.sky_distance > 0 (levels with volumes): then a sky pixel is a
-// surface that far along its view ray, facing the camera, albedo 1, reprojected as that point.
+// luminance moments keep 1 / length). An emitter is filtered for the light it reflects and only
+// among emitters (its neighbour clamp compares emitters; without kDenoiseFlagFilterEmitters it
+// passes through: denoise_passthrough); the sky passes through unless push.sky_distance > 0
+// (levels with volumes): then a sky pixel is a surface that far along its view ray, facing the
+// camera, albedo 1, reprojected as that point.
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
 // surface_keys_history, color_history, moments_history, frame constants (prev_view_proj),
 // confidence_in (with kDenoiseFlagConfidence: the integrator's PackedReservoirs, their M),
@@ -60,23 +62,27 @@ layout(std430, binding = PASS_BINDING(16)) writeonly buffer StableReprojectedOut
   vec4 p[];
 } stable_reprojected_out;
 
-// This frame's demodulated luminance at pixel q, for the neighbour clamp; -1 where a neighbour
-// does not count (outside the image, the sky, an emitter).
-float filtered_luminance(ivec2 q) {
+// This frame's demodulated luminance at pixel q, for the neighbour clamp of a pixel that is an
+// emitter or not (`emitter`); -1 where a neighbour does not count (outside the image, passed
+// through, of the other kind: denoise_guides_differ).
+float filtered_luminance(ivec2 q, bool emitter) {
   if (!denoise_inside(q)) return -1.0;
   float view_depth = imageLoad(gbuffer_position, q).w;
-  if (denoise_passthrough(view_depth, imageLoad(gbuffer_emission_metallic, q).rgb)) return -1.0;
-  return luminance(denoise_demodulate(view_depth, imageLoad(gbuffer_albedo_roughness, q).rgb,
+  vec3 emission = imageLoad(gbuffer_emission_metallic, q).rgb;
+  if (denoise_passthrough(view_depth, emission)) return -1.0;
+  if (!gbuffer_is_sky(view_depth) && denoise_is_emitter(emission) != emitter) return -1.0;
+  return luminance(denoise_demodulate(view_depth, emission,
+                                      imageLoad(gbuffer_albedo_roughness, q).rgb,
                                       hdr_in.p[denoise_index(q)].rgb));
 }
 
 // The brightest of the 8 neighbours' luminance; negative when none counts. Read only where the
 // history cannot judge (few pixels once the history has settled; every pixel after a cut).
-float brightest_neighbour(ivec2 pixel) {
+float brightest_neighbour(ivec2 pixel, bool emitter) {
   float m = -1.0;
   for (int t = 0; t < 9; ++t) {
     if (t == 4) continue;
-    m = max(m, filtered_luminance(pixel + ivec2(t % 3 - 1, t / 3 - 1)));
+    m = max(m, filtered_luminance(pixel + ivec2(t % 3 - 1, t / 3 - 1), emitter));
   }
   return m;
 }
@@ -102,6 +108,7 @@ void main() {
     if (push.stabilize > 0.0) stable_reprojected_out.p[index] = vec4(0.0);
     return;
   }
+  const bool emitter = !gbuffer_is_sky(position.w) && denoise_is_emitter(emission_metallic.rgb);
   vec4 normals = imageLoad(gbuffer_normal, pixel);
   vec4 albedo_roughness = imageLoad(gbuffer_albedo_roughness, pixel);
   uint material = imageLoad(gbuffer_ids, pixel).y;
@@ -112,7 +119,8 @@ void main() {
   vec4 motions = imageLoad(gbuffer_motion, pixel);
   vec2 motion = motions.xy;
   // Before a filtered sky pixel takes its stand-in surface below (albedo 1, as demodulated here).
-  vec3 illumination = denoise_demodulate(position.w, albedo_roughness.rgb, radiance);
+  vec3 illumination =
+      denoise_demodulate(position.w, emission_metallic.rgb, albedo_roughness.rgb, radiance);
   bool sky = gbuffer_is_sky(position.w);
   if (sky) {
     // A filtered sky pixel (levels with volumes): a surface push.sky_distance along the view
@@ -136,7 +144,7 @@ void main() {
                                               0.0, material);
   RestirSimilarityKey key = restir_similarity_key(surface);
   surface_keys_out.k[index] = key;
-  guide_out.p[index] = denoise_guide(position, n);
+  guide_out.p[index] = denoise_guide(position, n, emitter);
   float l = luminance(illumination);
 
   // Last frame's history at the reprojected position: bilinear weights of the similar taps.
@@ -203,7 +211,7 @@ void main() {
     float sigma = sqrt(max(history_moments.y - history_moments.x * history_moments.x, 0.0));
     limit = history_moments.x + push.firefly * sigma;
   } else if (!history_judges && push.neighbour_clamp > 0.0) {
-    float neighbour = brightest_neighbour(pixel);
+    float neighbour = brightest_neighbour(pixel, emitter);
     if (neighbour >= 0.0) limit = push.neighbour_clamp * neighbour;
   }
   // What the luminance moments take: the clamped sample, except on a long history that has seen
@@ -262,6 +270,6 @@ void main() {
     moments = mix(history_moments.xy, luminance_moments(l_moments), am);
   }
   float variance = max(moments.y - moments.x * moments.x, 0.0);
-  accum_out.p[index] = vec4(color, variance);
+  accum_out.p[index] = denoise_record(color, variance, emitter);
   moments_out.p[index] = vec4(moments, frames, mean_confidence);
 }

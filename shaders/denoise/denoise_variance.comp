@@ -84,5 +84,6 @@ void main() {
   moments /= max(sum_w, 1e-6);
   // Fewer frames behind it: more uncertain (SVGF's boost of the spatial estimate).
   float boost = kDenoiseShortHistory / max(frames, 1.0);
-  accum_out.p[index] = vec4(centre.rgb, max(moments.y - moments.x * moments.x, 0.0) * boost);
+  float variance = max(moments.y - moments.x * moments.x, 0.0) * boost;
+  accum_out.p[index] = denoise_record(centre.rgb, variance, denoise_record_emitter(centre));
 }

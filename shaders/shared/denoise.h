@@ -40,6 +40,11 @@ LANTERN_CONST uint kDenoiseFlagSmoothLuminance = 2u;  // denoise.atrous: stop on
 LANTERN_CONST uint kDenoiseFlagConfidence = 4u;  // denoise.temporal: weigh pixels by their M
 // denoise.temporal: last frame's stabilised output ("denoise.stable") is there to reproject.
 LANTERN_CONST uint kDenoiseFlagStableHistory = 8u;
+// Emitters are filtered for the light they reflect: denoise.temporal takes the G-buffer emission
+// (what every integrator adds for the camera's view, exact) off their radiance and the last step
+// adds it back. Without it (levels with media, whose camera pass has scaled the emission by a
+// sampled transmittance, so radiance - emission is not the reflected light) they pass through.
+LANTERN_CONST uint kDenoiseFlagFilterEmitters = 16u;
 
 // denoise.atrous and denoise.atrous_modulate filter pixel pairs: thread column c of a step with
 // tap spacing `step` takes pixels x0 = denoise_atrous_pair_first(c, step) and x0 + step, which
