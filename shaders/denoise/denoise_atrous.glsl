@@ -103,8 +103,8 @@ void atrous_step_pair(ivec2 p0, bool has_second, out vec4 result[2]) {
       int oy = t / 4 - 1;
       if (ox < -1 || ox > 1 || t == centre_tap || !tap_inside[t]) continue;
       vec4 gq = tap_guide[t];
-      if (denoise_guide_sky(gq)) continue;
       vec4 c = tap_accum[t];
+      if (denoise_guide_sky(gq) || denoise_record_emitter(c) != emitter) continue;
       float w = kDenoiseKernel[abs(ox)] * kDenoiseKernel[abs(oy)] *
                 denoise_geometry_weight(g, n, depth, gq, float(step),
                                         abs(tap_luminance[t] - l) / lum_scale);

@@ -30,9 +30,9 @@ vec3 denoise_finite(vec3 c) {
   return vec3(is_finite(c.r) ? c.r : 0.0, is_finite(c.g) ? c.g : 0.0, is_finite(c.b) ? c.b : 0.0);
 }
 
-// Whether a (non-sky) pixel shows an emitter: its G-buffer emission is not black.
-bool denoise_is_emitter(vec3 emission) {
-  return max(emission.r, max(emission.g, emission.b)) > 0.0;
+// Whether a pixel shows an emitter: a surface (not the sky) whose G-buffer emission is not black.
+bool denoise_is_emitter(float view_depth, vec3 emission) {
+  return !gbuffer_is_sky(view_depth) && max(emission.r, max(emission.g, emission.b)) > 0.0;
 }
 
 // Pixels the denoiser leaves as they are: the sky unless push.sky_distance > 0, and emitters
@@ -44,7 +44,7 @@ bool denoise_is_emitter(vec3 emission) {
 // surroundings on cornell_lights into the dark surfaces around it).
 bool denoise_passthrough(float view_depth, vec3 emission) {
   if (gbuffer_is_sky(view_depth)) return !(push.sky_distance > 0.0);
-  return denoise_is_emitter(emission) && (push.flags & kDenoiseFlagFilterEmitters) == 0u;
+  return denoise_is_emitter(view_depth, emission) && (push.flags & kDenoiseFlagFilterEmitters) == 0u;
 }
 
 // The part of a filtered pixel's radiance that is not filtered: its G-buffer emission (0 for a
@@ -90,32 +90,25 @@ vec3 denoise_remodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, ve
 
 // The edge-stopping guide denoise.temporal writes once per pixel ("denoise.guide", read by
 // every tap of denoise.variance and denoise.atrous instead of two G-buffer images): xyz world
-// position, w the octahedral shading normal (snorm 2x16) as float bits, its lowest bit (the
-// normal's x loses 1/32767) set on an emitter; kDenoiseSky bits for the pass-through pixels
-// (no tap reads them).
+// position, w the octahedral shading normal (snorm 2x16) as float bits; kDenoiseSky bits for the
+// pass-through pixels (no tap reads them). A pixel's kind (emitter or not) is not here: every
+// step that weighs a tap holds the tap's record, which carries it (denoise_record).
 const uint kDenoiseSky = 0xffffffffu;
-const uint kDenoiseGuideEmitter = 1u;
 
-vec4 denoise_guide(vec4 position_depth, vec3 n, bool emitter) {
-  uint w = (oct_pack_snorm(n) & ~kDenoiseGuideEmitter) | (emitter ? kDenoiseGuideEmitter : 0u);
-  return vec4(position_depth.xyz, uintBitsToFloat(w));
+vec4 denoise_guide(vec4 position_depth, vec3 n) {
+  return vec4(position_depth.xyz, uintBitsToFloat(oct_pack_snorm(n)));
 }
 vec4 denoise_guide_passthrough() { return vec4(0.0, 0.0, 0.0, uintBitsToFloat(kDenoiseSky)); }
 bool denoise_guide_sky(vec4 g) { return floatBitsToUint(g.w) == kDenoiseSky; }
 vec3 denoise_guide_normal(vec4 g) { return oct_unpack_snorm(floatBitsToUint(g.w)); }
-// Whether guides a and b are of different kinds (an emitter and a surface that emits nothing):
-// light never spreads between them (an emitter's reflected light, heavy-tailed where emitters
-// meet, would brighten the dark surface beside it), and for the variance blur of denoise.atrous
-// the other kind counts as no variance, as a pass-through pixel does.
-bool denoise_guides_differ(vec4 a, vec4 b) {
-  return ((floatBitsToUint(a.w) ^ floatBitsToUint(b.w)) & kDenoiseGuideEmitter) != 0u;
-}
 
 // The filtered illumination records between denoise.temporal and the last step (rgb
-// illumination, a its variance) carry the pixel's kind too, in the variance's sign bit (set on an
-// emitter, -0 for none): the variance blur of the à-trous steps after the first reads its 8
-// neighbours' variances and so learns their kinds without reading their guides (8 more reads a
-// pixel: about 1 ms more for the denoiser at 320x180 on lavapipe).
+// illumination, a its variance) carry the pixel's kind, in the variance's sign bit (set on an
+// emitter, -0 for none; a pass-through pixel's record is a surface's). Light never spreads
+// between kinds: an emitter's reflected light, heavy-tailed where emitters meet, would brighten
+// the dark surface beside it. Every tap a step weighs is a record it has read anyway, so the kind
+// costs no read (the neighbours' guides read for it cost about 1 ms more for the denoiser at
+// 320x180 on lavapipe).
 const uint kDenoiseSignBit = 0x80000000u;
 vec4 denoise_record(vec3 illumination, float variance, bool emitter) {
   return vec4(illumination, uintBitsToFloat(floatBitsToUint(abs(variance)) |
@@ -123,14 +116,14 @@ vec4 denoise_record(vec3 illumination, float variance, bool emitter) {
 }
 float denoise_record_variance(vec4 r) { return abs(r.a); }
 bool denoise_record_emitter(vec4 r) { return (floatBitsToUint(r.a) & kDenoiseSignBit) != 0u; }
-// A neighbour's variance as the blur of a centre of kind `emitter` counts it: 0 for the other kind
-// (as for a pass-through pixel, whose record holds variance 0).
+// A neighbour's variance as the variance blur of a centre of kind `emitter` counts it: 0 for the
+// other kind (as for a pass-through pixel, whose record holds variance 0).
 float denoise_record_variance_as(vec4 r, bool emitter) {
   return denoise_record_emitter(r) == emitter ? abs(r.a) : 0.0;
 }
 
 // Edge-stopping weight of a tap with guide q seen from the centre (guide c, normal n, view depth
-// depth), times exp(-extra), 0 between different kinds (denoise_guides_differ): its distance
+// depth), times exp(-extra) (the caller has checked the tap is of the centre's kind): its distance
 // from the centre's tangent plane relative to phi_depth x depth x spacing, and the normals'
 // agreement max(0, n.nq)^phi_normal. One exp per tap: the power is exp(phi_normal ln cos) with
 // ln cos = -(x + x^2/2 + x^3/3 + ...), x = 1 - cos, cut after x^3 (the weight within 0.2%
@@ -138,7 +131,6 @@ float denoise_record_variance_as(vec4 r, bool emitter) {
 // angle). exp and pow were the à-trous steps' largest cost on lavapipe (three transcendentals
 // per tap).
 float denoise_geometry_weight(vec4 c, vec3 n, float depth, vec4 q, float spacing, float extra) {
-  if (denoise_guides_differ(c, q)) return 0.0;
   float plane = abs(dot(n, q.xyz - c.xyz));
   float x = 1.0 - clamp(dot(n, denoise_guide_normal(q)), 0.0, 1.0);
   float log_cosine = -x * (1.0 + x * (0.5 + x * (1.0 / 3.0)));

@@ -64,13 +64,13 @@ layout(std430, binding = PASS_BINDING(16)) writeonly buffer StableReprojectedOut
 
 // This frame's demodulated luminance at pixel q, for the neighbour clamp of a pixel that is an
 // emitter or not (`emitter`); -1 where a neighbour does not count (outside the image, passed
-// through, of the other kind: denoise_guides_differ).
+// through, of the other kind: denoise_record).
 float filtered_luminance(ivec2 q, bool emitter) {
   if (!denoise_inside(q)) return -1.0;
   float view_depth = imageLoad(gbuffer_position, q).w;
   vec3 emission = imageLoad(gbuffer_emission_metallic, q).rgb;
   if (denoise_passthrough(view_depth, emission)) return -1.0;
-  if (!gbuffer_is_sky(view_depth) && denoise_is_emitter(emission) != emitter) return -1.0;
+  if (denoise_is_emitter(view_depth, emission) != emitter) return -1.0;
   return luminance(denoise_demodulate(view_depth, emission,
                                       imageLoad(gbuffer_albedo_roughness, q).rgb,
                                       hdr_in.p[denoise_index(q)].rgb));
@@ -108,7 +108,7 @@ void main() {
     if (push.stabilize > 0.0) stable_reprojected_out.p[index] = vec4(0.0);
     return;
   }
-  const bool emitter = !gbuffer_is_sky(position.w) && denoise_is_emitter(emission_metallic.rgb);
+  const bool emitter = denoise_is_emitter(position.w, emission_metallic.rgb);
   vec4 normals = imageLoad(gbuffer_normal, pixel);
   vec4 albedo_roughness = imageLoad(gbuffer_albedo_roughness, pixel);
   uint material = imageLoad(gbuffer_ids, pixel).y;
@@ -144,7 +144,7 @@ void main() {
                                               0.0, material);
   RestirSimilarityKey key = restir_similarity_key(surface);
   surface_keys_out.k[index] = key;
-  guide_out.p[index] = denoise_guide(position, n, emitter);
+  guide_out.p[index] = denoise_guide(position, n);
   float l = luminance(illumination);
 
   // Last frame's history at the reprojected position: bilinear weights of the similar taps.

@@ -1,7 +1,8 @@
 // denoise.variance: where the temporal history is short (< kDenoiseShortHistory frames: just
 // disoccluded, the first frame, after a cut) the temporal variance means nothing yet; estimate it
 // from the luminance of similar neighbours in a 5x5 window instead (depth-plane and normal edge
-// stops as in denoise.atrous), so the first à-trous iterations still know how noisy the pixel is.
+// stops as in denoise.atrous, neighbours of the pixel's kind only: denoise_record), so the first
+// à-trous iterations still know how noisy the pixel is.
 // Also the 3x3 mean luminance of similar neighbours (tent-weighted, kDenoiseKernel), which the
 // first à-trous iteration's luminance edge stop compares.
 // Reads: accum_in (rgb illumination, a variance), moments_in (z history length), guide,
@@ -34,6 +35,7 @@ void main() {
     return;
   }
   vec3 n = denoise_guide_normal(g);
+  const bool emitter = denoise_record_emitter(centre);
   float depth = denoise_view_depth(imageLoad(gbuffer_position, pixel).w);
   // The first à-trous iteration's luminance edge stop compares these 3x3 means, not single
   // samples: a bright sample among dark neighbours (ReSTIR's heavy tail) is not rejected by all
@@ -53,10 +55,11 @@ void main() {
     if (!denoise_inside(q)) continue;
     uint qi = denoise_index(q);
     vec4 gq = vec4_fetch(guide, qi);
-    if (denoise_guide_sky(gq)) continue;
+    vec4 rq = vec4_fetch(accum_in, qi);
+    if (denoise_guide_sky(gq) || denoise_record_emitter(rq) != emitter) continue;
     float wg = denoise_geometry_weight(g, n, depth, gq, 1.0, 0.0);
     float w = kDenoiseKernel[abs(t % 3 - 1)] * kDenoiseKernel[abs(t / 3 - 1)] * wg;
-    float l = luminance(vec4_fetch(accum_in, qi).rgb);
+    float l = luminance(rq.rgb);
     smooth_sum += w * l;
     smooth_w += w;
     moments += wg * vec2(l, l * l);
@@ -74,9 +77,10 @@ void main() {
       if (!denoise_inside(q)) continue;
       uint qi = denoise_index(q);
       vec4 gq = vec4_fetch(guide, qi);
-      if (denoise_guide_sky(gq)) continue;
+      vec4 rq = vec4_fetch(accum_in, qi);
+      if (denoise_guide_sky(gq) || denoise_record_emitter(rq) != emitter) continue;
       float w = denoise_geometry_weight(g, n, depth, gq, 1.0, 0.0);
-      float l = luminance(vec4_fetch(accum_in, qi).rgb);
+      float l = luminance(rq.rgb);
       moments += w * vec2(l, l * l);
       sum_w += w;
     }
@@ -85,5 +89,5 @@ void main() {
   // Fewer frames behind it: more uncertain (SVGF's boost of the spatial estimate).
   float boost = kDenoiseShortHistory / max(frames, 1.0);
   float variance = max(moments.y - moments.x * moments.x, 0.0) * boost;
-  accum_out.p[index] = denoise_record(centre.rgb, variance, denoise_record_emitter(centre));
+  accum_out.p[index] = denoise_record(centre.rgb, variance, emitter);
 }
