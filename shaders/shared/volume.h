@@ -297,6 +297,23 @@ LANTERN_FUNC float scatter_distance_sample(vec3 origin, vec3 dir, float t0, floa
 
 // Ratio tracking (Cramer 1978; Novak et al. 2014): tentative collisions at rate `majorant`
 // (>= every channel of sigma_t on the segment), each multiplying by 1 - sigma_t / majorant.
+// Russian roulette on a tracked transmittance whose largest channel (in magnitude: residual
+// ratio tracking's weights can go negative) fell below `roulette`: it survives with probability
+// largest / roulette and is scaled up by its inverse (unbiased); false when it was ended.
+LANTERN_FUNC bool tracking_roulette(LANTERN_INOUT(vec3) transmittance, float roulette,
+                                    LANTERN_INOUT(uint) rng) {
+  float largest = max(abs(transmittance.x), max(abs(transmittance.y), abs(transmittance.z)));
+  if (!(largest < roulette)) {
+    return true;
+  }
+  float survive = largest / roulette;
+  if (rng_next_float(rng) >= survive) {
+    return false;
+  }
+  transmittance /= survive;
+  return true;
+}
+
 LANTERN_MEDIUM_TEMPLATE
 LANTERN_FUNC vec3 ratio_tracking(LANTERN_MEDIUM_PARAM uint medium, vec3 origin, vec3 dir, float t0,
                                  float t1, float majorant, float roulette,
@@ -315,13 +332,8 @@ LANTERN_FUNC vec3 ratio_tracking(LANTERN_MEDIUM_PARAM uint medium, vec3 origin, 
     }
     vec3 sigma_t = medium_extinction(LANTERN_MEDIUM medium, origin + t * dir);
     transmittance *= max(vec3(1.0f) - sigma_t / majorant, vec3(0.0f));
-    float largest = max(transmittance.x, max(transmittance.y, transmittance.z));
-    if (largest < roulette) {
-      float survive = largest / roulette;
-      if (rng_next_float(rng) >= survive) {
-        return vec3(0.0f);
-      }
-      transmittance /= survive;
+    if (!tracking_roulette(transmittance, roulette, rng)) {
+      return vec3(0.0f);
     }
   }
   return reached_end ? transmittance : vec3(0.0f);
@@ -353,13 +365,8 @@ LANTERN_FUNC vec3 residual_ratio_tracking(LANTERN_MEDIUM_PARAM uint medium, vec3
     }
     vec3 residual = medium_extinction(LANTERN_MEDIUM medium, origin + t * dir) - control;
     transmittance *= vec3(1.0f) - residual / residual_majorant;
-    float largest = max(abs(transmittance.x), max(abs(transmittance.y), abs(transmittance.z)));
-    if (largest < roulette) {
-      float survive = largest / roulette;
-      if (rng_next_float(rng) >= survive) {
-        return vec3(0.0f);
-      }
-      transmittance /= survive;
+    if (!tracking_roulette(transmittance, roulette, rng)) {
+      return vec3(0.0f);
     }
   }
   return reached_end ? transmittance : vec3(0.0f);
