@@ -22,7 +22,8 @@ void main() {
   bool has_second;
   if (!atrous_pair(p0, has_second)) return;
   vec4 result[2];
-  atrous_step_pair(p0, has_second, result);
+  bool passthrough[2];
+  atrous_step_pair(p0, has_second, result, passthrough);
   accum_out.p[denoise_index(p0)] = result[0];
   if (has_second) accum_out.p[denoise_index(p0 + ivec2(push.step, 0))] = result[1];
 }

@@ -28,12 +28,13 @@ bool atrous_pair(out ivec2 p0, out bool has_second) {
 }
 
 // One à-trous step at both pixels of a pair (result[1] only when has_second): the filtered
-// illumination and its variance; a pass-through pixel (denoise_passthrough) keeps its input. The
+// illumination and its variance; a pass-through pixel (denoise_passthrough, its guide
+// denoise_guide_passthrough: `passthrough`) keeps its input. The
 // 4x3 taps (columns p0.x - step .. p0.x + 2 step, rows p0.y - step .. p0.y + step) are read once
 // for both: 12 reads for two pixels instead of 18 (night_market 320x180, with one exp per tap in
 // denoise_geometry_weight: the denoiser 0.85-0.9x, 23.3-24.8% of the ReSTIR frame against
 // 25.8-27.5%; images equal to the per-pixel step's to 4 digits of trade's relMSE).
-void atrous_step_pair(ivec2 p0, bool has_second, out vec4 result[2]) {
+void atrous_step_pair(ivec2 p0, bool has_second, out vec4 result[2], out bool passthrough[2]) {
   int step = int(push.step);
   vec4 tap_guide[12];
   vec4 tap_accum[12];
@@ -57,7 +58,8 @@ void atrous_step_pair(ivec2 p0, bool has_second, out vec4 result[2]) {
     vec4 centre = tap_accum[centre_tap];
     vec4 g = tap_guide[centre_tap];
     result[k] = centre;
-    if ((k == 1 && !has_second) || denoise_guide_sky(g)) continue;
+    passthrough[k] = denoise_guide_sky(g);
+    if ((k == 1 && !has_second) || passthrough[k]) continue;
     ivec2 pixel = p0 + ivec2(k * step, 0);
     vec3 n = denoise_guide_normal(g);
     float depth = denoise_view_depth(imageLoad(gbuffer_position, pixel).w);

@@ -77,15 +77,23 @@ vec3 denoise_demodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, ve
          denoise_demodulation(denoise_albedo(view_depth, gbuffer_albedo));
 }
 
-// A denoised pixel back to radiance (denoise.modulate, denoise.atrous_modulate): its emission +
-// the filtered illumination x the demodulation factor denoise_demodulate divided by; a
-// pass-through pixel (an unfiltered emitter or sky) keeps its raw radiance.
+// A filtered pixel's illumination back to radiance: its emission + the illumination x the
+// demodulation factor denoise_demodulate divided by; `sky` marks a filtered sky pixel (no
+// emission, albedo 1: emission and gbuffer_albedo are not read), `emission` may be 0 for a pixel
+// that is no emitter (its G-buffer emission is).
+vec3 denoise_remodulate_filtered(bool sky, vec3 emission, vec3 gbuffer_albedo, vec3 illumination) {
+  return denoise_finite((sky ? vec3(0.0) : emission) +
+                        denoise_demodulation(sky ? vec3(1.0) : gbuffer_albedo) * illumination);
+}
+
+// A denoised pixel back to radiance (denoise.modulate) from its G-buffer values: a pass-through
+// pixel (an unfiltered emitter or sky) keeps its raw radiance, a filtered one
+// denoise_remodulate_filtered.
 vec3 denoise_remodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, vec3 raw,
                         vec3 illumination) {
   if (denoise_passthrough(view_depth, emission)) return denoise_finite(raw);
-  return denoise_finite(denoise_emission(view_depth, emission) +
-                        denoise_demodulation(denoise_albedo(view_depth, gbuffer_albedo)) *
-                        illumination);
+  return denoise_remodulate_filtered(gbuffer_is_sky(view_depth), emission, gbuffer_albedo,
+                                     illumination);
 }
 
 // The edge-stopping guide denoise.temporal writes once per pixel ("denoise.guide", read by
