@@ -46,8 +46,8 @@ const Row kRows[] = {
      DENOISE_FIELD(phi_luminance), 2, 2, 2},
     {{"phi_normal", "normal edge stop exponent: lower blurs across creases", 1, 1024, false},
      DENOISE_FIELD(phi_normal), 64, 64, 64},
-    {{"phi_depth", "depth-plane edge stop (relative to view depth): raise if grazing surfaces "
-                   "stay noisy, lower if objects bleed into each other",
+    {{"phi_depth", "depth-plane edge stop (relative to the distance from the camera): raise if "
+                   "grazing surfaces stay noisy, lower if objects bleed into each other",
       0.001f, 1, false},
      DENOISE_FIELD(phi_depth), 0.02f, 0.02f, 0.02f},
     {{"firefly", "clamp a new sample to mean + k sigma of its history (0 off): lower removes "

@@ -7,7 +7,6 @@
 
 #include "denoise/denoise_common.glsl"
 
-layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_position;
 layout(binding = 1) uniform utextureBuffer guide;
 layout(binding = 2) uniform utextureBuffer accum_in;
 layout(std430, binding = 4) readonly buffer LuminanceIn { float l[]; } luminance_in;
@@ -62,7 +61,7 @@ void atrous_step_pair(ivec2 p0, bool has_second, out vec4 result[2], out bool pa
     if ((k == 1 && !has_second) || passthrough[k]) continue;
     ivec2 pixel = p0 + ivec2(k * step, 0);
     vec3 n = denoise_guide_normal(g);
-    float depth = denoise_view_depth(imageLoad(gbuffer_position, pixel).w);
+    float depth = denoise_guide_distance(g);
     float l = tap_luminance[centre_tap];
     const bool emitter = denoise_record_emitter(centre);
     const float centre_variance = denoise_record_variance(centre);

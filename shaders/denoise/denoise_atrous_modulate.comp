@@ -2,8 +2,9 @@
 // radiance in the same pass (denoise_remodulate_filtered, as denoise.modulate), so the filtered
 // illumination is not written out and read back.
 // Reads: accum_in (rgb illumination, a variance), guide, luminance_in (when it is also the first
-// step: atrous 1), hdr_in (raw radiance, for pass-through pixels), gbuffer
-// position/albedo_roughness/emission_metallic, stable_in (push.stabilize > 0: last frame's
+// step: atrous 1), hdr_in (raw radiance, for pass-through pixels), gbuffer albedo_roughness
+// (filtered pixels), emission_metallic (emitters), position (with push.sky_distance > 0: which
+// pixels are the sky), stable_in (push.stabilize > 0: last frame's
 // output reprojected, denoise.temporal). Writes: hdr_out (linear radiance, alpha 1), stable_out
 // (push.stabilize > 0: the stabilised illumination, "denoise.stable", next frame's history).
 // History: "denoise.stable", through denoise.temporal's stable_reprojected_out.
@@ -13,6 +14,7 @@
 
 #include "denoise/denoise_atrous.glsl"
 
+layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_position;
 layout(binding = 3, rgba16f) readonly uniform image2D gbuffer_albedo_roughness;
 layout(binding = 5, rgba32f) readonly uniform image2D gbuffer_emission_metallic;
 layout(std430, binding = 6) readonly buffer HdrIn { vec4 p[]; } hdr_in;

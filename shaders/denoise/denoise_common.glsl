@@ -53,12 +53,6 @@ vec3 denoise_emission(float view_depth, vec3 emission) {
   return gbuffer_is_sky(view_depth) ? vec3(0.0) : emission;
 }
 
-// The view depth the edge stops scale with: the G-buffer's, or for a filtered sky pixel (the
-// only sky pixels that reach a filter) push.sky_distance.
-float denoise_view_depth(float view_depth) {
-  return gbuffer_is_sky(view_depth) ? push.sky_distance : view_depth;
-}
-
 // The albedo a pixel's radiance is demodulated by: 1 for a filtered sky pixel.
 vec3 denoise_albedo(float view_depth, vec3 gbuffer_albedo) {
   return gbuffer_is_sky(view_depth) ? vec3(1.0) : gbuffer_albedo;
@@ -97,15 +91,19 @@ vec3 denoise_remodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, ve
 }
 
 // The edge-stopping guide denoise.temporal writes once per pixel ("denoise.guide", read by
-// every tap of denoise.variance and denoise.atrous instead of two G-buffer images): xyz world
-// position, w the octahedral shading normal (snorm 2x16) as float bits; kDenoiseSky bits for the
-// pass-through pixels (no tap reads them). A pixel's kind (emitter or not) is not here: every
-// step that weighs a tap holds the tap's record, which carries it (denoise_record).
+// every tap of denoise.variance and denoise.atrous instead of G-buffer images): xyz the position
+// relative to the camera (world axes: the tangent-plane distances are the world's, and its length
+// is the distance the edge stops scale with, denoise_guide_distance), w the octahedral shading
+// normal (snorm 2x16) as float bits; kDenoiseSky bits for the pass-through pixels (no tap reads
+// them). A pixel's kind (emitter or not) is not here: every step that weighs a tap holds the
+// tap's record, which carries it (denoise_record).
 const uint kDenoiseSky = 0xffffffffu;
 
-vec4 denoise_guide(vec4 position_depth, vec3 n) {
-  return vec4(position_depth.xyz, uintBitsToFloat(oct_pack_snorm(n)));
+vec4 denoise_guide(vec3 from_camera, vec3 n) {
+  return vec4(from_camera, uintBitsToFloat(oct_pack_snorm(n)));
 }
+// The pixel's distance from the camera (a filtered sky pixel: push.sky_distance).
+float denoise_guide_distance(vec4 g) { return length(g.xyz); }
 vec4 denoise_guide_passthrough() { return vec4(0.0, 0.0, 0.0, uintBitsToFloat(kDenoiseSky)); }
 bool denoise_guide_sky(vec4 g) { return floatBitsToUint(g.w) == kDenoiseSky; }
 vec3 denoise_guide_normal(vec4 g) { return oct_unpack_snorm(floatBitsToUint(g.w)); }
@@ -130,9 +128,10 @@ float denoise_record_variance_as(vec4 r, bool emitter) {
   return denoise_record_emitter(r) == emitter ? abs(r.a) : 0.0;
 }
 
-// Edge-stopping weight of a tap with guide q seen from the centre (guide c, normal n, view depth
-// depth), times exp(-extra) (the caller has checked the tap is of the centre's kind): its distance
-// from the centre's tangent plane relative to phi_depth x depth x spacing, and the normals'
+// Edge-stopping weight of a tap with guide q seen from the centre (guide c, normal n, distance
+// from the camera depth), times exp(-extra) (the caller has checked the tap is of the centre's
+// kind): its distance from the centre's tangent plane relative to phi_depth x depth x spacing,
+// and the normals'
 // agreement max(0, n.nq)^phi_normal. One exp per tap: the power is exp(phi_normal ln cos) with
 // ln cos = -(x + x^2/2 + x^3/3 + ...), x = 1 - cos, cut after x^3 (the weight within 0.2%
 // wherever it exceeds 1e-3 at phi_normal 64, and ~0 where the normals part: e^-117 at a right

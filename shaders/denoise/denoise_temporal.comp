@@ -144,7 +144,8 @@ void main() {
                                               0.0, material);
   RestirSimilarityKey key = restir_similarity_key(surface);
   surface_keys_out.k[index] = key;
-  guide_out.p[index] = denoise_guide(position, n);
+  guide_out.p[index] =
+      denoise_guide(position.xyz - frame_constants.frame.camera_position.xyz, n);
   float l = luminance(illumination);
 
   // Last frame's history at the reprojected position: bilinear weights of the similar taps.

@@ -5,8 +5,8 @@
 // à-trous iterations still know how noisy the pixel is.
 // Also the 3x3 mean luminance of similar neighbours (tent-weighted, kDenoiseKernel), which the
 // first à-trous iteration's luminance edge stop compares.
-// Reads: accum_in (rgb illumination, a variance), moments_in (z history length), guide,
-// gbuffer position (the centre's view depth). Writes: accum_out (same layout), luminance_out.
+// Reads: accum_in (rgb illumination, a variance), moments_in (z history length), guide.
+// Writes: accum_out (same layout), luminance_out.
 // History: none.
 // Dispatch: one thread per pixel, 8x8 groups.
 #version 460
@@ -15,7 +15,6 @@
 
 #include "denoise/denoise_common.glsl"
 
-layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_position;
 layout(binding = 1) uniform utextureBuffer guide;
 layout(binding = 2) uniform utextureBuffer accum_in;
 layout(binding = 3) uniform utextureBuffer moments_in;
@@ -36,7 +35,7 @@ void main() {
   }
   vec3 n = denoise_guide_normal(g);
   const bool emitter = denoise_record_emitter(centre);
-  float depth = denoise_view_depth(imageLoad(gbuffer_position, pixel).w);
+  float depth = denoise_guide_distance(g);
   // The first à-trous iteration's luminance edge stop compares these 3x3 means, not single
   // samples: a bright sample among dark neighbours (ReSTIR's heavy tail) is not rejected by all
   // of them while it spreads itself over them (which lost 5% of night_market's energy). The tent

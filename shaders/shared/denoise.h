@@ -67,7 +67,7 @@ struct DenoisePush {
   float moments_alpha;   // temporal blend floor of the luminance moments
   float phi_luminance;   // à-trous luminance edge stop, in standard deviations
   float phi_normal;      // à-trous normal edge stop: weight = max(0, dot(n, nq))^phi_normal
-  float phi_depth;       // à-trous depth edge stop: relative depth difference per tap step
+  float phi_depth;       // à-trous depth edge stop: plane distance / camera distance per tap step
   float firefly;         // temporal clamp of the new sample to mean + firefly x sigma (0: off)
   float max_history;     // history length cap (frames)
   float sky_distance;    // > 0 (levels with volumes: the fog before the sky is noisy): sky pixels
