@@ -76,13 +76,17 @@ float filtered_luminance(ivec2 q, bool emitter) {
                                       hdr_in.p[denoise_index(q)].rgb));
 }
 
-// The brightest of the 8 neighbours' luminance; negative when none counts. Read only where the
-// history cannot judge (few pixels once the history has settled; every pixel after a cut).
-float brightest_neighbour(ivec2 pixel, bool emitter) {
+// The brightest of the 8 neighbours' luminance (the 4 beside the pixel first, then the corners),
+// or the first one found that admits the sample `l` (push.neighbour_clamp x it >= l: the sample
+// is not clamped, whichever neighbour admits it); negative when none counts. Read only where the history
+// cannot judge (a disocclusion, the first frames after a cut, a history that has seen only
+// black: night_market's shadows) and the sample is lit (a black one is never clamped).
+float brightest_neighbour(ivec2 pixel, bool emitter, float l) {
+  const ivec2 kOrder[8] = ivec2[8](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1),
+                                   ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
   float m = -1.0;
-  for (int t = 0; t < 9; ++t) {
-    if (t == 4) continue;
-    m = max(m, filtered_luminance(pixel + ivec2(t % 3 - 1, t / 3 - 1), emitter));
+  for (int t = 0; t < 8 && push.neighbour_clamp * m < l; ++t) {
+    m = max(m, filtered_luminance(pixel + kOrder[t], emitter));
   }
   return m;
 }
@@ -211,8 +215,8 @@ void main() {
   if (history_judges && push.firefly > 0.0) {
     float sigma = sqrt(max(history_moments.y - history_moments.x * history_moments.x, 0.0));
     limit = history_moments.x + push.firefly * sigma;
-  } else if (!history_judges && push.neighbour_clamp > 0.0) {
-    float neighbour = brightest_neighbour(pixel, emitter);
+  } else if (!history_judges && push.neighbour_clamp > 0.0 && l > 0.0) {
+    float neighbour = brightest_neighbour(pixel, emitter, l);
     if (neighbour >= 0.0) limit = push.neighbour_clamp * neighbour;
   }
   // What the luminance moments take: the clamped sample, except on a long history that has seen
