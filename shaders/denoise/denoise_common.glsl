@@ -44,7 +44,8 @@ bool denoise_is_emitter(float view_depth, vec3 emission) {
 // surroundings on cornell_lights into the dark surfaces around it).
 bool denoise_passthrough(float view_depth, vec3 emission) {
   if (gbuffer_is_sky(view_depth)) return !(push.sky_distance > 0.0);
-  return denoise_is_emitter(view_depth, emission) && (push.flags & kDenoiseFlagFilterEmitters) == 0u;
+  return denoise_is_emitter(view_depth, emission) &&
+         (push.flags & kDenoiseFlagFilterEmitters) == 0u;
 }
 
 // The part of a filtered pixel's radiance that is not filtered: its G-buffer emission (0 for a
@@ -131,12 +132,11 @@ float denoise_record_variance_as(vec4 r, bool emitter) {
 // Edge-stopping weight of a tap with guide q seen from the centre (guide c, normal n, distance
 // from the camera depth), times exp(-extra) (the caller has checked the tap is of the centre's
 // kind): its distance from the centre's tangent plane relative to phi_depth x depth x spacing,
-// and the normals'
-// agreement max(0, n.nq)^phi_normal. One exp per tap: the power is exp(phi_normal ln cos) with
-// ln cos = -(x + x^2/2 + x^3/3 + ...), x = 1 - cos, cut after x^3 (the weight within 0.2%
-// wherever it exceeds 1e-3 at phi_normal 64, and ~0 where the normals part: e^-117 at a right
-// angle). exp and pow were the à-trous steps' largest cost on lavapipe (three transcendentals
-// per tap).
+// and the normals' agreement max(0, n.nq)^phi_normal. One exp per tap: the power is
+// exp(phi_normal ln cos) with ln cos = -(x + x^2/2 + x^3/3 + ...), x = 1 - cos, cut after x^3
+// (the weight within 0.2% wherever it exceeds 1e-3 at phi_normal 64, and ~0 where the normals
+// part: e^-117 at a right angle). exp and pow were the à-trous steps' largest cost on lavapipe
+// (three transcendentals per tap).
 float denoise_geometry_weight(vec4 c, vec3 n, float depth, vec4 q, float spacing, float extra) {
   float plane = abs(dot(n, q.xyz - c.xyz));
   float x = 1.0 - clamp(dot(n, denoise_guide_normal(q)), 0.0, 1.0);

@@ -78,9 +78,9 @@ float filtered_luminance(ivec2 q, bool emitter) {
 
 // The brightest of the 8 neighbours' luminance (the 4 beside the pixel first, then the corners),
 // or the first one found that admits the sample `l` (push.neighbour_clamp x it >= l: the sample
-// is not clamped, whichever neighbour admits it); negative when none counts. Read only where the history
-// cannot judge (a disocclusion, the first frames after a cut, a history that has seen only
-// black: night_market's shadows) and the sample is lit (a black one is never clamped).
+// is not clamped, whichever neighbour admits it); negative when none counts. Read only where
+// the history cannot judge (a disocclusion, the first frames after a cut, a history that has
+// seen only black: night_market's shadows) and the sample is lit (a black one is never clamped).
 float brightest_neighbour(ivec2 pixel, bool emitter, float l) {
   const ivec2 kOrder[8] = ivec2[8](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1),
                                    ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
