@@ -49,15 +49,11 @@ bool denoise_passthrough(float view_depth, vec3 emission) {
 }
 
 // The part of a filtered pixel's radiance that is not filtered: its G-buffer emission (0 for a
-// surface that emits nothing and for a filtered sky pixel).
-vec3 denoise_emission(float view_depth, vec3 emission) {
-  return gbuffer_is_sky(view_depth) ? vec3(0.0) : emission;
-}
+// surface that emits nothing and for a filtered sky pixel, `sky`).
+vec3 denoise_emission(bool sky, vec3 emission) { return sky ? vec3(0.0) : emission; }
 
-// The albedo a pixel's radiance is demodulated by: 1 for a filtered sky pixel.
-vec3 denoise_albedo(float view_depth, vec3 gbuffer_albedo) {
-  return gbuffer_is_sky(view_depth) ? vec3(1.0) : gbuffer_albedo;
-}
+// The albedo a pixel's radiance is demodulated by: 1 for a filtered sky pixel (`sky`).
+vec3 denoise_albedo(bool sky, vec3 gbuffer_albedo) { return sky ? vec3(1.0) : gbuffer_albedo; }
 
 // The 3x3 tent every step filters with (per axis: centre 1/2, neighbours 1/4): the à-trous
 // steps at their tap spacing, the centre's variance blur, denoise.variance's smoothed luminance.
@@ -68,8 +64,9 @@ const float kDenoiseKernel[2] = float[2](0.5, 0.25);
 // filtered sky pixel); never negative (an emitter's radiance is its emission plus reflected light,
 // up to rounding).
 vec3 denoise_demodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, vec3 raw) {
-  return max(denoise_finite(raw) - denoise_emission(view_depth, emission), vec3(0.0)) /
-         denoise_demodulation(denoise_albedo(view_depth, gbuffer_albedo));
+  const bool sky = gbuffer_is_sky(view_depth);
+  return max(denoise_finite(raw) - denoise_emission(sky, emission), vec3(0.0)) /
+         denoise_demodulation(denoise_albedo(sky, gbuffer_albedo));
 }
 
 // A filtered pixel's illumination back to radiance: its emission + the illumination x the
@@ -77,8 +74,8 @@ vec3 denoise_demodulate(float view_depth, vec3 emission, vec3 gbuffer_albedo, ve
 // emission, albedo 1: emission and gbuffer_albedo are not read), `emission` may be 0 for a pixel
 // that is no emitter (its G-buffer emission is).
 vec3 denoise_remodulate_filtered(bool sky, vec3 emission, vec3 gbuffer_albedo, vec3 illumination) {
-  return denoise_finite((sky ? vec3(0.0) : emission) +
-                        denoise_demodulation(sky ? vec3(1.0) : gbuffer_albedo) * illumination);
+  return denoise_finite(denoise_emission(sky, emission) +
+                        denoise_demodulation(denoise_albedo(sky, gbuffer_albedo)) * illumination);
 }
 
 // A denoised pixel back to radiance (denoise.modulate) from its G-buffer values: a pass-through

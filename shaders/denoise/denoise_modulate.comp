@@ -1,7 +1,7 @@
 // denoise.modulate (only without à-trous steps; otherwise the last step, denoise.atrous_modulate,
 // does this): the temporal accumulation back to radiance, denoise_remodulate (emission + albedo
 // demodulation x illumination; a pass-through pixel keeps the raw radiance).
-// Reads: accum_in (rgb illumination), hdr_in (raw radiance, for the sky), gbuffer
+// Reads: accum_in (rgb illumination), hdr_in (raw radiance, for pass-through pixels), gbuffer
 // position/albedo_roughness/emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
 // History: none. Dispatch: one thread per pixel, 8x8 groups.
 #version 460

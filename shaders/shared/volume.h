@@ -295,8 +295,6 @@ LANTERN_FUNC float scatter_distance_sample(vec3 origin, vec3 dir, float t0, floa
 // `roulette` > 0 plays Russian roulette once the estimate's largest channel falls below it
 // (unbiased; 0 disables it).
 
-// Ratio tracking (Cramer 1978; Novak et al. 2014): tentative collisions at rate `majorant`
-// (>= every channel of sigma_t on the segment), each multiplying by 1 - sigma_t / majorant.
 // Russian roulette on a tracked transmittance whose largest channel (in magnitude: residual
 // ratio tracking's weights can go negative) fell below `roulette`: it survives with probability
 // largest / roulette and is scaled up by its inverse (unbiased); false when it was ended.
@@ -314,6 +312,8 @@ LANTERN_FUNC bool tracking_roulette(LANTERN_INOUT(vec3) transmittance, float rou
   return true;
 }
 
+// Ratio tracking (Cramer 1978; Novak et al. 2014): tentative collisions at rate `majorant`
+// (>= every channel of sigma_t on the segment), each multiplying by 1 - sigma_t / majorant.
 LANTERN_MEDIUM_TEMPLATE
 LANTERN_FUNC vec3 ratio_tracking(LANTERN_MEDIUM_PARAM uint medium, vec3 origin, vec3 dir, float t0,
                                  float t1, float majorant, float roulette,
