@@ -23,10 +23,11 @@ bool reads_texels(const runtime::ComputePipeline& pipeline, const char* name) {
 }  // namespace
 
 ShaderPass::ShaderPass(runtime::Device& device, runtime::ShaderLibrary& shaders, std::string name,
-                       const std::string& shader, std::string_view variant)
+                       const std::string& shader, std::string_view variant,
+                       runtime::SpecConstants constants)
     : name_(std::move(name)),
       pipeline_(device, shaders.load(shader, variant),
-                runtime::ComputePipelineDesc{.name = name_, .constants = {}}) {}
+                runtime::ComputePipelineDesc{.name = name_, .constants = std::move(constants)}) {}
 
 std::vector<BufferHandle> ShaderPass::add_bytes(runtime::graph::RenderGraph& graph,
                                                 const FrameInputs& inputs, const PushBytes& push,

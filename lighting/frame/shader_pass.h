@@ -37,9 +37,11 @@ struct ShaderPassDispatch {
 
 class ShaderPass {
  public:
-  // `name`: the pass and pipeline name ("restir.initial"); `shader`: its path in the library.
+  // `name`: the pass and pipeline name ("restir.initial"); `shader`: its path in the library;
+  // `constants`: its specialisation (a per-pixel pass's workgroup shape: tile_order.h).
   ShaderPass(runtime::Device& device, runtime::ShaderLibrary& shaders, std::string name,
-             const std::string& shader, std::string_view variant = {});
+             const std::string& shader, std::string_view variant = {},
+             runtime::SpecConstants constants = {});
 
   // Adds the pass; returns the new version of each Write / ReadWrite buffer, in `buffers` order.
   // A handle may be read under two names (a stand-in).

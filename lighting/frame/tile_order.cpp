@@ -8,6 +8,8 @@
 
 #include <sched.h>
 
+#include "shared/pixel_groups.h"
+
 namespace lantern::lighting {
 
 std::uint32_t tile_count(std::uint32_t width, std::uint32_t height, std::uint32_t tile_size) {
@@ -35,6 +37,14 @@ std::uint32_t tile_bands(bool cpu_device) {
     if (end != nullptr && *end == '\0') threads = value;
   }
   return static_cast<std::uint32_t>(std::clamp(threads, 1L, 32L));
+}
+
+runtime::SpecConstants pixel_group_constants(bool cpu_device) {
+  runtime::SpecConstants constants;
+  constants.set_id(gpu::kPixelGroupWidthId,
+                   cpu_device ? gpu::kPixelGroupCpuWidth : gpu::kPixelGroupGpuSide);
+  constants.set_id(gpu::kPixelGroupHeightId, cpu_device ? 1u : gpu::kPixelGroupGpuSide);
+  return constants;
 }
 
 }  // namespace lantern::lighting

@@ -3,10 +3,13 @@
 // so neighbouring workgroups land far apart and both lavapipe threads get a mix of sky and
 // geometry (shared/PLATFORM.md); on CPU devices restir.temporal and restir.spatial walk
 // interleaved bands of tile rows instead (tile_bands), which keeps the neighbours they read in
-// each thread's cache.
+// each thread's cache. The passes with one thread per pixel in dispatch order (denoise.*,
+// upscale.temporal) take their workgroup shape per device (pixel_group_constants).
 #pragma once
 
 #include <cstdint>
+
+#include "runtime/gpu/pipeline.h"
 
 namespace lantern::lighting {
 
@@ -22,5 +25,9 @@ std::uint32_t tile_stride(std::uint32_t count);
 // (counted as llvmpipe does: the CPUs this process may use, or LP_NUM_THREADS; 1 to 32), 0 (the
 // stride's shuffle) on a GPU.
 std::uint32_t tile_bands(bool cpu_device);
+
+// The specialisation constants that shape a per-pixel pass's workgroups (shared/pixel_groups.h):
+// rows of kPixelGroupCpuWidth threads on a CPU device, kPixelGroupGpuSide squared on a GPU.
+runtime::SpecConstants pixel_group_constants(bool cpu_device);
 
 }  // namespace lantern::lighting

@@ -10,7 +10,7 @@
 // Reads: accum_in (rgb illumination, a variance), guide, luminance_in (denoise.variance's 3x3
 // means, iteration 0).
 // Writes: accum_out.
-// History: none. Dispatch: one thread per pixel pair (atrous_pair), 8x8 groups.
+// History: none. Dispatch: one thread per pixel pair (atrous_pair), lib/pixel_groups.glsl groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 

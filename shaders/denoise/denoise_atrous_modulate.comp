@@ -8,7 +8,7 @@
 // output reprojected, denoise.temporal). Writes: hdr_out (linear radiance, alpha 1), stable_out
 // (push.stabilize > 0: the stabilised illumination, "denoise.stable", next frame's history).
 // History: "denoise.stable", through denoise.temporal's stable_reprojected_out.
-// Dispatch: one thread per pixel pair (atrous_pair), 8x8 groups.
+// Dispatch: one thread per pixel pair (atrous_pair), lib/pixel_groups.glsl groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 

@@ -9,9 +9,8 @@
 #include "shared/denoise.h"
 #include "shared/gbuffer.h"
 
+#include "lib/pixel_groups.glsl"
 #include "lib/texel_records.glsl"
-
-layout(local_size_x = kDenoiseGroupSize, local_size_y = kDenoiseGroupSize) in;
 
 layout(push_constant) uniform Push { DenoisePush push; };
 

@@ -3,7 +3,7 @@
 // demodulation x illumination; a pass-through pixel keeps the raw radiance).
 // Reads: accum_in (rgb illumination), hdr_in (raw radiance, for pass-through pixels), gbuffer
 // position/albedo_roughness/emission_metallic. Writes: hdr_out (linear radiance, alpha 1).
-// History: none. Dispatch: one thread per pixel, 8x8 groups.
+// History: none. Dispatch: one thread per pixel, lib/pixel_groups.glsl groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 

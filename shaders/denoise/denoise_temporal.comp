@@ -28,7 +28,7 @@
 // History: "denoise.surface_keys", "denoise.color", "denoise.moments" (and "denoise.stable") of
 // last frame; without kDenoiseFlagHistoryValid (kDenoiseFlagStableHistory) the history bindings
 // are stand-ins and are not read.
-// Dispatch: one thread per pixel, 8x8 groups.
+// Dispatch: one thread per pixel, lib/pixel_groups.glsl groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 

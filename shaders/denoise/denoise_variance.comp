@@ -8,7 +8,7 @@
 // Reads: accum_in (rgb illumination, a variance), moments_in (z history length), guide.
 // Writes: accum_out (same layout), luminance_out.
 // History: none.
-// Dispatch: one thread per pixel, 8x8 groups.
+// Dispatch: one thread per pixel, lib/pixel_groups.glsl groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require

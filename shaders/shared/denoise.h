@@ -11,8 +11,6 @@
 
 LANTERN_BEGIN_SHARED
 
-// Threads per side of a denoise.* workgroup (one thread per pixel).
-LANTERN_CONST uint kDenoiseGroupSize = 8u;
 LANTERN_CONST uint kDenoiseMaxAtrousIterations = 6u;
 // History length below which denoise.variance estimates variance spatially (SVGF's 4 frames).
 LANTERN_CONST float kDenoiseShortHistory = 4.0f;

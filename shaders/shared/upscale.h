@@ -9,7 +9,6 @@
 
 LANTERN_BEGIN_SHARED
 
-LANTERN_CONST uint kUpscaleGroupSize = 8u;
 LANTERN_CONST uint kUpscaleFlagHistoryValid = 1u;  // the graph handed last frame's output
 
 struct UpscalePush {

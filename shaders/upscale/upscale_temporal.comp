@@ -10,7 +10,7 @@
 // Reads: hdr_in and gbuffer_motion (internal size), history (output size).
 // Writes: hdr_out ("upscale.color", output size). History: "upscale.color" of last frame;
 // without kUpscaleFlagHistoryValid the history binding is a stand-in and is not read.
-// Dispatch: one thread per output pixel, 8x8 groups.
+// Dispatch: one thread per output pixel, lib/pixel_groups.glsl groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
@@ -18,9 +18,9 @@
 #include "shared/common_math.h"
 #include "shared/upscale.h"
 
+#include "lib/pixel_groups.glsl"
 #include "lib/texel_records.glsl"
 
-layout(local_size_x = kUpscaleGroupSize, local_size_y = kUpscaleGroupSize) in;
 layout(push_constant) uniform Push { UpscalePush push; };
 
 layout(binding = 0, rgba32f) readonly uniform image2D gbuffer_motion;

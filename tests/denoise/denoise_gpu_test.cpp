@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -14,10 +15,13 @@
 #include <limits>
 #include <tuple>
 
+#include "lighting/denoise/denoise_pass.h"
 #include "lighting/denoise/denoise_settings.h"
 #include "lighting/upscale/upscaler.h"
+#include "lighting/visibility/visibility_backend.h"
 #include "runtime/gpu/buffer.h"
 #include "runtime/graph/pass_context.h"
+#include "shared/pixel_groups.h"
 #include "shared/reservoir_pack.h"
 #include "shared/scene.h"
 #include "tests/restir/restir_test_support.h"
@@ -272,6 +276,20 @@ TEST_F(DenoiseGpuTest, EveryPixelIsFilteredAtOddSizes) {
       }
       EXPECT_EQ(wrong, 0u) << w << "x" << h << ", atrous " << atrous;
     }
+  }
+}
+
+// The denoise.* passes take their workgroup shape from the device (lighting/frame/tile_order.h):
+// rows of kPixelGroupCpuWidth threads on a CPU device such as this one (the sizes above then end
+// in a partial row group: 95 = 64 + 31, 37, 20), kPixelGroupGpuSide squared on a GPU.
+TEST_F(DenoiseGpuTest, PassesTakeTheDevicesWorkgroupShape) {
+  const bool cpu = lighting::is_cpu_device(device.info());
+  const std::array<std::uint32_t, 3> expected =
+      cpu ? std::array<std::uint32_t, 3>{gpu::kPixelGroupCpuWidth, 1, 1}
+          : std::array<std::uint32_t, 3>{gpu::kPixelGroupGpuSide, gpu::kPixelGroupGpuSide, 1};
+  for (const char* stage : {"temporal", "variance", "atrous", "atrous_modulate", "modulate"}) {
+    const lighting::DenoisePass pass(device, shaders, stage);
+    EXPECT_EQ(pass.pipeline().local_size(), expected) << stage;
   }
 }
 

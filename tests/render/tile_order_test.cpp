@@ -2,18 +2,21 @@
 // restir_tile_origin): g -> g * stride mod count, and the interleaved bands of tile rows the
 // reuse passes walk on CPU devices, visit every tile exactly once for every frame size; each
 // thread's contiguous run of workgroups walks its own band of rows. And restir.temporal's history
-// permutation (restir_permuted_history_pixel): a one-pixel move that is its own inverse.
+// permutation (restir_permuted_history_pixel): a one-pixel move that is its own inverse. And the
+// workgroup shape the per-pixel passes take per device (pixel_group_constants).
 #include <gtest/gtest.h>
 #include <sched.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <set>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "lighting/frame/tile_order.h"
+#include "shared/pixel_groups.h"
 #include "shared/restir.h"
 
 namespace lantern::lighting {
@@ -125,6 +128,19 @@ TEST(TileOrder, BandsFollowTheCpuDevicesThreads) {
   setenv("LP_NUM_THREADS", "lots", 1);
   EXPECT_EQ(tile_bands(true), usable) << "a value llvmpipe ignores is ignored";
   if (saved != nullptr) setenv("LP_NUM_THREADS", restore.c_str(), 1);
+}
+
+// The per-pixel passes' workgroup shape (shared/pixel_groups.h) by device: rows on a CPU, squares
+// on a GPU, set through the two specialisation constants the shaders declare.
+TEST(TileOrder, PixelGroupsAreRowsOnCpuDevicesAndSquaresOnGpus) {
+  using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+  const std::span<const runtime::ShaderReflection* const> no_shaders;
+  EXPECT_EQ(pixel_group_constants(true).resolve(no_shaders, "test"),
+            (Pairs{{gpu::kPixelGroupWidthId, gpu::kPixelGroupCpuWidth},
+                   {gpu::kPixelGroupHeightId, 1u}}));
+  EXPECT_EQ(pixel_group_constants(false).resolve(no_shaders, "test"),
+            (Pairs{{gpu::kPixelGroupWidthId, gpu::kPixelGroupGpuSide},
+                   {gpu::kPixelGroupHeightId, gpu::kPixelGroupGpuSide}}));
 }
 
 }  // namespace
