@@ -2,15 +2,13 @@
 #include "lighting/denoise/denoise_pass.h"
 
 #include "lighting/frame/tile_order.h"
-#include "lighting/visibility/visibility_backend.h"
-#include "runtime/core/device.h"
 
 namespace lantern::lighting {
 
 DenoisePass::DenoisePass(runtime::Device& device, runtime::ShaderLibrary& shaders,
                          const std::string& stage, Threads threads)
     : pass_(device, shaders, "denoise." + stage, "denoise/denoise_" + stage + ".comp", {},
-            pixel_group_constants(is_cpu_device(device.info()))),
+            pixel_group_constants(device)),
       threads_(threads) {}
 
 std::vector<runtime::graph::BufferHandle> DenoisePass::add(

@@ -8,12 +8,19 @@
 
 #include <sched.h>
 
+#include "lighting/visibility/visibility_backend.h"
+#include "runtime/core/device.h"
 #include "shared/pixel_groups.h"
 
 namespace lantern::lighting {
 
-std::uint32_t tile_count(std::uint32_t width, std::uint32_t height, std::uint32_t tile_size) {
-  return ((width + tile_size - 1) / tile_size) * ((height + tile_size - 1) / tile_size);
+std::uint32_t tile_count(std::uint32_t width, std::uint32_t height, glm::uvec2 tile) {
+  return ((width + tile.x - 1) / tile.x) * ((height + tile.y - 1) / tile.y);
+}
+
+std::uint32_t tile_count(std::uint32_t width, std::uint32_t height,
+                         const runtime::ComputePipeline& pipeline) {
+  return tile_count(width, height, {pipeline.local_size()[0], pipeline.local_size()[1]});
 }
 
 std::uint32_t tile_stride(std::uint32_t count) {
@@ -39,12 +46,20 @@ std::uint32_t tile_bands(bool cpu_device) {
   return static_cast<std::uint32_t>(std::clamp(threads, 1L, 32L));
 }
 
-runtime::SpecConstants pixel_group_constants(bool cpu_device) {
+glm::uvec2 pixel_group_shape(bool cpu_device) {
+  return cpu_device ? glm::uvec2(gpu::kPixelGroupCpuWidth, 1u)
+                    : glm::uvec2(gpu::kPixelGroupGpuSide, gpu::kPixelGroupGpuSide);
+}
+
+runtime::SpecConstants pixel_group_constants(glm::uvec2 shape) {
   runtime::SpecConstants constants;
-  constants.set_id(gpu::kPixelGroupWidthId,
-                   cpu_device ? gpu::kPixelGroupCpuWidth : gpu::kPixelGroupGpuSide);
-  constants.set_id(gpu::kPixelGroupHeightId, cpu_device ? 1u : gpu::kPixelGroupGpuSide);
+  constants.set_id(gpu::kPixelGroupWidthId, shape.x);
+  constants.set_id(gpu::kPixelGroupHeightId, shape.y);
   return constants;
+}
+
+runtime::SpecConstants pixel_group_constants(const runtime::Device& device) {
+  return pixel_group_constants(pixel_group_shape(is_cpu_device(device.info())));
 }
 
 }  // namespace lantern::lighting

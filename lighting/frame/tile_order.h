@@ -9,12 +9,20 @@
 
 #include <cstdint>
 
+#include <glm/vec2.hpp>
+
+#include "runtime/gpu/compute_pipeline.h"
 #include "runtime/gpu/pipeline.h"
+#include "runtime/runtime_fwd.h"
 
 namespace lantern::lighting {
 
-// Number of tile_size x tile_size tiles covering width x height.
-std::uint32_t tile_count(std::uint32_t width, std::uint32_t height, std::uint32_t tile_size);
+// Number of tiles of shape `tile` covering width x height.
+std::uint32_t tile_count(std::uint32_t width, std::uint32_t height, glm::uvec2 tile);
+// ... of `pipeline`'s workgroup shape (after specialisation): the workgroups a tile pass
+// dispatches.
+std::uint32_t tile_count(std::uint32_t width, std::uint32_t height,
+                         const runtime::ComputePipeline& pipeline);
 
 // A stride near count / golden ratio that is coprime to `count` (so the order is a permutation);
 // 1 when the product could overflow 32 bits.
@@ -26,8 +34,12 @@ std::uint32_t tile_stride(std::uint32_t count);
 // stride's shuffle) on a GPU.
 std::uint32_t tile_bands(bool cpu_device);
 
-// The specialisation constants that shape a per-pixel pass's workgroups (shared/pixel_groups.h):
-// rows of kPixelGroupCpuWidth threads on a CPU device, kPixelGroupGpuSide squared on a GPU.
-runtime::SpecConstants pixel_group_constants(bool cpu_device);
+// The workgroup shape of the per-pixel passes (shared/pixel_groups.h): rows of
+// kPixelGroupCpuWidth threads on a CPU device, kPixelGroupGpuSide squared on a GPU.
+glm::uvec2 pixel_group_shape(bool cpu_device);
+// The specialisation constants that give a per-pixel pass's pipeline the workgroup shape
+// `shape`, or `device`'s (pixel_group_shape).
+runtime::SpecConstants pixel_group_constants(glm::uvec2 shape);
+runtime::SpecConstants pixel_group_constants(const runtime::Device& device);
 
 }  // namespace lantern::lighting

@@ -1,5 +1,5 @@
 // integrators.baseline: reads the G-buffer and the scene, writes the HDR buffer; one workgroup
-// per shuffled 8x8 tile (shaders/integrators/baseline.comp).
+// per shuffled tile of the device's pixel group shape (shaders/integrators/baseline.comp).
 #include "lighting/integrators/baseline_integrator.h"
 
 #include <fmt/format.h>
@@ -21,7 +21,9 @@ BaselineIntegrator::BaselineIntegrator(runtime::Device& device, runtime::ShaderL
       shaders_(shaders),
       visibility_(visibility),
       pipeline_(device, shaders.load("integrators/baseline.comp", visibility_variant(visibility)),
-                runtime::ComputePipelineDesc{.name = "integrators.baseline", .constants = {}}) {}
+                runtime::ComputePipelineDesc{
+                    .name = "integrators.baseline",
+                    .constants = pixel_group_constants(device)}) {}
 
 void BaselineIntegrator::warm_up() {
   // With host visibility the BVH's pass never runs: its two variants are JIT-compiled instead.
@@ -36,10 +38,13 @@ void BaselineIntegrator::warm_up() {
 void BaselineIntegrator::prepare(const GpuScene& scene) {
   host_ = scene.host_visibility();
   if (host_ != nullptr && !emit_) {
+    // The same workgroup shape as pipeline_, whose tiles they are dispatched over.
     emit_ = std::make_unique<ShaderPass>(device_, shaders_, "integrators.baseline",
-                                         "integrators/baseline.comp", "hostemit");
+                                         "integrators/baseline.comp", "hostemit",
+                                         pixel_group_constants(device_));
     occluded_ = std::make_unique<ShaderPass>(device_, shaders_, "integrators.baseline_occluded",
-                                             "integrators/baseline.comp", "hostresolve");
+                                             "integrators/baseline.comp", "hostresolve",
+                                             pixel_group_constants(device_));
   }
 }
 
@@ -56,7 +61,7 @@ BufferHandle BaselineIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   const std::uint32_t width = inputs.width;
   const std::uint32_t height = inputs.height;
   gpu::BaselinePush push{};
-  const std::uint32_t tiles = tile_count(width, height, gpu::kBaselineTileSize);
+  const std::uint32_t tiles = tile_count(width, height, pipeline_);
   push.tile_stride = tile_stride(tiles);
   if (host_ == nullptr) {
     return add_gbuffer_shading_pass(graph, "integrators.baseline", pipeline_, inputs, push, tiles,

@@ -1,6 +1,6 @@
 // integrators.reference: reads the G-buffer and the scene (with its environment map), writes the
-// HDR buffer; one workgroup per shuffled 8x8 tile, all spp samples in one dispatch
-// (shaders/integrators/reference.comp).
+// HDR buffer; one workgroup per shuffled tile of the device's pixel group shape, all spp samples
+// in one dispatch (shaders/integrators/reference.comp).
 #include "lighting/integrators/reference_integrator.h"
 
 #include <fmt/format.h>
@@ -57,7 +57,9 @@ ReferenceIntegrator::ReferenceIntegrator(runtime::Device& device, runtime::Shade
                                          VisibilityBackend visibility)
     : visibility_(visibility),
       pipeline_(device, shaders.load("integrators/reference.comp", visibility_variant(visibility)),
-                runtime::ComputePipelineDesc{.name = "integrators.reference", .constants = {}}),
+                runtime::ComputePipelineDesc{
+                    .name = "integrators.reference",
+                    .constants = pixel_group_constants(device)}),
       settings_(settings) {
   if (settings_.spp == 0 || settings_.spp > kMaxSpp) {
     throw InputError(
@@ -83,7 +85,7 @@ BufferHandle ReferenceIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   const std::uint32_t width = inputs.width;
   const std::uint32_t height = inputs.height;
   gpu::ReferencePush push{};
-  const std::uint32_t tiles = tile_count(width, height, gpu::kReferenceTileSize);
+  const std::uint32_t tiles = tile_count(width, height, pipeline_);
   push.tile_stride = tile_stride(tiles);
   push.spp = settings_.spp;
   return add_gbuffer_shading_pass(graph, "integrators.reference", pipeline_, inputs, push, tiles,

@@ -12,6 +12,7 @@
 #include "lighting/visibility/host_visibility.h"
 #include "lighting/visibility/visibility_backend.h"
 #include "runtime/core/device.h"
+#include "shared/pixel_groups.h"
 #include "shared/reservoir_pack.h"
 
 namespace lantern::lighting {
@@ -94,7 +95,6 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
                                  inputs.light_count, gpu::kEnvironmentLight));
   }
   gpu::RestirPush p{};
-  p.tile_stride = tile_stride(tile_count(inputs.width, inputs.height, gpu::kRestirTileSize));
   p.flags = s.initial_visibility ? gpu::kRestirFlagInitialVisibility : 0u;
   if (s.temporal_permutation == kTemporalPermutationOn ||
       (s.temporal_permutation == kTemporalPermutationDenoised && inputs.denoised)) {
@@ -206,7 +206,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
             "restir.presampled_lights",
             {std::max<VkDeviceSize>(entries, 1) * sizeof(gpu::PresampledLight)});
         if (entries > 0) {
-          const std::uint32_t per_group = gpu::kRestirTileSize * gpu::kRestirTileSize;
+          const std::uint32_t per_group = gpu::kPixelGroupThreads;
           presampled = presample_.add(graph, inputs, push,
                                       {{"presampled_lights", presampled,
                                         RestirPass::Buffer::Write}},

@@ -54,7 +54,8 @@ class RestirIntegrator final : public Integrator {
   // chain's shape keeps history (Final is always kept).
   void apply_settings(const std::vector<std::pair<std::string, std::string>>& changes) override;
 
-  // The push constants a frame with these settings gets (the pass index and history flag aside).
+  // The push constants a frame with these settings gets (the pass index and history flag aside;
+  // each RestirPass sets the tile order of its own tiles).
   static gpu::RestirPush make_push(const RestirSettings& settings, const FrameInputs& inputs);
   // Presampling tiles this frame gets: 0 when the lights fit in one tile, else the setting,
   // lowered so that the presampled entries stay at most 1/8 of the light candidates drawn.

@@ -1,6 +1,7 @@
 // RestirPass: one restir.* compute pass, a ShaderPass (lighting/frame/shader_pass.h) of
 // shaders/restir/restir_<stage>.comp named "restir.<stage>", with RestirPush and one workgroup per
-// shuffled 8x8 tile (lighting/frame/tile_order.h). What
+// tile, in pixel_tile_origin's order (lighting/frame/tile_order.h): tiles of the device's pixel
+// group shape (rows on CPU devices), 8x8 for restir.initial (restir_pass.cpp). What
 // each pass reads and writes is listed where RestirIntegrator adds it (restir_integrator.cpp)
 // and in its shader's header.
 #pragma once
@@ -33,8 +34,9 @@ class RestirPass {
              const std::string& stage, std::string_view variant);
 
   // Adds the pass; returns the new version of each Write / ReadWrite buffer, in `buffers` order.
-  // A handle may be read under two names (a stand-in). `workgroups`: 0 for one per shuffled tile
-  // of the image, else that many (a pass over something else than pixels: restir.presample).
+  // A handle may be read under two names (a stand-in). `workgroups`: 0 for one per tile of the
+  // image (the push's tile_stride set for this pass's tiles), else that many (a pass over
+  // something else than pixels: restir.presample).
   std::vector<runtime::graph::BufferHandle> add(runtime::graph::RenderGraph& graph,
                                                 const FrameInputs& inputs,
                                                 const gpu::RestirPush& push,

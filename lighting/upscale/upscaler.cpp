@@ -2,8 +2,6 @@
 #include "lighting/upscale/upscaler.h"
 
 #include "lighting/frame/tile_order.h"
-#include "lighting/visibility/visibility_backend.h"
-#include "runtime/core/device.h"
 #include "runtime/gpu/bindings.h"
 #include "runtime/gpu/shader_library.h"
 #include "runtime/graph/pass_context.h"
@@ -17,7 +15,7 @@ Upscaler::Upscaler(runtime::Device& device, runtime::ShaderLibrary& shaders)
     : pipeline_(device, shaders.load("upscale/upscale_temporal.comp"),
                 runtime::ComputePipelineDesc{
                     .name = "upscale.temporal",
-                    .constants = pixel_group_constants(is_cpu_device(device.info()))}) {}
+                    .constants = pixel_group_constants(device)}) {}
 
 gpu::UpscalePush Upscaler::make_push(const FrameInputs& inputs, std::uint32_t out_width,
                                      std::uint32_t out_height, glm::vec2 jitter) {

@@ -12,12 +12,14 @@
 // Host visibility (shared/host_visibility.h): the "hostemit" variant (integrators.baseline) shades
 // as if every ray got through and writes the rays; after visibility.host, the "hostresolve"
 // variant (integrators.baseline_occluded) rewrites the pixels whose ray was blocked.
-// Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride): lavapipe hands each CPU
-// thread a contiguous range of workgroups, so without the shuffle the thread that gets the sky
-// idles while the other traces the geometry (shared/PLATFORM.md, 1.45-1.6x on ray casting).
+// Dispatch: a 1D grid of tiles (lib/pixel_groups.glsl's shape), shuffled (push.tile_stride,
+// pixel_tile_origin): lavapipe hands each CPU thread a contiguous range of workgroups, so
+// without the shuffle the thread that gets the sky idles while the other traces the geometry
+// (shared/PLATFORM.md, 1.45-1.6x on ray casting).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
+#include "lib/pixel_groups.glsl"
 #include "lib/scene_buffers.glsl"
 #include "integrators/baseline.h"
 #include "shared/alias_table.h"
@@ -31,8 +33,6 @@
 #include "shared/sampling.h"
 #include "shared/scene.h"
 #include "shared/textures.h"
-
-layout(local_size_x = kBaselineTileSize, local_size_y = kBaselineTileSize) in;
 
 layout(std430, binding = PASS_BINDING(0)) writeonly buffer RadianceBuffer {
   vec4 pixels[];
@@ -121,10 +121,9 @@ void write_radiance(uint index, vec3 value) {
 
 void main() {
   uvec2 size = frame_constants.frame.frame.xy;
-  uint tiles_x = (size.x + kBaselineTileSize - 1u) / kBaselineTileSize;
-  uint tiles_y = (size.y + kBaselineTileSize - 1u) / kBaselineTileSize;
-  uint tile = (gl_WorkGroupID.x * push.tile_stride) % (tiles_x * tiles_y);
-  uvec2 pixel = uvec2(tile % tiles_x, tile / tiles_x) * kBaselineTileSize + gl_LocalInvocationID.xy;
+  uvec2 pixel =
+      pixel_tile_origin(gl_WorkGroupID.x, push.tile_stride, 0u, size, gl_WorkGroupSize.xy) +
+      gl_LocalInvocationID.xy;
   if (pixel.x >= size.x || pixel.y >= size.y) return;
   uint index = pixel.y * size.x + pixel.x;
 #ifdef LANTERN_VISIBILITY_HOST_RESOLVE

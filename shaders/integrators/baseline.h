@@ -13,9 +13,6 @@ struct BaselinePush {
 };
 LANTERN_STATIC_SIZE(BaselinePush, 4);
 
-// Pixels per side of the square tile one workgroup shades.
-LANTERN_CONST uint kBaselineTileSize = 8u;
-
 // RNG stream of the baseline pass (rng_init's `pass`).
 LANTERN_CONST uint kBaselineRngPass = 0x62u;
 

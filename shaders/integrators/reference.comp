@@ -23,11 +23,12 @@
 // constants, geometry, materials, lights, the environment map — a black 1-texel stand-in when the
 // level has none — and the BVH through lib/visibility.glsl).
 // Writes: radiance (rgba32f per pixel, the mean of this dispatch's samples). History: none (the
-// host averages frames). Dispatch: a 1D grid of 8x8-pixel tiles, shuffled (push.tile_stride),
-// as integrators.baseline.
+// host averages frames). Dispatch: a 1D grid of tiles (lib/pixel_groups.glsl's shape), shuffled
+// (push.tile_stride), as integrators.baseline.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
+#include "lib/pixel_groups.glsl"
 #include "lib/scene_buffers.glsl"
 #include "lib/emitter_hit.glsl"
 #include "integrators/reference.h"
@@ -43,8 +44,6 @@
 #include "shared/sampling.h"
 #include "shared/scene.h"
 #include "shared/textures.h"
-
-layout(local_size_x = kReferenceTileSize, local_size_y = kReferenceTileSize) in;
 
 layout(std430, binding = PASS_BINDING(0)) writeonly buffer RadianceBuffer {
   vec4 pixels[];
@@ -270,10 +269,9 @@ vec3 shade_pixel(uvec2 pixel) {
 
 void main() {
   uvec2 size = frame_constants.frame.frame.xy;
-  uint tiles_x = (size.x + kReferenceTileSize - 1u) / kReferenceTileSize;
-  uint tiles_y = (size.y + kReferenceTileSize - 1u) / kReferenceTileSize;
-  uint tile = (gl_WorkGroupID.x * push.tile_stride) % (tiles_x * tiles_y);
-  uvec2 pixel = uvec2(tile % tiles_x, tile / tiles_x) * kReferenceTileSize + gl_LocalInvocationID.xy;
+  uvec2 pixel =
+      pixel_tile_origin(gl_WorkGroupID.x, push.tile_stride, 0u, size, gl_WorkGroupSize.xy) +
+      gl_LocalInvocationID.xy;
   if (pixel.x >= size.x || pixel.y >= size.y) return;
   vec3 value = shade_pixel(pixel);
   if (!(is_finite(value.x) && is_finite(value.y) && is_finite(value.z))) value = vec3(0.0);

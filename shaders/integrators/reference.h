@@ -14,9 +14,6 @@ struct ReferencePush {
 };
 LANTERN_STATIC_SIZE(ReferencePush, 8);
 
-// Pixels per side of the square tile one workgroup shades.
-LANTERN_CONST uint kReferenceTileSize = 8u;
-
 // RNG stream of the reference pass (rng_init's `pass`).
 LANTERN_CONST uint kReferenceRngPass = 0x72u;
 

@@ -20,10 +20,9 @@
 #include "shared/rng.h"
 #include "shared/scene.h"
 
+#include "lib/pixel_groups.glsl"
 #include "lib/scene_buffers.glsl"
 #include "lib/texel_records.glsl"
-
-layout(local_size_x = kRestirTileSize, local_size_y = kRestirTileSize) in;
 
 layout(push_constant) uniform Push { RestirPush push; };
 
@@ -33,10 +32,12 @@ uvec2 restir_size() { return frame_constants.frame.frame.xy; }
 uint restir_light_count() { return frame_constants.frame.counts.x; }
 float restir_scene_radius() { return frame_constants.frame.scene.x; }
 
-// Pixel of this invocation (8x8 tiles in restir_tile_origin's order); false outside the image.
+// Pixel of this invocation (tiles of the workgroup's shape in pixel_tile_origin's order); false
+// outside the image.
 bool restir_pixel(out uvec2 pixel) {
   uvec2 size = restir_size();
-  pixel = restir_tile_origin(gl_WorkGroupID.x, push.tile_stride, push.tile_bands, size) +
+  pixel = pixel_tile_origin(gl_WorkGroupID.x, push.tile_stride, push.tile_bands, size,
+                            gl_WorkGroupSize.xy) +
           gl_LocalInvocationID.xy;
   return pixel.x < size.x && pixel.y < size.y;
 }

@@ -12,7 +12,8 @@
 // instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility),
 // presampled_lights (restir.presample's; a stand-in when presampling is off).
 // Writes: restir_surfaces (history resource "restir.surfaces"), reservoirs_out. History: none.
-// Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
+// Dispatch: one workgroup per 8x8 tile on every device (its local light list is the tile's:
+// lighting/restir/restir_pass.cpp), shuffled (push.tile_stride).
 // Host closest hits (shared/host_visibility.h, with the host visibility backend and BSDF
 // candidates): the "closestemit" variant (restir.initial_rays) writes each pixel's BSDF
 // candidate rays into the host's closest-hit ray buffer and nothing else; visibility.host_closest
@@ -73,7 +74,7 @@ float light_strategy_pdf(uint index, float p_env) {
 // presampled entry (or, without presampling, the light index) it holds, the slot's effective
 // density (1 / its unbiased contribution weight, area measure like pdf) and the light strategy's
 // own density of that light (MIS with BSDF candidates).
-const uint kLocalSlots = kRestirTileSize * kRestirTileSize;
+const uint kLocalSlots = kPixelGroupThreads;
 shared uint local_entry[kLocalSlots];
 shared float local_pdf[kLocalSlots];
 shared float local_strategy_pdf[kLocalSlots];

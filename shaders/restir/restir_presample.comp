@@ -16,7 +16,7 @@ layout(std430, binding = PASS_BINDING(0)) writeonly buffer PresampledOut {
 } presampled_lights;
 
 void main() {
-  uint entry = gl_WorkGroupID.x * (kRestirTileSize * kRestirTileSize) + gl_LocalInvocationIndex;
+  uint entry = gl_WorkGroupID.x * kPixelGroupThreads + gl_LocalInvocationIndex;
   uint light_count = restir_light_count();
   if (entry >= push.presample_tiles * kRestirPresampleTileSize || light_count == 0u) return;
   uint rng = frame_rng(uvec2(entry % kRestirPresampleTileSize, entry / kRestirPresampleTileSize),

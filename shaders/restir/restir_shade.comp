@@ -5,7 +5,8 @@
 // Reads: restir_surfaces, reservoirs_in (the final reservoirs), gbuffer emission_metallic and
 // motion, temporal_status, frame constants, lights, environment (env_*), BVH.
 // Writes: hdr (vec4 per pixel).
-// History: none. Dispatch: one workgroup per 8x8 tile, shuffled (push.tile_stride).
+// History: none. Dispatch: one workgroup per tile (lib/pixel_groups.glsl's shape), shuffled
+// (push.tile_stride).
 // Host visibility (shared/host_visibility.h): the "hostemit" variant (restir.shade) shades as if
 // every ray got through and writes the rays; after visibility.host, the "hostresolve" variant
 // (restir.shade_occluded) rewrites the pixels whose ray was blocked.
@@ -61,7 +62,7 @@ vec3 debug_view(uint view, uvec2 pixel, uint index, Reservoir r, bool surface) {
 // geometry.
 bool reuse_visibility(Reservoir r) {
   if (push.visibility_reuse == 0u || !reservoir_visibility_known(r)) return false;
-  // One phase per 8x8 tile: lanes of a SIMD batch re-test together (a per-pixel phase left a
+  // One phase per workgroup tile: lanes of a SIMD batch re-test together (a per-pixel phase left a
   // lane tracing in nearly every batch, and lavapipe's batch then ran the whole traversal).
   uint phase = pcg_hash(gl_WorkGroupID.x) % push.visibility_reuse;
   return (frame_constants.frame.frame.z + phase) % push.visibility_reuse != 0u;

@@ -7,8 +7,8 @@
 // Reads: restir_surfaces, reservoirs_in, frame constants, lights, environment (env_*).
 // Writes: reservoirs_out.
 // History: none (the last pass's output is the frame's final reservoirs, kept by the graph).
-// Dispatch: one workgroup per 8x8 tile, in interleaved row bands on CPU devices
-// (push.tile_bands), else shuffled (push.tile_stride): restir_tile_origin.
+// Dispatch: one workgroup per tile (lib/pixel_groups.glsl's shape), in interleaved row bands on
+// CPU devices (push.tile_bands), else shuffled (push.tile_stride): pixel_tile_origin.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 

@@ -13,8 +13,8 @@
 // Writes: reservoirs_out, temporal_status.
 // History: "restir.surfaces" and "restir.reservoirs" of last frame; without
 // kRestirFlagHistoryValid the history bindings are stand-ins and are not read.
-// Dispatch: one workgroup per 8x8 tile, in interleaved row bands on CPU devices
-// (push.tile_bands), else shuffled (push.tile_stride): restir_tile_origin.
+// Dispatch: one workgroup per tile (lib/pixel_groups.glsl's shape), in interleaved row bands on
+// CPU devices (push.tile_bands), else shuffled (push.tile_stride): pixel_tile_origin.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -54,7 +54,7 @@ layout(std430, binding = PASS_BINDING(6)) writeonly buffer StatusOut {
   uint status[];
 } temporal_status;
 
-shared float s_weights[kRestirTileSize * kRestirTileSize];
+shared float s_weights[kPixelGroupThreads];
 
 // Finds last frame's pixel for this surface along `motion` (the G-buffer motion's xy); -1 when
 // disoccluded. status: kRestirStatus*.
@@ -139,7 +139,7 @@ void main() {
     barrier();
     float sum = 0.0;
     float count = 0.0;
-    for (uint i = 0u; i < kRestirTileSize * kRestirTileSize; ++i) {
+    for (uint i = 0u; i < kPixelGroupThreads; ++i) {
       float w = s_weights[i];
       sum += w;
       count += w > 0.0 ? 1.0 : 0.0;

@@ -13,10 +13,6 @@
 
 LANTERN_BEGIN_SHARED
 
-// Pixels per side of the square tile one workgroup handles (in restir_tile_origin's order:
-// lavapipe gives each CPU thread a contiguous range of workgroups).
-LANTERN_CONST uint kRestirTileSize = 8u;
-
 // Upper bounds the shaders size their loops and arrays by (settings are validated against them).
 LANTERN_CONST uint kRestirMaxLightCandidates = 256u;
 LANTERN_CONST uint kRestirMaxBsdfCandidates = 16u;
@@ -278,37 +274,6 @@ LANTERN_FUNC bool restir_surfaces_similar(RestirSurface s, float expected_depth,
                                           RestirSurface other, vec4 similarity) {
   return restir_keys_similar(restir_similarity_key(s), expected_depth,
                              restir_similarity_key(other), similarity);
-}
-
-// 8x8 tile g of the dispatch -> top-left pixel (see kRestirTileSize). With bands > 0 (CPU
-// devices: lavapipe hands each of its `bands` threads a contiguous run of workgroups), the
-// workgroups walk rows of tiles in order, row t, t + bands, t + 2 bands, ... for the t-th run:
-// each thread sees the whole image's height (sky and geometry alike) while its consecutive
-// workgroups stay side by side and its rows close together, so the neighbours the reuse passes
-// read stay in its cache. With bands == 0, tile (g * stride) mod count: neighbouring workgroups
-// land far apart (GPUs). Either way a permutation of the tiles.
-LANTERN_FUNC uvec2 restir_tile_origin(uint group, uint stride, uint bands, uvec2 size) {
-  uint tiles_x = (size.x + kRestirTileSize - 1u) / kRestirTileSize;
-  uint tiles_y = (size.y + kRestirTileSize - 1u) / kRestirTileSize;
-  if (bands == 0u || tiles_x == 0u || tiles_y == 0u) {
-    uint tile = (group * stride) % max(tiles_x * tiles_y, 1u);
-    return uvec2(tile % tiles_x, tile / tiles_x) * kRestirTileSize;
-  }
-  // The k-th row of the sequence: the first `longer` bands hold q + 1 rows, the others q.
-  uint k = group / tiles_x;
-  uint q = tiles_y / bands;
-  uint longer = tiles_y % bands;
-  uint band;
-  uint i;
-  if (k < longer * (q + 1u)) {
-    band = k / (q + 1u);
-    i = k % (q + 1u);
-  } else {
-    uint rest = k - longer * (q + 1u);
-    band = longer + rest / max(q, 1u);
-    i = rest % max(q, 1u);
-  }
-  return uvec2(group % tiles_x, band + i * bands) * kRestirTileSize;
 }
 
 LANTERN_END_SHARED

@@ -1,7 +1,8 @@
-// The tile orders of the per-pixel passes (lighting/frame/tile_order.h, shared/restir.h's
-// restir_tile_origin): g -> g * stride mod count, and the interleaved bands of tile rows the
-// reuse passes walk on CPU devices, visit every tile exactly once for every frame size; each
-// thread's contiguous run of workgroups walks its own band of rows. And restir.temporal's history
+// The tile orders of the per-pixel passes (lighting/frame/tile_order.h, shared/pixel_groups.h's
+// pixel_tile_origin): g -> g * stride mod count, and the interleaved bands of tile rows the
+// reuse passes walk on CPU devices, visit every tile exactly once for every frame size and tile
+// shape (8x8, the CPU's rows); each thread's contiguous run of workgroups walks its own band of
+// rows. And restir.temporal's history
 // permutation (restir_permuted_history_pixel): a one-pixel move that is its own inverse. And the
 // workgroup shape the per-pixel passes take per device (pixel_group_constants).
 #include <gtest/gtest.h>
@@ -48,10 +49,12 @@ TEST(TileOrder, HistoryPermutationMovesEveryPixelOnceByOnePixel) {
 }
 
 TEST(TileOrder, CountCoversTheImage) {
-  EXPECT_EQ(tile_count(160, 90, 8), 20u * 12u);
-  EXPECT_EQ(tile_count(1, 1, 8), 1u);
-  EXPECT_EQ(tile_count(64, 64, 8), 64u);
-  EXPECT_EQ(tile_count(65, 64, 16), 5u * 4u);
+  EXPECT_EQ(tile_count(160, 90, {8, 8}), 20u * 12u);
+  EXPECT_EQ(tile_count(1, 1, {8, 8}), 1u);
+  EXPECT_EQ(tile_count(64, 64, {8, 8}), 64u);
+  EXPECT_EQ(tile_count(65, 64, {16, 16}), 5u * 4u);
+  EXPECT_EQ(tile_count(160, 90, {64, 1}), 3u * 90u);
+  EXPECT_EQ(tile_count(320, 180, {64, 1}), 5u * 180u);
 }
 
 TEST(TileOrder, StrideIsAPermutationAndScatters) {
@@ -71,35 +74,38 @@ TEST(TileOrder, StrideIsAPermutationAndScatters) {
 }
 
 TEST(TileOrder, BandsArePermutationsAndEachRunWalksItsBand) {
-  const std::uint32_t t = gpu::kRestirTileSize;
-  for (const auto& [w, h] : {std::pair{320u, 180u}, {640u, 360u}, {160u, 90u}, {8u, 8u}, {9u, 200u},
-                             {1u, 1u}, {1280u, 720u}}) {
-    const std::uint32_t tiles_x = (w + t - 1) / t, tiles_y = (h + t - 1) / t;
-    const std::uint32_t count = tiles_x * tiles_y;
-    for (std::uint32_t bands : {0u, 1u, 2u, 3u, 4u, 7u, 16u, 64u}) {
-      std::vector<bool> seen(count, false);
-      for (std::uint32_t g = 0; g < count; ++g) {
-        const glm::uvec2 o = gpu::restir_tile_origin(g, tile_stride(count), bands, {w, h});
-        ASSERT_EQ(o.x % t, 0u);
-        ASSERT_EQ(o.y % t, 0u);
-        ASSERT_LT(o.x, w);
-        ASSERT_LT(o.y, h);
-        const std::uint32_t tile = (o.y / t) * tiles_x + o.x / t;
-        ASSERT_FALSE(seen[tile]) << w << "x" << h << " bands " << bands << " group " << g;
-        seen[tile] = true;
-        if (bands > 0 && g > 0 && g % tiles_x != 0) {
-          const glm::uvec2 before = gpu::restir_tile_origin(g - 1, tile_stride(count), bands, {w, h});
-          EXPECT_EQ(before + glm::uvec2(t, 0), o) << "consecutive workgroups lie side by side";
+  for (const glm::uvec2 t : {glm::uvec2(8, 8), glm::uvec2(64, 1), glm::uvec2(32, 2)}) {
+    for (const auto& [w, h] : {std::pair{320u, 180u}, {640u, 360u}, {160u, 90u}, {8u, 8u},
+                               {9u, 200u}, {1u, 1u}, {1280u, 720u}, {95u, 53u}}) {
+      const std::uint32_t tiles_x = (w + t.x - 1) / t.x, tiles_y = (h + t.y - 1) / t.y;
+      const std::uint32_t count = tiles_x * tiles_y;
+      ASSERT_EQ(count, tile_count(w, h, t));
+      for (std::uint32_t bands : {0u, 1u, 2u, 3u, 4u, 7u, 16u, 64u}) {
+        std::vector<bool> seen(count, false);
+        for (std::uint32_t g = 0; g < count; ++g) {
+          const glm::uvec2 o = gpu::pixel_tile_origin(g, tile_stride(count), bands, {w, h}, t);
+          ASSERT_EQ(o.x % t.x, 0u);
+          ASSERT_EQ(o.y % t.y, 0u);
+          ASSERT_LT(o.x, w);
+          ASSERT_LT(o.y, h);
+          const std::uint32_t tile = (o.y / t.y) * tiles_x + o.x / t.x;
+          ASSERT_FALSE(seen[tile]) << w << "x" << h << " bands " << bands << " group " << g;
+          seen[tile] = true;
+          if (bands > 0 && g > 0 && g % tiles_x != 0) {
+            const glm::uvec2 before =
+                gpu::pixel_tile_origin(g - 1, tile_stride(count), bands, {w, h}, t);
+            EXPECT_EQ(before + glm::uvec2(t.x, 0), o) << "consecutive workgroups lie side by side";
+          }
         }
       }
     }
   }
-  // 2 threads over 320x180 (40 x 23 tiles): the first run of rows is the even rows, the second
-  // the odd ones, so each thread spans the image's height.
+  // 2 threads over 320x180 in 8x8 tiles (40 x 23): the first run of rows is the even rows, the
+  // second the odd ones, so each thread spans the image's height.
   std::set<std::uint32_t> first, second;
   const std::uint32_t rows = 23, cols = 40;
   for (std::uint32_t g = 0; g < rows * cols; ++g) {
-    const std::uint32_t row = gpu::restir_tile_origin(g, 1, 2, {320, 180}).y / t;
+    const std::uint32_t row = gpu::pixel_tile_origin(g, 1, 2, {320, 180}, {8, 8}).y / 8;
     (g < 12 * cols ? first : second).insert(row);
   }
   for (std::uint32_t r : first) EXPECT_EQ(r % 2, 0u) << r;
@@ -133,12 +139,14 @@ TEST(TileOrder, BandsFollowTheCpuDevicesThreads) {
 // The per-pixel passes' workgroup shape (shared/pixel_groups.h) by device: rows on a CPU, squares
 // on a GPU, set through the two specialisation constants the shaders declare.
 TEST(TileOrder, PixelGroupsAreRowsOnCpuDevicesAndSquaresOnGpus) {
+  EXPECT_EQ(pixel_group_shape(true), glm::uvec2(gpu::kPixelGroupCpuWidth, 1u));
+  EXPECT_EQ(pixel_group_shape(false), glm::uvec2(gpu::kPixelGroupGpuSide));
   using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
   const std::span<const runtime::ShaderReflection* const> no_shaders;
-  EXPECT_EQ(pixel_group_constants(true).resolve(no_shaders, "test"),
+  EXPECT_EQ(pixel_group_constants(pixel_group_shape(true)).resolve(no_shaders, "test"),
             (Pairs{{gpu::kPixelGroupWidthId, gpu::kPixelGroupCpuWidth},
                    {gpu::kPixelGroupHeightId, 1u}}));
-  EXPECT_EQ(pixel_group_constants(false).resolve(no_shaders, "test"),
+  EXPECT_EQ(pixel_group_constants(pixel_group_shape(false)).resolve(no_shaders, "test"),
             (Pairs{{gpu::kPixelGroupWidthId, gpu::kPixelGroupGpuSide},
                    {gpu::kPixelGroupHeightId, gpu::kPixelGroupGpuSide}}));
 }
