@@ -2,9 +2,9 @@
 // pixel_tile_origin): g -> g * stride mod count, and the interleaved bands of tile rows the
 // reuse passes walk on CPU devices, visit every tile exactly once for every frame size and tile
 // shape (8x8, the CPU's rows); each thread's contiguous run of workgroups walks its own band of
-// rows. And restir.temporal's history
-// permutation (restir_permuted_history_pixel): a one-pixel move that is its own inverse. And the
-// workgroup shape the per-pixel passes take per device (pixel_group_constants).
+// rows. And restir.temporal's history permutation (restir_permuted_history_pixel): a one-pixel
+// move that is its own inverse. And the workgroup shape the per-pixel passes take per device
+// (pixel_group_constants).
 #include <gtest/gtest.h>
 #include <sched.h>
 

@@ -6,12 +6,17 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 
 #include "engine/core/error.h"
+#include "lighting/frame/tile_order.h"
+#include "lighting/restir/restir_pass.h"
+#include "lighting/visibility/visibility_backend.h"
+#include "shared/pixel_groups.h"
 #include "shared/restir.h"
 #include "shared/scene.h"
 #include "tests/restir/restir_test_support.h"
@@ -52,6 +57,29 @@ class RestirGpuTest : public runtime::test::GpuTest {
 
 // Bias on lit surfaces (balance, pairwise, none and the single-stage configurations, over
 // independent seeds against the reference integrator): restir_bias_test.cpp.
+
+// The restir.* tile passes take the device's workgroup shape (lighting/frame/tile_order.h: rows
+// on a CPU device such as this one, squares on a GPU), except restir.initial, whose local light
+// list is the tile's and stays 8x8 on every device (lighting/restir/restir_pass.cpp). The bias and
+// end-to-end tests here and in restir_bias_test.cpp run the passes in these shapes.
+TEST_F(RestirGpuTest, TilePassesTakeTheDevicesShapeAndInitialStaysSquare) {
+  const glm::uvec2 shape = lighting::pixel_group_shape(lighting::is_cpu_device(device.info()));
+  const std::array<std::uint32_t, 3> device_shape{shape.x, shape.y, 1};
+  const std::array<std::uint32_t, 3> square{gpu::kPixelGroupGpuSide, gpu::kPixelGroupGpuSide, 1};
+  for (const char* stage : {"temporal", "spatial", "shade"}) {
+    EXPECT_EQ(lighting::RestirPass(device, shaders, stage).pipeline().local_size(), device_shape)
+        << stage;
+  }
+  EXPECT_EQ(lighting::RestirPass(device, shaders, "initial").pipeline().local_size(), square);
+  EXPECT_EQ(lighting::RestirPass(device, shaders, "restir.initial_rays", "initial", "closestemit")
+                .pipeline()
+                .local_size(),
+            square);
+  EXPECT_EQ(lighting::RestirPass(device, shaders, "restir.shade", "shade", "hostemit")
+                .pipeline()
+                .local_size(),
+            device_shape);
+}
 
 // relMSE of a ReSTIR run along cornell_lights' "dolly" path, frames 8..11 against baseline
 // references of the same (frozen) snapshots.
