@@ -1,10 +1,12 @@
-// The dispatch shape of the per-pixel compute passes (integrators.baseline, integrators.reference,
-// restir.*): one workgroup per square tile, visited in a shuffled order g -> g * stride mod count
-// so neighbouring workgroups land far apart and both lavapipe threads get a mix of sky and
-// geometry (shared/PLATFORM.md); on CPU devices restir.temporal and restir.spatial walk
-// interleaved bands of tile rows instead (tile_bands), which keeps the neighbours they read in
-// each thread's cache. The passes with one thread per pixel in dispatch order (denoise.*,
-// upscale.temporal) take their workgroup shape per device (pixel_group_constants).
+// The dispatch shape of the per-pixel compute passes. Their workgroups take a shape per device
+// (pixel_group_shape, shared/pixel_groups.h: rows of 64 on CPU devices, 8x8 on GPUs). The tile
+// passes (integrators.baseline, integrators.reference, restir.*; restir.initial keeps 8x8 on every
+// device) run one workgroup per tile of their pipeline's shape, visited in a shuffled order
+// g -> g * stride mod count so neighbouring workgroups land far apart and both lavapipe threads
+// get a mix of sky and geometry (shared/PLATFORM.md); on CPU devices restir.temporal and
+// restir.spatial walk interleaved bands of tile rows instead (tile_bands), which keeps the
+// neighbours they read in each thread's cache. The others (denoise.*, upscale.temporal) map
+// threads to pixels in dispatch order.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +14,6 @@
 #include <glm/vec2.hpp>
 
 #include "runtime/gpu/compute_pipeline.h"
-#include "runtime/gpu/pipeline.h"
 #include "runtime/runtime_fwd.h"
 
 namespace lantern::lighting {
