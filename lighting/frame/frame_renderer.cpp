@@ -135,7 +135,8 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
                            scene_->previous_light_count(),
                            scene_->scene_radius(),
                            scene_->volume_count(),
-                           scene_->data().lights.first_group_share()};
+                           scene_->data().lights.first_group_share(),
+                           scene_->light_remap_is_identity()};
   const bool upscaling = width_ != output_width_ || height_ != output_height_;
   const bool jitter = jitter_mode_ == Jitter::On || (jitter_mode_ == Jitter::WhenUpscaling && upscaling);
   previous_jitter_ = history_valid ? jitter_ : glm::vec2(0.0f);

@@ -26,7 +26,7 @@ gpu::FrameConstants make_frame_constants(const Camera& camera, std::uint32_t wid
   fc.frame = glm::uvec4(width, height, frame_index, seed);
   fc.counts = glm::uvec4(counts.lights, counts.instances, counts.emissive_triangles, 1u);
   fc.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  fc.history = glm::uvec4(counts.previous_lights, 0u, 0u, 0u);
+  fc.history = glm::uvec4(counts.previous_lights, counts.lights_keep_indices ? 1u : 0u, 0u, 0u);
   fc.scene = glm::vec4(counts.scene_radius, counts.triangle_light_share, 0.0f, 0.0f);
   fc.media = glm::uvec4(counts.volumes, 0u, 0u, 0u);
   return fc;
@@ -59,7 +59,7 @@ gpu::FrameConstants make_frame_constants(const FrameSnapshot& snapshot, std::uin
   fc.counts = glm::uvec4(counts.lights, counts.instances, counts.emissive_triangles,
                          history_valid ? 0u : 1u);
   fc.environment = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  fc.history = glm::uvec4(counts.previous_lights, 0u, 0u, 0u);
+  fc.history = glm::uvec4(counts.previous_lights, counts.lights_keep_indices ? 1u : 0u, 0u, 0u);
   fc.scene = glm::vec4(counts.scene_radius, counts.triangle_light_share, 0.0f, 0.0f);
   fc.media = glm::uvec4(counts.volumes, 0u, 0u, 0u);
   return fc;

@@ -21,6 +21,7 @@ struct FrameCounts {
   float triangle_light_share = 0.0f;  // the emissive triangles' share of the lights' power: how
                                       // often a light draw picks from their alias table
                                       // (shared/alias_table.h; LightTable::first_group_share)
+  bool lights_keep_indices = false;   // the prev -> cur remap is the identity (not read)
 };
 
 // World -> clip for `camera` rendering a width x height image (the image's aspect ratio wins

@@ -102,6 +102,9 @@ class GpuScene {
   }
   // Entries of light_previous_to_current (last frame's light count).
   std::uint32_t previous_light_count() const { return static_cast<std::uint32_t>(remap_.size()); }
+  // Whether light_previous_to_current is the identity (every light kept its index since last
+  // frame): the shaders then skip reading it (FrameConstants history.y).
+  bool light_remap_is_identity() const { return remap_is_identity_; }
   std::uint32_t instance_count() const {
     return static_cast<std::uint32_t>(data_.instances.size());
   }

@@ -112,8 +112,7 @@ void main() {
         // was empty: +7% on cornell_lights' lit surfaces, +18% with 1 candidate.)
         uint light = history.selected.light_index;
         if (light != kInvalidLight && light != kEnvironmentLight) {
-          light = light < frame_constants.frame.history.x ? light_previous_to_current.index[light]
-                                                           : kInvalidLight;
+          light = scene_light_from_previous(light);
           if (light >= restir_light_count()) light = kInvalidLight;
         }
         reservoir_remap_light(history, light);

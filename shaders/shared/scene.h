@@ -24,7 +24,9 @@ struct FrameConstants {
   uvec4 counts;            // x: lights in the alias table (0: none can be sampled); y: instances;
                            // z: emissive triangles; w: 1 after a camera cut
   vec4 environment;        // rgb: uniform sky radiance scale; w: exposure
-  uvec4 history;           // x: last frame's lights (entries of light_previous_to_current); yzw: 0
+  uvec4 history;           // x: last frame's lights (entries of light_previous_to_current); y: 1
+                           // when every light kept its index (the map is the identity and is
+                           // not read: scene_light_from_previous); zw: 0
   vec4 scene;              // x: radius of the world's bounding sphere (directional and environment
                            // shadow rays end kDirectionalShadowRadii radii away); y: the
                            // emissive triangles' share of the lights' power (the first of the

@@ -106,7 +106,7 @@ bool history_at(vec3 point, out MediaReservoir h) {
   h = media_reservoir_load(reservoirs_history.r[qp.y * push.width + qp.x]);
   uint light = h.y.light;
   if (light != kInvalidLight && light != kEnvironmentLight) {
-    light = light < fc.history.x ? light_previous_to_current.index[light] : kInvalidLight;
+    light = scene_light_from_previous(light);
   }
   h.y.light = light;
   h.M = min(h.M, push.m_cap);

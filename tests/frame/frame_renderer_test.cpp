@@ -12,6 +12,7 @@
 #include "engine/level/level_loader.h"
 #include "engine/level/primitives.h"
 #include "engine/world/world.h"
+#include "lighting/scene/frame_constants.h"
 #include "lighting/scene/scene_data.h"
 #include "runtime/gpu/transfer.h"
 #include "shared/color.h"
@@ -159,12 +160,19 @@ TEST_F(FrameRendererTest, RemovedLightMapsToInvalidAndLeavesTheImage) {
   const auto& scene = harness.renderer().scene();
   ASSERT_EQ(scene.light_record_count(), 2u);
   EXPECT_EQ(scene.data().lights.stable_ids()[1], lighting::kAnalyticLightIdBase | 1u);
+  // Every light kept its index: the shaders are told the remap is the identity and skip it.
+  EXPECT_TRUE(scene.light_remap_is_identity());
+  const lighting::FrameCounts steady{.previous_lights = 2, .lights_keep_indices = true};
+  EXPECT_EQ(lighting::make_frame_constants(both, 41, 31, 1, 1, steady, true).history.y, 1u);
 
   FrameSnapshot without = both;
   without.camera_cut = false;
   without.lights.erase(without.lights.begin() + 1);  // the light with stable id 1
   const runtime::ImageRGBA32F image = harness.render(without);
   ASSERT_EQ(scene.previous_light_count(), 2u);
+  EXPECT_FALSE(scene.light_remap_is_identity());  // the shaders read the map this frame
+  const lighting::FrameCounts removed{.previous_lights = 2, .lights_keep_indices = false};
+  EXPECT_EQ(lighting::make_frame_constants(without, 41, 31, 2, 1, removed, true).history.y, 0u);
   EXPECT_EQ(scene.light_previous_to_current()[0], 0u);
   EXPECT_EQ(scene.light_previous_to_current()[1], gpu::kInvalidLight);
   EXPECT_EQ(scene.light_count(), 1u);
@@ -187,7 +195,13 @@ TEST_F(FrameRendererTest, RemovedLightMapsToInvalidAndLeavesTheImage) {
   EXPECT_EQ(scene.light_record_count(), 2u);
   EXPECT_EQ(scene.light_previous_to_current().size(), 1u);
   EXPECT_EQ(scene.light_previous_to_current()[0], 0u);
+  EXPECT_FALSE(scene.light_remap_is_identity());
   EXPECT_EQ(again.count_non_finite(), 0u);
+  // A frame later both keep their indices again: the identity, not read.
+  harness.render(both);
+  EXPECT_TRUE(scene.light_remap_is_identity());
+  ASSERT_EQ(scene.light_previous_to_current().size(), 2u);
+  EXPECT_EQ(scene.light_previous_to_current()[1], 1u);
 }
 
 TEST_F(FrameRendererTest, LightBuffersGrowWhenLightsAppear) {
