@@ -29,8 +29,9 @@ std::uint32_t tile_count(std::uint32_t width, std::uint32_t height,
 // 1 when the product could overflow 32 bits.
 std::uint32_t tile_stride(std::uint32_t count);
 
-// The interleaved bands of tile rows restir.temporal and restir.spatial walk (shared/pixel_groups.h,
-// pixel_tile_origin): on a CPU device the number of threads lavapipe splits a dispatch between
+// The interleaved bands of tile rows restir.temporal and restir.spatial walk
+// (shared/pixel_groups.h, pixel_tile_origin): on a CPU device the number of threads lavapipe
+// splits a dispatch between
 // (counted as llvmpipe does: the CPUs this process may use, or LP_NUM_THREADS; 1 to 32), 0 (the
 // stride's shuffle) on a GPU.
 std::uint32_t tile_bands(bool cpu_device);
