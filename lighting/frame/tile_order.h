@@ -31,9 +31,8 @@ std::uint32_t tile_stride(std::uint32_t count);
 
 // The interleaved bands of tile rows restir.temporal and restir.spatial walk
 // (shared/pixel_groups.h, pixel_tile_origin): on a CPU device the number of threads lavapipe
-// splits a dispatch between
-// (counted as llvmpipe does: the CPUs this process may use, or LP_NUM_THREADS; 1 to 32), 0 (the
-// stride's shuffle) on a GPU.
+// splits a dispatch between (counted as llvmpipe does: the CPUs this process may use, or
+// LP_NUM_THREADS; 1 to 32), 0 (the stride's shuffle) on a GPU.
 std::uint32_t tile_bands(bool cpu_device);
 
 // The workgroup shape of the per-pixel passes (shared/pixel_groups.h): rows of
