@@ -382,6 +382,8 @@ void run_bench(const BenchOptions& o, const CommonOptions& common) {
         {"device", device.info().name},
         {"visibility", lighting::visibility_backend_name(visibility.backend)},
         {"visibility_why", visibility.why},
+        // What ReSTIR's presampling tiles and local lists follow (RestirSettings::light_spread).
+        {"light_spread", session.renderer().scene().data().light_spread.spread},
         {"frames", frames},
         {"warmup", o.warmup},
         {"seed", common.seed},

@@ -57,11 +57,21 @@ class RestirIntegrator final : public Integrator {
   // The push constants a frame with these settings gets (the pass index and history flag aside;
   // each RestirPass sets the tile order of its own tiles).
   static gpu::RestirPush make_push(const RestirSettings& settings, const FrameInputs& inputs);
+  // The light spread the rules below follow: the setting's, else the one measured at load, else
+  // (not measured) the largest float.
+  static float light_spread(const RestirSettings& settings, const FrameInputs& inputs);
   // Presampling tiles this frame gets: 0 when the lights fit in one tile, else the setting,
-  // lowered so that the presampled entries stay at most 1/8 of the light candidates drawn.
+  // lowered so that the presampled entries stay at most 1/8 of the light candidates drawn, and
+  // to the light spread rounded up (at least 1).
   static std::uint32_t presample_tiles(const RestirSettings& settings, const FrameInputs& inputs);
+  // Below this light spread the local lists are off. The levels measured lie a factor of 2 or
+  // more on either side: light_panels 4.1 (panels alike from everywhere, where the lists did not
+  // pay), million_lights 33, harbour_fog 38, night_market 60 (lamps and lanterns that each light
+  // their surroundings).
+  static constexpr float kLocalListsMinSpread = 16.0f;
   // Draws per slot of restir.initial's local light lists this frame: the setting where the level
-  // has at least local_min_lights lights, else 0.
+  // has at least local_min_lights lights and a light spread of at least kLocalListsMinSpread,
+  // else 0.
   static std::uint32_t local_candidates(const RestirSettings& settings, const FrameInputs& inputs);
 
  private:

@@ -186,6 +186,16 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
   } else if (key == "local_min_lights") {
     // Up to the most lights a packed reservoir can index (local_candidates = 0 is the off switch).
     s.local_min_lights = parse_uint(key, value, 1, gpu::kPackedMaxLights - 1);
+  } else if (key == "light_spread") {
+    if (value == "auto") {
+      s.light_spread = kLightSpreadAuto;
+    } else {
+      try {
+        s.light_spread = parse_float(key, value, 0.0f, 1e9f);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("{} (or auto: the spread measured at load)", e.what()));
+      }
+    }
   } else if (key == "visibility_reuse") {
     s.visibility_reuse = parse_uint(key, value, 0, 64);
   } else if (key == "initial_visibility") {
@@ -238,6 +248,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"presample_tiles", std::to_string(s.presample_tiles)},
       {"local_candidates", std::to_string(s.local_candidates)},
       {"local_min_lights", std::to_string(s.local_min_lights)},
+      {"light_spread", s.light_spread < 0.0f ? std::string("auto") : format_float(s.light_spread)},
       {"visibility_reuse", std::to_string(s.visibility_reuse)},
       {"bias_correction", choice_name(kBiasCorrections, s.bias_correction)},
       {"initial_visibility", flag(s.initial_visibility)},

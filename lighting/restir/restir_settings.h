@@ -37,6 +37,8 @@ inline constexpr std::uint32_t kTemporalPermutationDenoised = 2;  // on where th
 std::span<const RestirChoice> restir_temporal_permutations();
 // The choice whose value is `value` ("?" when there is none).
 const char* choice_name(std::span<const RestirChoice> choices, std::uint32_t value);
+// light_spread: "auto", the spread measured at load (RestirSettings::light_spread).
+inline constexpr float kLightSpreadAuto = -1.0f;
 
 struct RestirSettings {
   // Light candidates per pixel (by power, through presampled tiles and local light lists where
@@ -86,20 +88,27 @@ struct RestirSettings {
   // Light presampling tiles of kRestirPresampleTileSize lights each (shared/restir.h): light
   // candidates are drawn from one tile per 8x8 workgroup instead of the whole list, which keeps
   // their reads in cache. 0 turns it off (the alias table directly: fewer correlated candidates,
-  // slower with many lights). More tiles decorrelate neighbouring workgroups at more memory.
+  // slower with many lights). More tiles decorrelate neighbouring workgroups at more memory; a
+  // level gets at most its light spread rounded up (RestirIntegrator::presample_tiles).
   std::uint32_t presample_tiles = 32;
   // Local light lists (shared/restir.h): draws per slot of each 8x8 tile's 64-slot list, picked
   // by RIS towards lights near the tile's surfaces; the tile's light candidates come from its
   // slots. Raise where small lights sit close to surfaces among many others (lamps, lanterns,
   // strips: far less noise next to them); 0 turns it off (candidates by power alone, cheaper per
   // candidate on scenes where every light is far or alike). Used only where the level has at
-  // least local_min_lights lights (RestirIntegrator::local_candidates).
+  // least local_min_lights lights and a light spread of at least 16
+  // (RestirIntegrator::local_candidates).
   std::uint32_t local_candidates = 8;
   // The light count from which the local lists are used: by default more than one presampling
   // tile. Below it RIS over the power distribution already finds every light (cornell_lights' 89
   // emitters: the lists changed its raw relMSE by 0.96-2.1x); lower it for a level of a few
   // hundred lights spread far apart.
   std::uint32_t local_min_lights = gpu::kRestirPresampleTileSize + 1;
+  // The level's light spread as the presampling tiles and local lists see it
+  // (RestirIntegrator::presample_tiles, local_candidates): kLightSpreadAuto takes the one measured
+  // at load (SceneData::light_spread, `lantern info`'s light_sampling.spread); a value >= 0 states
+  // it (e.g. 1000: lights that each light only their surroundings, whatever was measured).
+  float light_spread = kLightSpreadAuto;
   // Visibility reuse: a sample the pixel's history found unoccluded is shaded without a shadow
   // ray, and tested again every this many frames (staggered over pixels). 0 is off (one shadow
   // ray per pixel, unbiased). Exact for a still camera over still geometry; where the camera or

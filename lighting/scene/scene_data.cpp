@@ -350,6 +350,7 @@ SceneData build_scene_data(const Level& level, const std::vector<runtime::Volume
     }
   }
   scene.lights.update(emitters, scene.emissive_triangles);
+  scene.light_spread = measure_light_spread(scene);
   return scene;
 }
 

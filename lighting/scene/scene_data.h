@@ -9,6 +9,7 @@
 #include "engine/scene/level.h"
 #include "lighting/bvh/scene_bvh.h"
 #include "lighting/lights/light_table.h"
+#include "lighting/scene/light_spread.h"
 #include "lighting/textures/texture_set.h"
 #include "runtime/volume/volume_grid.h"
 #include "shared/scene.h"
@@ -52,6 +53,10 @@ struct SceneData {
   std::vector<gpu::GpuVolumeCell> volume_cells;
   std::vector<float> volume_values;
   std::vector<glm::mat4> volume_grid_to_world;
+  // How much the light reaching the surfaces depends on where they are (light_spread.h), measured
+  // once from the lights the level starts with: ReSTIR's presampling tiles and local light lists
+  // follow it (RestirIntegrator).
+  LightSpread light_spread;
   double textured_emitter_ms = 0.0;  // wall time of integrating the means at load
   glm::vec3 bounds_min{0.0f};  // world-space box of all instances
   glm::vec3 bounds_max{0.0f};

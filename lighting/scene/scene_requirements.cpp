@@ -55,6 +55,7 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
         {"why", fmt::format("{} emissive triangles + {} analytic lights", scene.emissive_triangles,
                             analytic)},
         {"emitters", lights},
+        {"spread", std::round(double{scene.light_spread.spread} * 100.0) / 100.0},
         {"bytes", bytes},
         {"memory", mib(bytes)}};
   }

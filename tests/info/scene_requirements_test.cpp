@@ -6,6 +6,7 @@
 
 #include "engine/level/level_loader.h"
 #include "engine/scene/level_summary.h"
+#include "lighting/scene/scene_data.h"
 
 namespace lantern::lighting {
 namespace {
@@ -35,6 +36,11 @@ TEST(SceneRequirements, LightSamplingSizedByEmitters) {
   const LevelSummary lit = describe(load_level_argument("cornell_lights"));
   EXPECT_EQ(lit.enabled.at("light_sampling").at("emitters"), 89);  // 88 triangles + 1 point
   EXPECT_EQ(lit.enabled.at("light_sampling").at("bytes"), 89 * (64 + 16));
+  // The light spread ReSTIR's presampling and local lists follow, as the renderer measures it
+  // (to 2 decimals).
+  EXPECT_NEAR(lit.enabled.at("light_sampling").at("spread").get<double>(),
+              build_scene_data(load_level_argument("cornell_lights")).light_spread.spread, 0.006);
+  EXPECT_GT(lit.enabled.at("light_sampling").at("spread").get<float>(), 1.0f);
 }
 
 TEST(SceneRequirements, PerFrameMemoryFollowsTheSize) {

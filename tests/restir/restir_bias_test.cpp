@@ -155,12 +155,13 @@ const Mode kModes[] = {
     {"pairwise", {{"bias_correction", "pairwise"}}, true, true},
     {"none", {{"bias_correction", "none"}}, false, true},
     // One BSDF candidate MIS'd with the light candidates; then the same with the local light
-    // lists on whatever the light count (local_min_lights 1: cornell_lights and the room draw
-    // their slots from the alias table, many_lights from presampled tiles), where the balance
-    // heuristic weighs the light strategy's own density while a candidate carries its slot's
-    // contribution weight.
+    // lists on whatever the light count and spread (local_min_lights 1, light_spread 1000:
+    // cornell_lights and the room draw their slots from the alias table, many_lights from
+    // presampled tiles), where the balance heuristic weighs the light strategy's own density
+    // while a candidate carries its slot's contribution weight.
     {"bsdf", {{"bsdf_candidates", "1"}}, true, true},
-    {"local-bsdf", {{"bsdf_candidates", "1"}, {"local_min_lights", "1"}}, true, true},
+    {"local-bsdf", {{"bsdf_candidates", "1"}, {"local_min_lights", "1"}, {"light_spread", "1000"}},
+     true, true},
     // Temporal permutation (what the denoiser's frames use): each pixel's history comes from a
     // neighbour, which pairwise MIS weighs as such. The balance heuristic's: study only.
     {"permuted", {{"temporal_permutation", "on"}}, true, true},
@@ -213,7 +214,9 @@ class RestirBiasTest : public runtime::test::GpuTest {
   // upscaling) for the reference and ReSTIR alike: both average the same 8 sample positions (32
   // reference frames, 8-frame runs), so their expectations are equal, and ReSTIR's temporal reuse
   // must stay unbiased with motion vectors that carry the jitter. Only the balance mode runs then.
-  void study(const char* scene, std::shared_ptr<const Level> level, bool jitter = false) {
+  // `level_settings` apply after the preset and before each mode's (a level's own "settings").
+  void study(const char* scene, std::shared_ptr<const Level> level, bool jitter = false,
+             const std::vector<std::pair<std::string, std::string>>& level_settings = {}) {
     const StudyParams p = study_params();
     const FrameSnapshot first = test::first_snapshot(level, p.width, p.height);
     const std::size_t pixels = std::size_t{p.width} * p.height;
@@ -316,7 +319,8 @@ class RestirBiasTest : public runtime::test::GpuTest {
           h.integrator().describe_settings();
       for (std::uint32_t chain = 0; chain < p.chains; ++chain) {
         for (std::size_t m = 0; m < modes.size(); ++m) {
-          h.integrator().apply_settings(balanced);  // the preset, then this mode's changes
+          h.integrator().apply_settings(balanced);  // the preset, the level's, this mode's
+          h.integrator().apply_settings(level_settings);
           h.integrator().apply_settings(modes[m]->settings);
           FrameSnapshot s = first;
           s.camera_cut = true;
@@ -380,7 +384,9 @@ TEST_F(RestirBiasTest, OccludedRoomLitSurfaces) {
   study("occluders", test::level_from_json("bias_occluders", kOccludersJson));
 }
 
-// Presampled tiles and the local light lists (balanced's light candidates there come from them).
+// Presampled tiles and the local light lists (balanced's light candidates there come from them;
+// the sign's quads are alike from the room, so its measured light spread would turn the lists off
+// and take fewer tiles: the level states a spread that keeps both).
 TEST_F(RestirBiasTest, ManyLightsPresampledLitSurfaces) {
   const auto level = test::level_from_json("bias_many_lights", many_lights_json());
   std::size_t triangles = 0;
@@ -390,7 +396,7 @@ TEST_F(RestirBiasTest, ManyLightsPresampledLitSurfaces) {
   ASSERT_GT(triangles, gpu::kRestirPresampleTileSize) << "presampling must be on";
   ASSERT_GT(lighting::restir_preset("balanced").presample_tiles, 0u);
   ASSERT_GT(lighting::restir_preset("balanced").local_candidates, 0u) << "local lists must be on";
-  study("many_lights", level);
+  study("many_lights", level, false, {{"light_spread", "1000"}});
 }
 
 }  // namespace

@@ -111,6 +111,9 @@ TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
            {"local_candidates", "257"},
            {"local_candidates", "-1"},
            {"local_min_lights", "0"},
+           {"light_spread", "-1"},
+           {"light_spread", "nan"},
+           {"light_spread", "automatic"},
        }) {
     const std::string message = error_of(key, value);
     EXPECT_NE(message.find(key), std::string::npos) << key << "=" << value << ": " << message;
@@ -216,6 +219,48 @@ TEST(RestirSettings, LocalListsFollowTheLightCount) {
   apply_setting(few, "local_min_lights", "64");
   EXPECT_EQ(RestirIntegrator::local_candidates(few, inputs_of(320, 180, 89)), s.local_candidates);
   EXPECT_EQ(RestirIntegrator::local_candidates(few, inputs_of(320, 180, 63)), 0u);
+}
+
+// The light spread (SceneData::light_spread): a level whose lights reach its surfaces alike
+// (light_panels, 4.1) gets no local lists and as many presampling tiles as its spread rounded up;
+// one whose lights each light their surroundings (night_market, 60) gets both as before, and so
+// does a frame whose spread nobody measured. `light_spread` states one instead; `auto` goes back.
+TEST(RestirSettings, LightSpreadSetsTilesAndLocalLists) {
+  const RestirSettings s = restir_preset("balanced");  // 32 tiles
+  FrameInputs alike = inputs_of(320, 180, 1000000);
+  alike.light_spread = 4.1f;
+  FrameInputs local = alike;
+  local.light_spread = 60.0f;
+  const FrameInputs unmeasured = inputs_of(320, 180, 1000000);
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, alike), 5u);
+  EXPECT_EQ(RestirIntegrator::local_candidates(s, alike), 0u);
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, local), 32u);
+  EXPECT_EQ(RestirIntegrator::local_candidates(s, local), s.local_candidates);
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, unmeasured), 32u);
+  EXPECT_EQ(RestirIntegrator::local_candidates(s, unmeasured), s.local_candidates);
+  // At the threshold the lists are on; the fewest tiles is 1, and resolution still caps them.
+  FrameInputs edge = alike;
+  edge.light_spread = RestirIntegrator::kLocalListsMinSpread;
+  EXPECT_EQ(RestirIntegrator::local_candidates(s, edge), s.local_candidates);
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, edge), 16u);
+  edge.light_spread = 0.0f;
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, edge), 1u);
+  edge.light_spread = 60.0f;
+  edge.width = 160;
+  edge.height = 90;
+  EXPECT_EQ(RestirIntegrator::presample_tiles(s, edge), 14u);
+
+  RestirSettings stated = s;
+  apply_setting(stated, "light_spread", "1000");
+  EXPECT_EQ(RestirIntegrator::presample_tiles(stated, alike), 32u);
+  EXPECT_EQ(RestirIntegrator::local_candidates(stated, alike), s.local_candidates);
+  apply_setting(stated, "light_spread", "2.5");
+  EXPECT_EQ(RestirIntegrator::presample_tiles(stated, local), 3u);
+  EXPECT_EQ(RestirIntegrator::local_candidates(stated, local), 0u);
+  EXPECT_EQ(RestirIntegrator::make_push(stated, local).presample_tiles, 3u);
+  apply_setting(stated, "light_spread", "auto");
+  EXPECT_EQ(RestirIntegrator::presample_tiles(stated, alike), 5u);
+  EXPECT_EQ(describe(stated), describe(s));
 }
 
 // Temporal permutation: `denoised` (the default, every preset) sets the shaders' flag exactly
