@@ -50,7 +50,8 @@ struct FrameInputs {
   std::uint32_t light_count = 0;           // current lights (alias table size)
   std::uint32_t previous_light_count = 0;  // entries of light_previous_to_current
   // The level's light spread (SceneData::light_spread, measured at load); unset where nobody
-  // measured it (ReSTIR then decides by the light count alone).
+  // measured it or no light reached a surface then (ReSTIR then decides by the light count
+  // alone).
   std::optional<float> light_spread;
   // The denoiser consumes this frame's radiance (FrameOutput::Denoised with the denoiser on):
   // an integrator may then trade raw noise for errors a denoiser averages better

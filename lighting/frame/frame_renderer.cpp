@@ -167,7 +167,10 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   inputs_.seed = seed_;
   inputs_.light_count = scene_->light_count();
   inputs_.previous_light_count = scene_->previous_light_count();
-  inputs_.light_spread = scene_->data().light_spread.spread;
+  // A spread from no lit point (no lights at load) says nothing: the count rules decide then.
+  if (const LightSpread& spread = scene_->data().light_spread; spread.points > 0) {
+    inputs_.light_spread = spread.spread;
+  }
   inputs_.denoised = frame_output_ == FrameOutput::Denoised && denoise_.enabled;
   hdr = integrator_->add_passes(graph, inputs_, hdr);
   if (volume_camera_) {

@@ -204,6 +204,30 @@ TEST_F(FrameRendererTest, RemovedLightMapsToInvalidAndLeavesTheImage) {
   EXPECT_EQ(scene.light_previous_to_current()[1], 1u);
 }
 
+// The light spread measured at load reaches the integrators (ReSTIR's presampling tiles and
+// local lists follow it); a level that starts without lights measured nothing, and its frames
+// say so (the count rules decide).
+TEST_F(FrameRendererTest, TheLightSpreadReachesTheIntegrators) {
+  auto level = std::make_shared<const Level>(two_light_level());
+  World world(level, {.threads = 1, .seed = 1, .fixed_dt = 1.0 / 60.0, .aspect = 41.0f / 31.0f});
+  test::FrameHarness harness(device, shaders, level, 41, 31);
+  harness.render(world.step());
+  const lighting::LightSpread& spread = harness.renderer().scene().data().light_spread;
+  ASSERT_GT(spread.points, 0u);
+  EXPECT_GT(spread.spread, 0.0f);  // two bulbs of different power at different distances
+  ASSERT_TRUE(harness.renderer().last_inputs().light_spread.has_value());
+  EXPECT_EQ(*harness.renderer().last_inputs().light_spread, spread.spread);
+
+  Level dark_level = two_light_level();
+  dark_level.lights.clear();
+  auto dark = std::make_shared<const Level>(std::move(dark_level));
+  World dark_world(dark, {.threads = 1, .seed = 1, .fixed_dt = 1.0 / 60.0, .aspect = 41.0f / 31.0f});
+  test::FrameHarness dark_harness(device, shaders, dark, 41, 31);
+  dark_harness.render(dark_world.step());
+  EXPECT_EQ(dark_harness.renderer().scene().data().light_spread.points, 0u);
+  EXPECT_FALSE(dark_harness.renderer().last_inputs().light_spread.has_value());
+}
+
 TEST_F(FrameRendererTest, LightBuffersGrowWhenLightsAppear) {
   auto level = std::make_shared<const Level>(two_light_level());
   World world(level, {.threads = 1, .seed = 1, .fixed_dt = 1.0 / 60.0, .aspect = 41.0f / 31.0f});
