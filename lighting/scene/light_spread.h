@@ -12,8 +12,6 @@
 
 #include <cstdint>
 
-#include "lighting/lights/light_table.h"
-
 namespace lantern::lighting {
 
 struct SceneData;
