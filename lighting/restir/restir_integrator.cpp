@@ -90,8 +90,8 @@ std::uint32_t RestirIntegrator::presample_tiles(const RestirSettings& s,
   // light at a surface with relative variance spread / (T * tile size), at most 1 / tile size
   // once T >= spread, and every further tile only adds records for the passes to read in no
   // order (light_panels: 4.1, 5 tiles instead of 32; night_market: 60, all 32).
-  const double spread = std::ceil(std::min<double>(light_spread(s, inputs), s.presample_tiles));
-  const std::uint64_t wanted = std::max<std::uint64_t>(static_cast<std::uint64_t>(spread), 1);
+  const auto wanted = static_cast<std::uint64_t>(
+      std::ceil(std::min<double>(light_spread(s, inputs), s.presample_tiles)));
   return static_cast<std::uint32_t>(
       std::clamp<std::uint64_t>(std::min(affordable, wanted), 1, s.presample_tiles));
 }

@@ -17,21 +17,18 @@ struct WorldTriangle {
   glm::vec3 p0, e1, e2;
 };
 
-bool emits(const SceneData& scene, const gpu::GpuInstance& instance) {
-  const std::uint32_t material = instance.geometry.x;
-  return material < scene.materials.size() &&
-         gpu::luminance(glm::vec3(scene.materials[material].emission)) > 0.0f;
-}
+// build_scene_data names each emitting instance's first triangle light (kInvalidLight: none).
+bool emits(const gpu::GpuInstance& instance) { return instance.bvh.y != gpu::kInvalidLight; }
 
 // The world-space triangles of the instances that do not emit (of every instance when all do),
 // with the running sum of their areas.
 std::vector<WorldTriangle> surface_triangles(const SceneData& scene, std::vector<double>& cdf) {
   bool any_dark = false;
-  for (const gpu::GpuInstance& instance : scene.instances) any_dark |= !emits(scene, instance);
+  for (const gpu::GpuInstance& instance : scene.instances) any_dark |= !emits(instance);
   std::vector<WorldTriangle> out;
   double total = 0.0;
   for (const gpu::GpuInstance& instance : scene.instances) {
-    if (any_dark && emits(scene, instance)) continue;
+    if (any_dark && emits(instance)) continue;
     const glm::mat4& m = instance.object_to_world;
     const std::uint64_t first = instance.geometry.y;
     const std::uint64_t end =
