@@ -41,6 +41,7 @@ gpu::DenoisePush Denoiser::make_push(const DenoiseSettings& s, const FrameInputs
   // Stabilisation needs the à-trous chain: its last step blends (denoise.atrous_modulate).
   p.stabilize = s.atrous_iterations > 0 ? s.stabilize : 0.0f;
   p.stabilize_band = s.stabilize_band;
+  p.repay = s.repay;
   p.max_history = s.max_history;
   // Levels with volumes: the fog in front of the sky is as noisy as any lit surface, so sky
   // pixels are filtered as a surface where camera rays end (volume passes, light_eval.h).
@@ -89,6 +90,13 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
   if (history && stable_history.valid()) push.flags |= gpu::kDenoiseFlagStableHistory;
   BufferHandle stable_reprojected =
       graph.create_buffer("denoise.stable_reprojected", stable_desc);
+  // denoise.owed: the light the clamps took and have not given back, kept only while repaying
+  // (push.repay > 0); off, a one-element stand-in that neither side touches.
+  const bool repay = push.repay > 0.0f;
+  BufferHandle owed = repay ? graph.create_history_buffer("denoise.owed", vec4s)
+                            : graph.create_buffer("denoise.owed", {4 * sizeof(float)});
+  const BufferHandle owed_history = repay ? graph.history(owed) : BufferHandle{};
+  if (history && owed_history.valid()) push.flags |= gpu::kDenoiseFlagOwedHistory;
   if (!s.confidence) confidence = {};
   if (confidence.valid()) push.flags |= gpu::kDenoiseFlagConfidence;
 
@@ -114,7 +122,10 @@ BufferHandle Denoiser::add_passes(runtime::graph::RenderGraph& graph, const Fram
          {"guide_out", guide, DenoisePass::Buffer::Write},
          // Read only with kDenoiseFlagStableHistory; written only while stabilising.
          {"stable_history", push.flags & gpu::kDenoiseFlagStableHistory ? stable_history : raw},
-         {"stable_reprojected_out", stable_reprojected, DenoisePass::Buffer::Write}});
+         {"stable_reprojected_out", stable_reprojected, DenoisePass::Buffer::Write},
+         // Read only with kDenoiseFlagOwedHistory; written only while repaying.
+         {"owed_history", push.flags & gpu::kDenoiseFlagOwedHistory ? owed_history : raw},
+         {"owed_out", owed, DenoisePass::Buffer::Write}});
     accum = out[1];
     moments = out[2];
     guide = out[3];

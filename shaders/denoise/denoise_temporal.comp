@@ -9,7 +9,10 @@
 // short luminance mean (push.antilag: a light that changes is followed), and blends (alpha =
 // max(c / (c + (length - 1) x the history's mean confidence), push.color_alpha): 1 / history
 // length when every frame is worth the same, else each weighs by the integrator's M; the
-// luminance moments keep 1 / length). An emitter is filtered for the light it reflects and only
+// luminance moments keep 1 / length). With push.repay > 0 the light a clamp takes is owed to the
+// pixel, not dropped: each frame pays back push.repay of what is owed, as far as the clamp's
+// limit leaves room (a still pixel's mean keeps the clamped light; a new sample never exceeds
+// the limit). An emitter is filtered for the light it reflects and only
 // among emitters (its neighbour clamp compares emitters; without kDenoiseFlagFilterEmitters it
 // passes through: denoise_passthrough); the sky passes through unless push.sky_distance > 0
 // (levels with volumes): then a sky pixel is a surface that far along its view ray, facing the
@@ -17,17 +20,18 @@
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
 // surface_keys_history, color_history, moments_history, frame constants (prev_view_proj),
 // confidence_in (with kDenoiseFlagConfidence: the integrator's PackedReservoirs, their M),
-// stable_history (with kDenoiseFlagStableHistory).
+// stable_history (with kDenoiseFlagStableHistory), owed_history (with kDenoiseFlagOwedHistory).
 // Writes: surface_keys_out (this frame's "denoise.surface_keys": each pixel's RestirSimilarityKey,
 // what the reprojection test reads), accum_out (rgb illumination, a:
 // temporal variance; "denoise.color", next frame's history), moments_out ("denoise.moments": x, y
 // luminance moments, z history length, w mean confidence),
 // guide_out ("denoise.guide", denoise_common.glsl), stable_reprojected_out (push.stabilize > 0:
 // last frame's stabilised output at this pixel through the same taps as the colour history; a:
-// the share of the blend denoise.atrous_modulate gives it, 0 where there is none).
-// History: "denoise.surface_keys", "denoise.color", "denoise.moments" (and "denoise.stable") of
-// last frame; without kDenoiseFlagHistoryValid (kDenoiseFlagStableHistory) the history bindings
-// are stand-ins and are not read.
+// the share of the blend denoise.atrous_modulate gives it, 0 where there is none), owed_out
+// (push.repay > 0: "denoise.owed", rgb illumination the clamps took and have not given back).
+// History: "denoise.surface_keys", "denoise.color", "denoise.moments" (and "denoise.stable",
+// "denoise.owed") of last frame; without kDenoiseFlagHistoryValid (kDenoiseFlagStableHistory,
+// kDenoiseFlagOwedHistory) the history bindings are stand-ins and are not read.
 // Dispatch: one thread per pixel, lib/pixel_groups.glsl groups.
 #version 460
 #extension GL_GOOGLE_include_directive : require
@@ -61,6 +65,8 @@ layout(binding = PASS_BINDING(15)) uniform utextureBuffer stable_history;
 layout(std430, binding = PASS_BINDING(16)) writeonly buffer StableReprojectedOut {
   vec4 p[];
 } stable_reprojected_out;
+layout(binding = PASS_BINDING(17)) uniform utextureBuffer owed_history;
+layout(std430, binding = PASS_BINDING(18)) writeonly buffer OwedOut { vec4 p[]; } owed_out;
 
 // This frame's demodulated luminance at pixel q, for the neighbour clamp of a pixel that is an
 // emitter or not (`emitter`); -1 where a neighbour does not count (outside the image, passed
@@ -110,6 +116,7 @@ void main() {
     moments_out.p[index] = vec4(0.0);
     guide_out.p[index] = denoise_guide_passthrough();
     if (push.stabilize > 0.0) stable_reprojected_out.p[index] = vec4(0.0);
+    if (push.repay > 0.0) owed_out.p[index] = vec4(0.0);
     return;
   }
   const bool emitter = denoise_is_emitter(position.w, emission_metallic.rgb);
@@ -157,6 +164,8 @@ void main() {
   vec3 history_stable = vec3(0.0);  // last frame's stabilised output (kDenoiseFlagStableHistory)
   const bool stable = (push.flags & kDenoiseFlagStableHistory) != 0u;
   vec4 history_moments = vec4(0.0);  // x, y moments, z length, w mean confidence
+  const bool owed_history_valid = (push.flags & kDenoiseFlagOwedHistory) != 0u;
+  vec3 owed = vec3(0.0);  // the light last frame's clamps left owed here (push.repay > 0)
   float weight_sum = 0.0;
   if ((push.flags & kDenoiseFlagHistoryValid) != 0u && is_finite(motion.x) && is_finite(motion.y)) {
     vec2 p = vec2(pixel) + motion;  // previous pixel centre minus 0.5
@@ -175,6 +184,7 @@ void main() {
       }
       history_color += w * vec4_fetch(color_history, qi).rgb;
       if (stable) history_stable += w * vec4_fetch(stable_history, qi).rgb;
+      if (owed_history_valid) owed += w * vec4_fetch(owed_history, qi).rgb;
       history_moments += w * vec4_fetch(moments_history, qi);
       weight_sum += w;
     }
@@ -186,6 +196,9 @@ void main() {
     history_color /= weight_sum;
     history_stable /= weight_sum;
     history_moments /= weight_sum;
+    owed /= weight_sum;
+  } else {
+    owed = vec3(0.0);  // a disocclusion or a cut: what was owed here is dropped with the history
   }
   // What denoise.atrous_modulate's stabilisation blends with, and how much (a): all of it on a
   // still point, less as the point moves, none from a pixel on (each frame's bilinear resampling
@@ -228,9 +241,35 @@ void main() {
   const bool black_history = has_history && history_moments.z >= kDenoiseShortHistory &&
                              !(history_moments.x > 0.0);
   float l_moments = l;
+  vec3 taken = vec3(0.0);
   if (l > limit) {
-    illumination = limit > 0.0 ? illumination * (limit / l) : vec3(0.0);
+    vec3 kept = limit > 0.0 ? illumination * (limit / l) : vec3(0.0);
+    taken = illumination - kept;
+    illumination = kept;
     l = limit;
+  }
+  // Repay: push.repay of what is owed, at most up to the limit, joins this frame's sample (its
+  // moments too, so the history judges the next sample by what the pixel shows); what a clamp
+  // took now is owed from the next frame on. The temporal accumulation averages the frames'
+  // samples, so light given back a few frames later counts in the pixel's mean (as much as the
+  // sample it came from where every frame weighs alike). Owed luminance is capped at
+  // kDenoiseMaxMomentLuminance, so an absurd sample cannot make it infinite.
+  if (push.repay > 0.0) {
+    float owed_luminance = luminance(owed);
+    float repaid = min(owed_luminance * push.repay, max(limit - l, 0.0));
+    if (owed_luminance > 0.0 && repaid > 0.0) {
+      vec3 given = owed * (repaid / owed_luminance);
+      illumination += given;
+      owed = max(owed - given, vec3(0.0));
+      l += repaid;
+      l_moments = max(l_moments, l);
+    }
+    owed += taken;
+    owed_luminance = luminance(owed);
+    if (owed_luminance > kDenoiseMaxMomentLuminance) {
+      owed *= kDenoiseMaxMomentLuminance / owed_luminance;
+    }
+    owed_out.p[index] = vec4(owed, 0.0);
   }
   if (!black_history) l_moments = l;
 

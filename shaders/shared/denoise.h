@@ -43,6 +43,8 @@ LANTERN_CONST uint kDenoiseFlagStableHistory = 8u;
 // adds it back. Without it (levels with media, whose camera pass has scaled the emission by a
 // sampled transmittance, so radiance - emission is not the reflected light) they pass through.
 LANTERN_CONST uint kDenoiseFlagFilterEmitters = 16u;
+// denoise.temporal: last frame's owed light ("denoise.owed", push.repay > 0) is there to reproject.
+LANTERN_CONST uint kDenoiseFlagOwedHistory = 32u;
 
 // denoise.atrous and denoise.atrous_modulate filter pixel pairs: thread column c of a step with
 // tap spacing `step` takes pixels x0 = denoise_atrous_pair_first(c, step) and x0 + step, which
@@ -81,8 +83,13 @@ struct DenoisePush {
   float stabilize;       // denoise.atrous_modulate: weight of last frame's output, reprojected and
                          // held within stabilize_band standard deviations of this frame's (0: off)
   float stabilize_band;  // that band, in the filtered illumination's standard deviations
+  float repay;  // denoise.temporal: the share of a pixel's owed light (what its clamps took) given
+                // back each frame, never above the clamp's limit (0: off, the light is dropped)
+  uint pad0;    // to the struct's std430 stride (its vec4's alignment)
+  uint pad1;
+  uint pad2;
 };
-LANTERN_STATIC_SIZE(DenoisePush, 80);
+LANTERN_STATIC_SIZE(DenoisePush, 96);
 
 // What illumination is divided by: the surface's albedo (base colour), floored. Radiance =
 // factor x illumination; emitters are not filtered, nor is the sky unless sky_distance > 0.

@@ -190,15 +190,17 @@ TEST_F(DenoiseGpuTest, SkyIsFilteredOnlyWhenTheLevelHasMedia) {
 
 // NaN and Inf in the input (a broken integrator) never reach the output, nor the history; nor
 // does a finite value too large to square (1e30), among noise or alone among black pixels (the
-// all-black history's unclamped moments). The test sees the output; the moments' history stays
-// finite by construction (kDenoiseMaxMomentLuminance).
+// all-black history's unclamped moments), with the light the clamps take owed and repaid too
+// (repay 1). The test sees the output; the moments' and the owed light's history stay finite by
+// construction (kDenoiseMaxMomentLuminance).
 TEST_F(DenoiseGpuTest, NonFiniteInputNeverReachesOutput) {
   const float bad[3] = {std::numeric_limits<float>::quiet_NaN(),
                         std::numeric_limits<float>::infinity(), 1.0e30f};
-  for (const char* stabilize : {"0", "0.7"}) {
-    SCOPED_TRACE(std::string("stabilize ") + stabilize);
+  const std::pair<const char*, const char*> settings[] = {{"0", "0"}, {"0.7", "0"}, {"0.7", "1"}};
+  for (const auto& [stabilize, repay] : settings) {
+    SCOPED_TRACE(std::string("stabilize ") + stabilize + ", repay " + repay);
     {
-      Run run = make_run({{"stabilize", stabilize}});
+      Run run = make_run({{"stabilize", stabilize}, {"repay", repay}});
       FrameSnapshot s = test::first_snapshot(level, kW, kH);
       for (std::uint32_t f = 0; f < 6; ++f) {
         if (f > 0) s = frozen(s);
@@ -212,7 +214,7 @@ TEST_F(DenoiseGpuTest, NonFiniteInputNeverReachesOutput) {
       }
     }
     // 6 black frames, then 1e30 in every 7th pixel: lone samples on all-black histories.
-    Run run = make_run({{"stabilize", stabilize}});
+    Run run = make_run({{"stabilize", stabilize}, {"repay", repay}});
     std::vector<std::uint8_t> mask;
     FrameSnapshot s = black_frames(run, 6, mask);
     for (std::uint32_t f = 0; f < 4; ++f) {

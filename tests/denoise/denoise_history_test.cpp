@@ -1,6 +1,7 @@
 // The denoiser's history: rejected across a camera cut, a disocclusion and a mostly hidden
 // footprint (exact images), recovered within four frames; the clamps (a light after darkness, a
-// lone sample without history, a dimmed light, a lit pixel among dark ones), the stabilisation,
+// lone sample without history, a dimmed light, a lit pixel among dark ones) and what they took
+// given back (repay), the stabilisation,
 // and each frame weighed by the integrator's confidence.
 #include "tests/denoise/denoise_gpu_fixture.h"
 
@@ -286,6 +287,63 @@ TEST_F(DenoiseGpuTest, LoneSampleWithoutHistoryIsClampedToItsNeighbours) {
     EXPECT_NEAR(out.pixels[4 * spike], k.expected, 1e-4f * k.expected) << k.what;
     EXPECT_NEAR(r.lo, c, 1e-5f) << k.what;
     EXPECT_NEAR(r.hi, c, 1e-5f) << k.what;
+  }
+}
+
+// What a clamp takes is repaid with denoise.repay (static camera, temporal only, every frame
+// weighed alike: color_alpha 0.01, max_history 64, antilag off). Frame 0 holds a lone 100c spike
+// on a surface of c, which the neighbour clamp cuts to 2c (98c taken), then 12 frames of c; the
+// spike pixel shows the mean of the 13 samples it kept. Off: (2c + 12c) / 13. Repay 1: each frame
+// gives back as much as the limit leaves room for (2c: the neighbour clamp while the history is
+// short, then the history's mean + 4 sigma of samples that are all 2c), so every sample is 2c and
+// none above it. Repay 0.005: frame k gives back 0.005 x 98c x 0.995^(k-1) (below the room
+// left), 98c (1 - 0.995^12) in all. The other pixels stay c, and a camera cut drops what is owed
+// with the history (the spike pixel is c again).
+TEST_F(DenoiseGpuTest, ClampedLightIsRepaidUpToTheClampsLimit) {
+  const float c = 0.3f;
+  std::vector<std::uint8_t> mask;
+  {
+    Run probe = make_run();
+    (void)black_frames(probe, 1, mask);
+  }
+  const std::size_t spike = interior_surface_pixel(mask);
+  ASSERT_NE(spike, 0u);
+  ImageRGBA32F input = constant(c);
+  for (int k = 0; k < 3; ++k) input.pixels[4 * spike + k] = 100.0f * c;
+  constexpr int kFrames = 13;
+  struct Case {
+    const char* repay;
+    float expected;
+  };
+  const Case cases[] = {
+      {"0", 14.0f * c / kFrames},
+      {"1", 2.0f * c},
+      {"0.005", (14.0f * c + 98.0f * c * (1.0f - std::pow(0.995f, kFrames - 1.0f))) / kFrames}};
+  std::vector<std::uint8_t> others = mask;
+  others[spike] = 0;
+  for (const Case& k : cases) {
+    Run run = make_run({{"atrous", "0"},
+                        {"neighbour_clamp", "2"},
+                        {"color_alpha", "0.01"},
+                        {"max_history", "64"},
+                        {"antilag", "0"},
+                        {"repay", k.repay}});
+    FrameSnapshot s = test::first_snapshot(level, kW, kH);
+    ImageRGBA32F out = render(run, input, s);
+    for (int f = 1; f < kFrames; ++f) {
+      s = frozen(s);
+      out = render(run, constant(c), s);
+    }
+    const Range r = masked_range(out, others);
+    std::printf("[denoise repay] repay %s: spike %.5f (expected %.5f), others %.5f..%.5f\n",
+                k.repay, out.pixels[4 * spike], k.expected, r.lo, r.hi);
+    EXPECT_NEAR(out.pixels[4 * spike], k.expected, 1e-3f * k.expected) << "repay " << k.repay;
+    EXPECT_NEAR(r.lo, c, 1e-5f) << "repay " << k.repay;
+    EXPECT_NEAR(r.hi, c, 1e-5f) << "repay " << k.repay;
+    s = frozen(s);
+    s.camera_cut = true;
+    out = render(run, constant(c), s);
+    EXPECT_NEAR(out.pixels[4 * spike], c, 1e-5f) << "repay " << k.repay << ", after a cut";
   }
 }
 

@@ -22,6 +22,8 @@ TEST(DenoiseSettings, ParsesEveryKindOfKey) {
   EXPECT_FALSE(s.enabled);
   EXPECT_EQ(s.neighbour_clamp, 0.0f);
   EXPECT_EQ(make_denoise_settings("balanced", {}).neighbour_clamp, 2.0f);
+  EXPECT_EQ(make_denoise_settings("balanced", {}).repay, 0.0f);
+  EXPECT_FLOAT_EQ(make_denoise_settings("fast", {{"repay", "0.25"}}).repay, 0.25f);
   EXPECT_EQ(s.atrous_iterations, 2u);
   EXPECT_FLOAT_EQ(s.phi_luminance, 2.5f);
 }
@@ -42,6 +44,7 @@ TEST(DenoiseSettings, RefusesBadInputNamingIt) {
   EXPECT_NE(message({{"firefly", "nan"}}).find("finite"), std::string::npos);
   EXPECT_NE(message({{"neighbour_clamp", "-1"}}).find("'neighbour_clamp': -1 is outside"),
             std::string::npos);
+  EXPECT_NE(message({{"repay", "1.5"}}).find("'repay': 1.5 is outside 0..1"), std::string::npos);
   EXPECT_NE(message({{"enabled", "maybe"}}).find("boolean"), std::string::npos);
   EXPECT_THROW((void)make_denoise_settings("ultra", {}), InputError);
 }
