@@ -208,6 +208,10 @@ class DenoiseGpuTest : public runtime::test::GpuTest {
     mask = surfaces(g);
     return s;
   }
+  // An image of c with a lone spike of factor x c at an interior surface pixel of the still
+  // scene (`spike`; `mask`: the surface pixels).
+  ImageRGBA32F lone_spike(float c, float factor, std::size_t& spike,
+                          std::vector<std::uint8_t>& mask);
 };
 
 // A surface pixel whose 8 neighbours are surfaces too, the first from the image's centre on (0
@@ -223,6 +227,18 @@ inline std::size_t interior_surface_pixel(const std::vector<std::uint8_t>& mask)
     }
   }
   return 0;
+}
+
+inline ImageRGBA32F DenoiseGpuTest::lone_spike(float c, float factor, std::size_t& spike,
+                                               std::vector<std::uint8_t>& mask) {
+  {
+    Run probe = make_run();
+    (void)black_frames(probe, 1, mask);
+  }
+  spike = interior_surface_pixel(mask);
+  ImageRGBA32F input = constant(c);
+  for (int k = 0; k < 3; ++k) input.pixels[4 * spike + k] = factor * c;
+  return input;
 }
 
 // The lowest and highest red value over the masked pixels.

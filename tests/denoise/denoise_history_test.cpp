@@ -253,14 +253,9 @@ TEST_F(DenoiseGpuTest, LightAfterDarknessIsNotHeldBlack) {
 TEST_F(DenoiseGpuTest, LoneSampleWithoutHistoryIsClampedToItsNeighbours) {
   const float c = 0.3f;
   std::vector<std::uint8_t> mask;
-  {
-    Run probe = make_run();
-    (void)black_frames(probe, 1, mask);
-  }
-  const std::size_t spike = interior_surface_pixel(mask);
+  std::size_t spike = 0;
+  const ImageRGBA32F input = lone_spike(c, 100.0f, spike, mask);
   ASSERT_NE(spike, 0u);
-  ImageRGBA32F input = constant(c);
-  for (int k = 0; k < 3; ++k) input.pixels[4 * spike + k] = 100.0f * c;
   struct Case {
     const char* what;
     const char* clamp;
@@ -302,14 +297,9 @@ TEST_F(DenoiseGpuTest, LoneSampleWithoutHistoryIsClampedToItsNeighbours) {
 TEST_F(DenoiseGpuTest, ClampedLightIsRepaidUpToTheClampsLimit) {
   const float c = 0.3f;
   std::vector<std::uint8_t> mask;
-  {
-    Run probe = make_run();
-    (void)black_frames(probe, 1, mask);
-  }
-  const std::size_t spike = interior_surface_pixel(mask);
+  std::size_t spike = 0;
+  const ImageRGBA32F input = lone_spike(c, 100.0f, spike, mask);
   ASSERT_NE(spike, 0u);
-  ImageRGBA32F input = constant(c);
-  for (int k = 0; k < 3; ++k) input.pixels[4 * spike + k] = 100.0f * c;
   constexpr int kFrames = 13;
   struct Case {
     const char* repay;
