@@ -60,6 +60,11 @@ const Row kRows[] = {
                          "some energy",
       0, 100, false},
      DENOISE_FIELD(neighbour_clamp), 2, 2, 2},
+    {{"repay", "give back this share of the light the firefly and neighbour clamps took from a "
+               "pixel each frame, never above the clamp's limit (0 off: dropped): higher keeps "
+               "more of the image's energy, and leaves more noise",
+      0, 1, false},
+     DENOISE_FIELD(repay), 0, 0, 0},
     {{"antilag", "hold the long colour history within k standard errors of the short luminance "
                  "history (0 off): lower follows changing light sooner, and adds some of the "
                  "short history's noise to a still view",
@@ -74,11 +79,6 @@ const Row kRows[] = {
                         "image's standard deviations: higher steadies more, and lags more",
       0, 100, false},
      DENOISE_FIELD(stabilize_band), 1, 1, 1},
-    {{"repay", "give back this share of the light the firefly and neighbour clamps took from a "
-               "pixel each frame, never above the clamp's limit (0 off: dropped): higher keeps "
-               "more of the image's energy, and leaves more noise",
-      0, 1, false},
-     DENOISE_FIELD(repay), 0, 0, 0},
     {{"max_history", "history length cap in frames (with confidence on, frames of the history's "
                      "mean confidence): lower when stale light lingers", 1, 256,
       false},
