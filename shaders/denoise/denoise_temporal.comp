@@ -257,7 +257,7 @@ void main() {
   if (push.repay > 0.0) {
     float owed_luminance = luminance(owed);
     float repaid = min(owed_luminance * push.repay, max(limit - l, 0.0));
-    if (owed_luminance > 0.0 && repaid > 0.0) {
+    if (repaid > 0.0) {  // then owed_luminance > 0 too
       vec3 given = owed * (repaid / owed_luminance);
       illumination += given;
       owed = max(owed - given, vec3(0.0));
