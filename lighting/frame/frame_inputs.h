@@ -53,6 +53,9 @@ struct FrameInputs {
   // measured it or no light reached a surface then (ReSTIR then decides by the light count
   // alone).
   std::optional<float> light_spread;
+  // The glossiest any surface of the level can be (SceneData::max_gloss; 1 where unknown):
+  // ReSTIR skips BSDF candidates that no surface would draw (RestirSettings::bsdf_min_gloss).
+  float max_gloss = 1.0f;
   // The denoiser consumes this frame's radiance (FrameOutput::Denoised with the denoiser on):
   // an integrator may then trade raw noise for errors a denoiser averages better
   // (RestirSettings::temporal_permutation).

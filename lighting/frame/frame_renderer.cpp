@@ -171,6 +171,7 @@ runtime::graph::BufferHandle FrameRenderer::add_frame(runtime::graph::RenderGrap
   if (const LightSpread& spread = scene_->data().light_spread; spread.points > 0) {
     inputs_.light_spread = spread.spread;
   }
+  inputs_.max_gloss = scene_->data().max_gloss;
   inputs_.denoised = frame_output_ == FrameOutput::Denoised && denoise_.enabled;
   hdr = integrator_->add_passes(graph, inputs_, hdr);
   if (volume_camera_) {

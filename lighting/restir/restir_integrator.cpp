@@ -104,6 +104,11 @@ std::uint32_t RestirIntegrator::local_candidates(const RestirSettings& s,
   return light_spread(s, inputs) >= kLocalListsMinSpread ? s.local_candidates : 0u;
 }
 
+std::uint32_t RestirIntegrator::bsdf_candidates(const RestirSettings& s,
+                                                const FrameInputs& inputs) {
+  return inputs.max_gloss >= s.bsdf_min_gloss ? s.bsdf_candidates : 0u;
+}
+
 gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const FrameInputs& inputs) {
   if (inputs.light_count >= gpu::kEnvironmentLight) {
     throw InputError(fmt::format("restir: {} lights exceed the {} a packed reservoir can index",
@@ -117,14 +122,17 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
     p.permutation_bits = gpu::restir_permutation_bits(inputs.frame_index, inputs.seed);
   }
   p.light_candidates = s.light_candidates;
-  p.bsdf_candidates = s.bsdf_candidates;
+  p.bsdf_candidates = bsdf_candidates(s, inputs);
+  p.bsdf_min_gloss = s.bsdf_min_gloss;
   p.bias_correction = s.bias_correction;
   p.debug_view = s.debug_view;
   p.neighbours = s.neighbours;
   p.boost_neighbours = s.disocclusion_boost;
-  p.short_history_m = 2 * s.candidates();
+  // The candidates this frame draws (none from BSDFs where the level has no surface for them).
+  const std::uint32_t drawn = s.light_candidates + p.bsdf_candidates;
+  p.short_history_m = 2 * drawn;
   p.radius = s.radius;
-  p.m_cap = s.m_cap();
+  p.m_cap = s.m_cap(drawn);
   // A lower cap where points move only where the denoiser averages the frames (RestirSettings).
   p.m_cap_moving = inputs.denoised ? s.m_cap_moving : 1.0f;
   p.boiling_filter = s.boiling_filter;

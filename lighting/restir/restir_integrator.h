@@ -73,6 +73,10 @@ class RestirIntegrator final : public Integrator {
   // has at least local_min_lights lights and a light spread of at least kLocalListsMinSpread,
   // else 0.
   static std::uint32_t local_candidates(const RestirSettings& settings, const FrameInputs& inputs);
+  // BSDF candidates a pixel at least bsdf_min_gloss glossy draws this frame: the setting, or 0
+  // where no material of the level reaches bsdf_min_gloss (FrameInputs::max_gloss), so that a
+  // level without such surfaces runs neither restir.initial_rays nor visibility.host_closest.
+  static std::uint32_t bsdf_candidates(const RestirSettings& settings, const FrameInputs& inputs);
 
  private:
   // Whether the host traces restir.initial's BSDF candidates (host visibility and at least one

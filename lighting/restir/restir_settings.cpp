@@ -160,6 +160,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.light_candidates = parse_uint(key, value, 1, gpu::kRestirMaxLightCandidates);
   } else if (key == "bsdf_candidates") {
     s.bsdf_candidates = parse_uint(key, value, 0, gpu::kRestirMaxBsdfCandidates);
+  } else if (key == "bsdf_min_gloss") {
+    s.bsdf_min_gloss = parse_float(key, value, 0.0f, 1.0f);
   } else if (key == "temporal") {
     s.temporal = parse_bool(key, value);
   } else if (key == "temporal_permutation") {
@@ -237,6 +239,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
   return {
       {"light_candidates", std::to_string(s.light_candidates)},
       {"bsdf_candidates", std::to_string(s.bsdf_candidates)},
+      {"bsdf_min_gloss", format_float(s.bsdf_min_gloss)},
       {"temporal", flag(s.temporal)},
       {"temporal_permutation", choice_name(kTemporalPermutations, s.temporal_permutation)},
       {"m_cap", format_float(s.m_cap_factor)},

@@ -48,6 +48,11 @@ struct RestirSettings {
   // BSDF-sampled candidates (MIS-combined with light candidates): raise for glossy surfaces near
   // large area lights, where light sampling misses the highlight; each one costs a closest-hit ray.
   std::uint32_t bsdf_candidates = 0;
+  // ... only on surfaces at least this glossy (brdf_gloss, shaders/shared/brdf.h: max(metallic,
+  // specular x (1 - roughness) / 2): 1 for metals, at most 0.5 for dielectrics), where light
+  // sampling misses a highlight; elsewhere none. 0: every surface. A level none of whose
+  // materials reaches it traces no BSDF ray at all (RestirIntegrator::bsdf_candidates).
+  float bsdf_min_gloss = 0.0f;
   // Reuse last frame's reservoirs along motion vectors. Turn off to see the spatial-only result
   // or when history is worthless (every frame a cut).
   bool temporal = true;
@@ -148,22 +153,25 @@ struct RestirSettings {
     float m_cap() const { return m_cap_factor * static_cast<float>(candidates); }
   } volume;
 
-  // Current M: candidates drawn per pixel per frame.
+  // Current M: candidates drawn per pixel per frame (at most: bsdf_min_gloss may leave a pixel,
+  // or a whole level, without its BSDF candidates).
   std::uint32_t candidates() const { return light_candidates + bsdf_candidates; }
-  float m_cap() const { return m_cap_factor * static_cast<float>(candidates()); }
+  float m_cap() const { return m_cap(candidates()); }
+  // The cap for a frame that draws `drawn` candidates per pixel.
+  float m_cap(std::uint32_t drawn) const { return m_cap_factor * static_cast<float>(drawn); }
 };
 
 // "fast" | "balanced" | "quality"; lantern::InputError naming the value otherwise.
 RestirSettings restir_preset(std::string_view name);
 std::vector<std::string> restir_preset_names();
 
-// Sets one knob by its key (the field names above: light_candidates, bsdf_candidates, temporal,
-// m_cap (alias of m_cap_factor), m_cap_moving, spatial_passes, neighbours, disocclusion_boost,
-// radius, presample_tiles, local_candidates, local_min_lights, visibility_reuse, bias_correction (a
-// name from restir_bias_corrections()), initial_visibility, boiling_filter, depth_threshold,
-// normal_threshold, debug_view (a name from restir_debug_views()), temporal_permutation (a name
-// from restir_temporal_permutations()); the media's volume_candidates,
-// volume_temporal, volume_m_cap, volume_neighbours, volume_radius).
+// Sets one knob by its key (the field names above: light_candidates, bsdf_candidates,
+// bsdf_min_gloss, temporal, m_cap (alias of m_cap_factor), m_cap_moving, spatial_passes,
+// neighbours, disocclusion_boost, radius, presample_tiles, local_candidates, local_min_lights,
+// visibility_reuse, bias_correction (a name from restir_bias_corrections()), initial_visibility,
+// boiling_filter, depth_threshold, normal_threshold, debug_view (a name from
+// restir_debug_views()), temporal_permutation (a name from restir_temporal_permutations()); the
+// media's volume_candidates, volume_temporal, volume_m_cap, volume_neighbours, volume_radius).
 // lantern::InputError naming the key and the value for unknown keys, unparsable values and
 // values outside the allowed range (e.g. light_candidates = 0 or 10^9).
 void apply_setting(RestirSettings& settings, std::string_view key, std::string_view value);

@@ -16,6 +16,7 @@
 #include "engine/core/log.h"
 #include "engine/scene/mesh_tangents.h"
 #include "runtime/volume/volume_set.h"
+#include "shared/brdf.h"
 #include "shared/color.h"
 #include "shared/common_math.h"
 #include "shared/sampling.h"
@@ -220,6 +221,12 @@ LightEmitter analytic_emitter(std::uint32_t index, LightType type, const glm::ve
   return e;
 }
 
+float material_max_gloss(const gpu::GpuMaterial& m) {
+  // A metallic-roughness texture scales both factors by at most 1 (gbuffer_material.glsl).
+  const float roughness = m.textures.y != gpu::kNoTexture ? 0.0f : m.params.x;
+  return gpu::brdf_gloss(roughness, m.params.y, m.params.z);
+}
+
 std::vector<LightEmitter> extract_light_emitters(const Level& level, float scene_radius,
                                                  const SceneData* scene) {
   std::vector<LightEmitter> emitters;
@@ -351,6 +358,9 @@ SceneData build_scene_data(const Level& level, const std::vector<runtime::Volume
   }
   scene.lights.update(emitters, scene.emissive_triangles);
   scene.light_spread = measure_light_spread(scene);
+  for (const gpu::GpuMaterial& m : scene.materials) {
+    scene.max_gloss = std::max(scene.max_gloss, material_max_gloss(m));
+  }
   return scene;
 }
 

@@ -57,6 +57,9 @@ struct SceneData {
   // once from the lights the level starts with: ReSTIR's presampling tiles and local light lists
   // follow it (RestirIntegrator).
   LightSpread light_spread;
+  // The glossiest any surface can be (material_max_gloss over every material): ReSTIR's BSDF
+  // candidates are skipped where no surface reaches RestirSettings::bsdf_min_gloss.
+  float max_gloss = 0.0f;
   double textured_emitter_ms = 0.0;  // wall time of integrating the means at load
   glm::vec3 bounds_min{0.0f};  // world-space box of all instances
   glm::vec3 bounds_max{0.0f};
@@ -64,6 +67,10 @@ struct SceneData {
   // lights' shadow rays and their power proxy.
   float scene_radius() const;
 };
+
+// The glossiest a surface with material m can be (brdf_gloss, shaders/shared/brdf.h): its
+// factors' gloss, at roughness 0 where a metallic-roughness texture scales the roughness.
+float material_max_gloss(const gpu::GpuMaterial& m);
 
 // The light records of a level: one per emissive triangle (world space, one-sided) and one per
 // point/spot/directional light, with power = flux (triangles: luminance(L) * area * pi;

@@ -1,7 +1,8 @@
 // restir.initial: per pixel, packs the G-buffer into a RestirSurface and resamples
 // push.light_candidates light candidates (the environment map with its selection probability,
 // else a light by power, or through the local light list, x uniform point on the light) plus
-// push.bsdf_candidates BSDF candidates (a closest-hit ray; an emissive triangle hit, or the
+// push.bsdf_candidates BSDF candidates where the surface is at least push.bsdf_min_gloss glossy
+// (bsdf_candidates_at; a closest-hit ray each: an emissive triangle hit, or the
 // environment when the ray escapes, is a candidate), combined by the balance heuristic over the
 // two strategies, with target p̂ = luminance of the unshadowed contribution. Light candidates
 // come from this workgroup's tile of presampled lights when push.presample_tiles > 0
@@ -44,7 +45,14 @@ layout(binding = PASS_BINDING(7)) uniform utextureBuffer presampled_lights;
 
 // Probability of the GGX lobe in the BSDF sampling mixture (the rest is cosine-weighted).
 float specular_lobe_probability(ShadingPoint p) {
-  return clamp(max(p.metallic, 0.5 * p.specular * (1.0 - p.roughness)), 0.0, 1.0);
+  return brdf_gloss(p.roughness, p.metallic, p.specular);
+}
+
+// BSDF candidates at p: push.bsdf_candidates on surfaces at least push.bsdf_min_gloss glossy,
+// none elsewhere. Each pixel's MIS weighs the strategies it drew, so either way its initial
+// reservoir is unbiased. The one decision the "closestemit" variant and restir.initial share.
+uint bsdf_candidates_at(ShadingPoint p) {
+  return specular_lobe_probability(p) >= push.bsdf_min_gloss ? push.bsdf_candidates : 0u;
 }
 
 float bsdf_direction_pdf(ShadingPoint p, vec3 l) {
@@ -224,9 +232,9 @@ struct Strategies {
   float m_bsdf;
 };
 
-Strategies restir_strategies() {
+Strategies restir_strategies(ShadingPoint p) {
   return Strategies(restir_light_count(), restir_env_probability(), float(push.light_candidates),
-                    float(push.bsdf_candidates));
+                    float(bsdf_candidates_at(p)));
 }
 
 // Whether there is nothing to sample (no light, no environment): no candidate is drawn.
@@ -258,7 +266,7 @@ void resample_lights(ShadingPoint p, Strategies s, uint tile_base, inout uint rn
     uint index = draw_light(u0, u1, tile_base, light, pdf, strategy_pdf);
     float target = light_eval_target(restir_light_contribution(p, light, uv));
     float weight = safe_ratio(target, s.m_light * (1.0 - s.p_env) * pdf);
-    if (push.bsdf_candidates > 0u && target > 0.0) {
+    if (s.m_bsdf > 0.0 && target > 0.0) {
       // Balance heuristic over the light strategy's density q (with the environment's share)
       // and the BSDF's, times the candidate's contribution weight 1 / pdf:
       // target q / (pdf (m_light q + m_bsdf p_bsdf)). Without the local list pdf = q: the plain
@@ -287,10 +295,10 @@ bool bsdf_candidate_ray(ShadingPoint p, inout uint rng, out vec3 origin, out vec
   return dot(l, p.ng) > 0.0;
 }
 
-// push.bsdf_candidates BSDF candidates into r, from their own random stream (so the
+// The pixel's BSDF candidates (bsdf_candidates_at) into r, from their own random stream (so the
 // "closestemit" variant draws the same rays without the light candidates' draws).
 void resample_bsdf(ShadingPoint p, Strategies s, inout uint rng, inout Reservoir r) {
-  for (uint j = 0u; j < push.bsdf_candidates; ++j) {
+  for (uint j = 0u; j < uint(s.m_bsdf); ++j) {
     vec3 origin;
     vec3 l;
     float u_pick;
@@ -327,7 +335,7 @@ void resample_bsdf(ShadingPoint p, Strategies s, inout uint rng, inout Reservoir
 
 Reservoir resample(ShadingPoint p, uvec2 pixel, uint tile_base) {
   Reservoir r = reservoir_empty();
-  Strategies s = restir_strategies();
+  Strategies s = restir_strategies(p);
   if (strategies_empty(s)) {
     r.M = s.m_light + s.m_bsdf;
     return r;
@@ -363,9 +371,9 @@ void main() {
   vis_host_closest_begin(restir_index(pixel) * push.bsdf_candidates, push.bsdf_candidates);
   RestirSurface surface = gbuffer_surface(ip, imageLoad(gbuffer_position, ip));
   ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
-  if (p.valid && !strategies_empty(restir_strategies())) {
+  if (p.valid && !strategies_empty(restir_strategies(p))) {
     uint rng = frame_rng(pixel, kRestirRngInitialBsdf);
-    for (uint j = 0u; j < push.bsdf_candidates; ++j) {
+    for (uint j = 0u; j < bsdf_candidates_at(p); ++j) {
       vec3 origin;
       vec3 l;
       float u_pick;

@@ -106,6 +106,14 @@ LANTERN_FUNC vec3 brdf_eval(vec3 n, vec3 v, vec3 l, vec3 albedo, float roughness
   return mix(dielectric, metal, m) * n_dot_l;
 }
 
+// How glossy a surface is, as BSDF sampling sees it: the GGX lobe's share of the mixture that
+// ReSTIR's BSDF candidates draw from (the rest cosine-weighted), max(metallic, specular factor x
+// (1 - roughness) / 2), in [0, 1]: 1 for metals, at most 0.5 for dielectrics. Also what
+// `restir.bsdf_min_gloss` compares (RestirSettings).
+LANTERN_FUNC float brdf_gloss(float roughness, float metallic, float specular) {
+  return clamp(max(metallic, 0.5f * specular * (1.0f - roughness)), 0.0f, 1.0f);
+}
+
 // GGX visible-normal sample (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"),
 // reflected into a direction l. l may point below the surface (then brdf_eval is 0). u in [0,1)^2.
 LANTERN_FUNC vec3 ggx_vndf_sample(vec3 n, vec3 v, float roughness, vec2 u) {

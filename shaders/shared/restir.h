@@ -160,7 +160,7 @@ struct RestirPush {
                           // restir_permuted_history_pixel (restir_permutation_bits)
   float m_cap_moving;     // m_cap's fraction where a point moves a pixel or more
                           // (restir_history_m_cap; 1: the same cap everywhere)
-  uint pad2;
+  float bsdf_min_gloss;   // BSDF candidates only where brdf_gloss (shared/brdf.h) reaches this
 };
 LANTERN_STATIC_SIZE(RestirPush, 96);
 

@@ -91,7 +91,7 @@ const std::vector<StructLayout>& cpp_layouts() {
         LANTERN_MEMBER(RestirPush, visibility_reuse), LANTERN_MEMBER(RestirPush, tile_bands),
         LANTERN_MEMBER(RestirPush, similarity), LANTERN_MEMBER(RestirPush, local_candidates),
         LANTERN_MEMBER(RestirPush, permutation_bits), LANTERN_MEMBER(RestirPush, m_cap_moving),
-        LANTERN_MEMBER(RestirPush, pad2)}},
+        LANTERN_MEMBER(RestirPush, bsdf_min_gloss)}},
       {"PresampledLight",
        sizeof(gpu::PresampledLight),
        {LANTERN_MEMBER(PresampledLight, light), LANTERN_MEMBER(PresampledLight, index),

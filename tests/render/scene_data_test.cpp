@@ -86,6 +86,35 @@ TEST(SceneData, EmissiveTrianglePowerAndFrontFace) {
   EXPECT_EQ(emitters[2].stable_id, (1ull << 32) | 0u);
 }
 
+// The gloss bound ReSTIR's bsdf_min_gloss gate reads: a material's factors, its roughness
+// taken as 0 where a metallic-roughness texture scales it, and the level's glossiest material.
+TEST(SceneData, MaxGlossBoundsEverySurfaceOfTheLevel) {
+  gpu::GpuMaterial rough{};
+  rough.params = glm::vec4(0.8f, 0.0f, 0.5f, 0.0f);
+  rough.textures = glm::uvec4(gpu::kNoTexture);
+  EXPECT_FLOAT_EQ(lighting::material_max_gloss(rough), 0.5f * 0.5f * 0.2f);
+  gpu::GpuMaterial textured = rough;
+  textured.textures.y = 0;  // a metallic-roughness texture: roughness down to 0
+  EXPECT_FLOAT_EQ(lighting::material_max_gloss(textured), 0.25f);
+  gpu::GpuMaterial metal = rough;
+  metal.params.y = 1.0f;
+  EXPECT_FLOAT_EQ(lighting::material_max_gloss(metal), 1.0f);
+
+  Level level;
+  level.meshes.push_back(make_plane(glm::vec2(2.0f, 2.0f)));
+  Material wall;
+  wall.roughness = 0.9f;
+  wall.metallic = 0.0f;
+  level.materials.push_back(wall);
+  level.instances.push_back(Instance{});
+  const float dielectric = build_scene_data(level).max_gloss;
+  EXPECT_NEAR(dielectric, 0.5f * wall.specular_factor * 0.1f, 1e-6f);
+  Material post = wall;
+  post.metallic = 1.0f;
+  level.materials.push_back(post);
+  EXPECT_FLOAT_EQ(build_scene_data(level).max_gloss, 1.0f) << "one metal opens the gate";
+}
+
 }  // namespace
 }  // namespace lantern
 

@@ -162,6 +162,10 @@ const Mode kModes[] = {
     {"bsdf", {{"bsdf_candidates", "1"}}, true, true},
     {"local-bsdf", {{"bsdf_candidates", "1"}, {"local_min_lights", "1"}, {"light_spread", "1000"}},
      true, true},
+    // BSDF candidates on the glossier surfaces only (gloss 0.2: the room's pillars and slab and
+    // cornell_lights' glossy box, not the walls and floors), so reuse mixes reservoirs whose
+    // initial MIS weighed one strategy with ones that weighed two.
+    {"glossy-bsdf", {{"bsdf_candidates", "1"}, {"bsdf_min_gloss", "0.2"}}, true, true},
     // Temporal permutation (what the denoiser's frames use): each pixel's history comes from a
     // neighbour, which pairwise MIS weighs as such. The balance heuristic's: study only.
     {"permuted", {{"temporal_permutation", "on"}}, true, true},

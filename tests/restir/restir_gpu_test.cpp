@@ -536,6 +536,53 @@ TEST_F(RestirGpuTest, TemporalPermutationDecorrelatesFramesOnlyForTheDenoiser) {
   EXPECT_FALSE(h.renderer().last_inputs().denoised) << "the denoiser is off: raw is shown";
 }
 
+// bsdf_min_gloss gives BSDF candidates to the glossy surfaces only, pixel by pixel, and a level
+// whose glossiest material stays below it draws none. Without reuse (each pixel shows its own
+// initial reservoir) cornell_lights' glossy box (roughness 0.25: gloss 0.375) matches the run
+// with candidates on every surface bit for bit, its rough walls (0.1) the run without any (to
+// float rounding: the frame then runs restir.initial's host-hit variant), and a gate above 0.375
+// leaves the frame exactly the one without candidates.
+TEST_F(RestirGpuTest, BsdfCandidatesOnlyOnGlossySurfaces) {
+  const FrameSnapshot first = test::first_snapshot(cornell(), kW, kH);
+  auto run = [&](std::vector<std::pair<std::string, std::string>> settings, float* max_gloss) {
+    settings.insert(settings.end(), {{"temporal", "off"}, {"spatial_passes", "0"}});
+    RenderHarness h(device, shaders, cornell(), test::make_restir(device, shaders, settings), kW,
+                    kH, 5u);
+    ImageRGBA32F image = h.render(first);
+    if (max_gloss != nullptr) *max_gloss = h.renderer().last_inputs().max_gloss;
+    EXPECT_TRUE(test::all_finite(image));
+    return image;
+  };
+  float max_gloss = 0.0f;
+  const ImageRGBA32F none = run({}, &max_gloss);
+  const ImageRGBA32F everywhere = run({{"bsdf_candidates", "1"}}, nullptr);
+  const ImageRGBA32F glossy = run({{"bsdf_candidates", "1"}, {"bsdf_min_gloss", "0.3"}}, nullptr);
+  const ImageRGBA32F gated = run({{"bsdf_candidates", "1"}, {"bsdf_min_gloss", "0.4"}}, nullptr);
+  EXPECT_NEAR(max_gloss, 0.375f, 1e-6f) << "cornell_lights' glossy box";
+  EXPECT_EQ(gated.pixels, none.pixels) << "no surface reaches 0.4: no BSDF candidate";
+  std::size_t like_everywhere = 0, like_none = 0, neither = 0;
+  for (std::size_t p = 0; p < std::size_t{kW} * kH; ++p) {
+    bool same_everywhere = true, close_to_none = true;
+    for (int c = 0; c < 3; ++c) {
+      const float v = glossy.pixels[4 * p + c];
+      same_everywhere = same_everywhere && v == everywhere.pixels[4 * p + c];
+      const float n = none.pixels[4 * p + c];
+      close_to_none = close_to_none && std::abs(v - n) <= 1e-5f * std::max(1.0f, std::abs(n));
+    }
+    const bool differ = everywhere.pixels[4 * p] != none.pixels[4 * p];
+    if (!differ) continue;  // both runs agree: nothing to tell apart
+    like_everywhere += same_everywhere && !close_to_none;
+    like_none += close_to_none && !same_everywhere;
+    neither += !same_everywhere && !close_to_none;
+  }
+  std::printf("[restir bsdf_min_gloss] pixels as with candidates everywhere %zu, as without %zu, "
+              "neither %zu\n",
+              like_everywhere, like_none, neither);
+  EXPECT_EQ(neither, 0u);
+  EXPECT_GT(like_everywhere, 50u) << "the glossy box";
+  EXPECT_GT(like_none, 500u) << "the walls";
+}
+
 // The lower history cap where points move (m_cap_moving, restir_history_m_cap in
 // shared/restir.h) reaches only frames the denoiser consumes, and there only points that move:
 // along cornell_lights' dolly path raw frames are the same bit for bit with 0.25 and with 1 (off),

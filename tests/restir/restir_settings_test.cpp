@@ -89,6 +89,9 @@ TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
            {"light_candidates", "8x"},
            {"light_candidates", ""},
            {"bsdf_candidates", "17"},
+           {"bsdf_min_gloss", "-0.1"},
+           {"bsdf_min_gloss", "1.5"},
+           {"bsdf_min_gloss", "nan"},
            {"spatial_passes", "5"},
            {"neighbours", "9"},
            {"radius", "0"},
@@ -322,6 +325,28 @@ TEST(RestirHistoryCap, FullWhereStillLowerWhereMoving) {
   // 1: the same cap everywhere (raw frames).
   EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 1.0f, glm::vec2(5.0f, 0.0f)), 160.0f);
   EXPECT_FLOAT_EQ(gpu::restir_history_m_cap(160.0f, 1.0f, glm::vec2(nan)), 160.0f);
+}
+
+// BSDF candidates reach the shaders with the gloss they need, and not at all on a level none of
+// whose materials reaches it (FrameInputs::max_gloss): its frame then runs no BSDF ray pass.
+TEST(RestirSettings, BsdfCandidatesOnlyWhereALevelHasGlossySurfaces) {
+  FrameInputs inputs = inputs_of(320, 180, 89);
+  RestirSettings s = restir_preset("balanced");
+  EXPECT_EQ(s.bsdf_min_gloss, 0.0f) << "by default every surface draws them";
+  apply_setting(s, "bsdf_candidates", "2");
+  inputs.max_gloss = 0.0f;
+  EXPECT_EQ(RestirIntegrator::make_push(s, inputs).bsdf_candidates, 2u) << "0 gates nothing";
+  apply_setting(s, "bsdf_min_gloss", "0.5");
+  for (auto [max_gloss, expected] : {std::pair{1.0f, 2u}, {0.5f, 2u}, {0.49f, 0u}, {0.0f, 0u}}) {
+    inputs.max_gloss = max_gloss;
+    const gpu::RestirPush push = RestirIntegrator::make_push(s, inputs);
+    EXPECT_EQ(push.bsdf_candidates, expected) << "level's glossiest surface " << max_gloss;
+    EXPECT_FLOAT_EQ(push.bsdf_min_gloss, 0.5f);
+    // The history cap and the short-history threshold count the candidates the frame draws.
+    EXPECT_FLOAT_EQ(push.m_cap, s.m_cap_factor * static_cast<float>(8u + expected));
+    EXPECT_EQ(push.short_history_m, 2u * (8u + expected));
+  }
+  EXPECT_EQ(restir_preset("quality").bsdf_min_gloss, 0.0f) << "quality: every surface";
 }
 
 }  // namespace

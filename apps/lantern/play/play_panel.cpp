@@ -139,6 +139,7 @@ void draw_panel(PanelState& s) {
     constexpr int kMaxNeighbours = static_cast<int>(gpu::kRestirMaxNeighbours);
     slider_u("light candidates", r.light_candidates, 1, 64);
     slider_u("BSDF candidates", r.bsdf_candidates, 0, 8);
+    slider_f("BSDF min gloss", r.bsdf_min_gloss, 0.0f, 1.0f, "%.2f");
     slider_u("local candidates", r.local_candidates, 0,
              static_cast<int>(gpu::kRestirMaxLocalCandidates));
     slider_u("presample tiles", r.presample_tiles, 0,
