@@ -41,6 +41,9 @@ TEST(SceneRequirements, LightSamplingSizedByEmitters) {
   EXPECT_NEAR(lit.enabled.at("light_sampling").at("spread").get<double>(),
               build_scene_data(load_level_argument("cornell_lights")).light_spread.spread, 0.006);
   EXPECT_GT(lit.enabled.at("light_sampling").at("spread").get<float>(), 1.0f);
+  // The glossiest material, which restir.bsdf_min_gloss is compared with: the box's roughness
+  // 0.25 at specular 1 gives 0.375.
+  EXPECT_NEAR(lit.enabled.at("geometry").at("max_gloss").get<double>(), 0.375, 1e-6);
 }
 
 TEST(SceneRequirements, PerFrameMemoryFollowsTheSize) {
