@@ -125,7 +125,8 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
                                  {"materials", scene.materials.size()},
                                  // The glossiest surface (SceneData::max_gloss): ReSTIR's
                                  // bsdf_min_gloss above it traces no BSDF ray on this level.
-                                 {"max_gloss", std::round(double{scene.max_gloss} * 1000.0) / 1000.0},
+                                 {"max_gloss",
+                                  std::round(double{scene.max_gloss} * 1000.0) / 1000.0},
                                  {"instances", scene.instances.size()},
                                  {"bytes", geometry_bytes},
                                  {"memory", mib(geometry_bytes)}};
