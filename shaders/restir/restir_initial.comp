@@ -371,9 +371,11 @@ void main() {
   vis_host_closest_begin(restir_index(pixel) * push.bsdf_candidates, push.bsdf_candidates);
   RestirSurface surface = gbuffer_surface(ip, imageLoad(gbuffer_position, ip));
   ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
-  if (p.valid && !strategies_empty(restir_strategies(p))) {
+  Strategies s = restir_strategies(p);
+  if (p.valid && !strategies_empty(s)) {
     uint rng = frame_rng(pixel, kRestirRngInitialBsdf);
-    for (uint j = 0u; j < bsdf_candidates_at(p); ++j) {
+    // The count resample_bsdf loops over, from the same Strategies.
+    for (uint j = 0u; j < uint(s.m_bsdf); ++j) {
       vec3 origin;
       vec3 l;
       float u_pick;
