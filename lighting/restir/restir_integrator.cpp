@@ -128,6 +128,7 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   p.debug_view = s.debug_view;
   p.neighbours = s.neighbours;
   p.boost_neighbours = s.disocclusion_boost;
+  p.temporal_neighbours = s.temporal_neighbours;
   // The candidates this frame draws (none from BSDFs where the level has no surface for them).
   const std::uint32_t drawn = s.light_candidates + p.bsdf_candidates;
   p.short_history_m = 2 * drawn;

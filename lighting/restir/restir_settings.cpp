@@ -175,6 +175,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.spatial_passes = parse_uint(key, value, 0, gpu::kRestirMaxSpatialPasses);
   } else if (key == "neighbours" || key == "neighbors") {
     s.neighbours = parse_uint(key, value, 0, gpu::kRestirMaxNeighbours);
+  } else if (key == "temporal_neighbours" || key == "temporal_neighbors") {
+    s.temporal_neighbours = parse_uint(key, value, 0, gpu::kRestirMaxNeighbours);
   } else if (key == "disocclusion_boost") {
     s.disocclusion_boost = parse_uint(key, value, 0, gpu::kRestirMaxNeighbours);
   } else if (key == "radius") {
@@ -247,6 +249,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"spatial_passes", std::to_string(s.spatial_passes)},
       {"neighbours", std::to_string(s.neighbours)},
       {"disocclusion_boost", std::to_string(s.disocclusion_boost)},
+      {"temporal_neighbours", std::to_string(s.temporal_neighbours)},
       {"radius", format_float(s.radius)},
       {"presample_tiles", std::to_string(s.presample_tiles)},
       {"local_candidates", std::to_string(s.local_candidates)},

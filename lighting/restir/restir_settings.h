@@ -74,6 +74,14 @@ struct RestirSettings {
   // 160x90: denoised relMSE 3-19% lower on 7 seeds at 0.25); a still view keeps its long history.
   // Raw frames (EXR, bias studies) always use the full cap. 1 turns it off. Unbiased either way.
   float m_cap_moving = 0.25f;
+  // Last frame's final reservoirs that restir.temporal merges besides the reprojected pixel's,
+  // drawn within `radius` around it and passing the same disocclusion test (plus
+  // disocclusion_boost where the reprojected pixel fails it): spatial reuse from last frame's
+  // neighbours in the temporal pass itself (RTXDI's fused spatiotemporal mode), where
+  // restir.spatial reuses this frame's in a pass of its own. With spatial_passes 0 it replaces
+  // that pass at about half its cost; a disocclusion then finds only what last frame saw beside
+  // it. 0: the reprojected pixel alone. Unbiased with pairwise or balance MIS.
+  std::uint32_t temporal_neighbours = 0;
   // Spatial reuse passes. More passes spread good samples further (less noise) at a full pass's
   // cost each; 0 for temporal-only.
   std::uint32_t spatial_passes = 1;

@@ -2,15 +2,20 @@
 // reprojected pixel (motion vector; with kRestirFlagTemporalPermutation a neighbour of it,
 // restir_permuted_history_pixel; then up to 3 jittered retries within 1.5 px), when the
 // surface there passes the disocclusion test (relative view depth against the depth the previous
-// camera saw this point at, normal, material, roughness). The history sample's light is remapped
-// through light_previous_to_current (an environment sample stays one); a removed light drops the
-// history sample (M kept, as for an empty history reservoir). History confidence M is capped
-// (push.m_cap, lower where the point moves: restir_history_m_cap with push.m_cap_moving). MIS
-// weights per push.bias_correction. Optional boiling filter over the tile.
+// camera saw this point at, normal, material, roughness), and with push.temporal_neighbours more
+// of last frame's final reservoirs drawn in a disk of push.radius pixels around the reprojected
+// pixel that pass the same test (push.boost_neighbours more where the reprojected pixel itself
+// fails it: a disocclusion finds the surface's history beside it): spatiotemporal reuse in one
+// pass, spatial reuse from last frame's neighbours (RTXDI's fused mode), where restir.spatial
+// reuses this frame's. Each history sample's light is remapped through
+// light_previous_to_current (an environment sample stays one); a removed light drops the
+// history sample (M kept, as for an empty history reservoir). Each history reservoir's
+// confidence M is capped (push.m_cap, lower where the point moves: restir_history_m_cap with
+// push.m_cap_moving). MIS weights per push.bias_correction. Optional boiling filter over the tile.
 // Reads: restir_surfaces, surfaces_history, reservoirs_in, reservoirs_history, gbuffer_motion
 // (xy: the reprojection; zw: the point's own motion, for the cap),
 // light_previous_to_current, frame constants, lights, environment (env_*).
-// Writes: reservoirs_out, temporal_status.
+// Writes: reservoirs_out, temporal_status (the reprojected pixel's outcome).
 // History: "restir.surfaces" and "restir.reservoirs" of last frame; without
 // kRestirFlagHistoryValid the history bindings are stand-ins and are not read.
 // Dispatch: one workgroup per tile (lib/pixel_groups.glsl's shape), in interleaved row bands on
@@ -20,25 +25,38 @@
 
 #include "restir/restir_common.glsl"
 
-// The two domains, canonical (0) and history (1), as named values rather than a loop-indexed
-// private array (which lavapipe spills; night_market 320x180: restir.temporal 0.85-0.96x of the
-// array's time with these, 6 rounds alternating in one run).
+// The domains: the canonical pixel (decoded once) and last frame's pixels kept as indices into
+// the history, each read and decoded where the combine loop asks for it (pairwise MIS: once).
+// Loop-indexed private arrays of decoded domains are what lavapipe spills (night_market 320x180:
+// restir.temporal 0.85-0.96x of such an array's time with named domains, 6 rounds alternating).
 Reservoir g_canonical;
 ShadingPoint g_canonical_point;
-Reservoir g_history;
-ShadingPoint g_history_point;
-Reservoir combine_domain_reservoir(uint j) { return j == 0u ? g_canonical : g_history; }
-float combine_domain_target(uint j, LightSample y) {
-  return restir_target(j == 0u ? g_canonical_point : g_history_point, y);
+GpuLight g_canonical_light;
+// Domain j >= 1's pixel index in the history: domain 1's in a variable of its own (the only one
+// without temporal_neighbours: a private array costs lavapipe loads and stores), the rest in
+// g_history_pixel.
+uint g_history_first;
+uint g_history_pixel[kRestirMaxNeighbours + 2u];
+uint history_domain_pixel(uint j) { return j == 1u ? g_history_first : g_history_pixel[j]; }
+float g_history_m_cap;
+bool g_history_visibility;  // domain 1 keeps its visibility verdict (a direct reprojection)
+Reservoir history_domain_reservoir(uint j);
+ShadingPoint history_domain_point(uint j);
+Reservoir combine_domain_reservoir(uint j) {
+  return j == 0u ? g_canonical : history_domain_reservoir(j);
 }
-// Pairwise MIS's three evaluations with each sample's light fetched once.
+float combine_domain_target(uint j, LightSample y) {
+  return restir_target(j == 0u ? g_canonical_point : history_domain_point(j), y);
+}
+// Pairwise MIS's three evaluations for domain j: its point decoded once, the canonical sample's
+// light fetched once per pixel, domain j's once for both points.
 #define LANTERN_COMBINE_PAIRWISE_TARGETS
-vec3 combine_pairwise_targets(uint j, LightSample y_c, LightSample y_h) {
-  GpuLight light_c = restir_sample_light(y_c);
-  GpuLight light_h = restir_sample_light(y_h);
-  return vec3(restir_target_with_light(g_history_point, y_c, light_c),
-              restir_target_with_light(g_history_point, y_h, light_h),
-              restir_target_with_light(g_canonical_point, y_h, light_h));
+vec3 combine_pairwise_targets(uint j, LightSample y_c, LightSample y_j) {
+  ShadingPoint p = history_domain_point(j);
+  GpuLight light_j = restir_sample_light(y_j);
+  return vec3(restir_target_with_light(p, y_c, g_canonical_light),
+              restir_target_with_light(p, y_j, light_j),
+              restir_target_with_light(g_canonical_point, y_j, light_j));
 }
 #include "restir/restir_reuse.glsl"
 
@@ -56,19 +74,48 @@ layout(std430, binding = PASS_BINDING(6)) writeonly buffer StatusOut {
 
 shared float s_weights[kPixelGroupThreads];
 
-// Finds last frame's pixel for this surface along `motion` (the G-buffer motion's xy); -1 when
-// disoccluded. status: kRestirStatus*.
-ivec2 find_history(uvec2 pixel, vec2 motion, RestirSurface surface, inout uint rng,
-                   out uint status) {
+// History domain j's reservoir as this frame sees it: a frame older, its light remapped (a
+// removed light, or an empty history reservoir, leaves no sample but keeps M: that domain
+// produced "nothing" this time, and the canonical sample's MIS weight must not depend on that
+// outcome; zeroing M there skipped the merge exactly when the history was empty: +7% on
+// cornell_lights' lit surfaces, +18% with 1 candidate), M capped, and its visibility verdict
+// dropped unless it is the direct reprojection (a jittered retry, a permuted pixel or a
+// neighbour is another point).
+Reservoir history_domain_reservoir(uint j) {
+  Reservoir h = reservoir_unpack(reservoir_fetch(reservoirs_history, history_domain_pixel(j)));
+  reservoir_age_one_frame(h);
+  if (j != 1u || !g_history_visibility) reservoir_set_visibility(h, false, false);
+  uint light = h.selected.light_index;
+  if (light != kInvalidLight && light != kEnvironmentLight) {
+    light = scene_light_from_previous(light);
+    if (light >= restir_light_count()) light = kInvalidLight;
+  }
+  reservoir_remap_light(h, light);
+  reservoir_cap_m(h, g_history_m_cap);
+  return h;
+}
+
+// History domain j's surface, seen from last frame's camera.
+ShadingPoint history_domain_point(uint j) {
+  return restir_shading_point(restir_surface_fetch(surfaces_history, history_domain_pixel(j)),
+                              frame_constants.frame.prev_camera_position.xyz);
+}
+
+// Finds last frame's pixel for this surface along `motion` (the G-buffer motion's xy): the
+// reprojected pixel `previous` (-1 when the motion is not finite) and, returned, the pixel that
+// passed the disocclusion test (-1 when none did). status: kRestirStatus*. expected_depth: the
+// depth the previous camera saw this point at.
+ivec2 find_history(uvec2 pixel, vec2 motion, RestirSurface surface, float expected_depth,
+                   inout uint rng, out ivec2 previous, out uint status) {
   status = kRestirStatusNoHistory;
+  previous = ivec2(-1);
   ivec2 size = ivec2(restir_size());
   if (!(is_finite(motion.x) && is_finite(motion.y))) return ivec2(-1);
-  vec2 previous = vec2(pixel) + 0.5 + motion;
-  vec4 clip = frame_constants.frame.prev_view_proj * vec4(restir_surface_position(surface), 1.0);
-  float expected_depth = clip.w;  // Vulkan perspective: clip w = linear view depth
+  vec2 reprojected = vec2(pixel) + 0.5 + motion;
+  previous = ivec2(floor(reprojected));
   for (uint t = 0u; t < kRestirTemporalTries; ++t) {
     vec2 jitter = t == 0u ? vec2(0.0) : (rng_next_vec2(rng) - 0.5) * 3.0;
-    ivec2 q = ivec2(floor(previous + jitter));
+    ivec2 q = ivec2(floor(reprojected + jitter));
     if (t == 0u && (push.flags & kRestirFlagTemporalPermutation) != 0u) {
       q = restir_permuted_history_pixel(q, push.permutation_bits);
     }
@@ -80,6 +127,34 @@ ivec2 find_history(uvec2 pixel, vec2 motion, RestirSurface surface, inout uint r
     }
   }
   return ivec2(-1);
+}
+
+// Adds to g_history_pixel[count...] up to `tries` of last frame's pixels drawn uniformly in a
+// disk of push.radius pixels around `centre` (not `skip`, the domain already taken) whose
+// surfaces pass the disocclusion test. Returns the new count.
+uint add_history_neighbours(ivec2 centre, ivec2 skip, uint tries, RestirSurface surface,
+                            float expected_depth, uint count, inout uint rng) {
+  ivec2 size = ivec2(restir_size());
+  for (uint t = 0u; t < tries; ++t) {
+    vec2 u = rng_next_vec2(rng);
+    float radius = push.radius * sqrt(u.x);
+    float angle = kTwoPi * u.y;
+    ivec2 q = centre + ivec2(round(radius * vec2(cos(angle), sin(angle))));
+    if (q == skip || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+    uint q_index = uint(q.y) * uint(size.x) + uint(q.x);
+    if (!restir_surfaces_similar(surface, expected_depth,
+                                 restir_surface_fetch(surfaces_history, q_index),
+                                 push.similarity)) {
+      continue;
+    }
+    if (count == 1u) {
+      g_history_first = q_index;
+    } else {
+      g_history_pixel[count] = q_index;
+    }
+    ++count;
+  }
+  return count;
 }
 
 void main() {
@@ -95,38 +170,31 @@ void main() {
       uint rng = frame_rng(pixel, kRestirRngTemporal);
       // xy: the reprojection; zw: the point's own motion, for the cap below.
       vec4 motions = imageLoad(gbuffer_motion, ivec2(pixel));
-      ivec2 q = find_history(pixel, motions.xy, surface, rng, status);
+      vec4 clip = frame_constants.frame.prev_view_proj * vec4(restir_surface_position(surface), 1.0);
+      float expected_depth = clip.w;  // Vulkan perspective: clip w = linear view depth
+      ivec2 previous;
+      ivec2 q = find_history(pixel, motions.xy, surface, expected_depth, rng, previous, status);
+      uint count = 1u;
       if (q.x >= 0) {
-        uint q_index = uint(q.y) * restir_size().x + uint(q.x);
-        Reservoir history = reservoir_unpack(reservoir_fetch(reservoirs_history, q_index));
-        reservoir_age_one_frame(history);
-        // Visibility reuse only along a direct reprojection (a jittered retry or a permuted
-        // pixel is another point).
-        if (status != kRestirStatusReprojected ||
-            (push.flags & kRestirFlagTemporalPermutation) != 0u) {
-          reservoir_set_visibility(history, false, false);
-        }
-        // A removed light (or an empty history reservoir) leaves no sample but keeps M: the
-        // history domain produced "nothing" this time, and the canonical sample's MIS weight must
-        // not depend on that outcome. (Zeroing M here skipped the merge exactly when the history
-        // was empty: +7% on cornell_lights' lit surfaces, +18% with 1 candidate.)
-        uint light = history.selected.light_index;
-        if (light != kInvalidLight && light != kEnvironmentLight) {
-          light = scene_light_from_previous(light);
-          if (light >= restir_light_count()) light = kInvalidLight;
-        }
-        reservoir_remap_light(history, light);
-        reservoir_cap_m(history,
-                        restir_history_m_cap(push.m_cap, push.m_cap_moving, motions.zw));
-        if (history.M > 0.0) {
-          g_canonical = r;
-          g_canonical_point =
-              restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
-          g_history = history;
-          g_history_point = restir_shading_point(restir_surface_fetch(surfaces_history, q_index),
-                                                 frame_constants.frame.prev_camera_position.xyz);
-          r = restir_combine(2u, push.bias_correction, rng);
-        }
+        g_history_first = uint(q.y) * restir_size().x + uint(q.x);
+        count = 2u;
+      }
+      if (previous.x >= 0 && push.temporal_neighbours > 0u) {
+        uint tries = push.temporal_neighbours + (q.x < 0 ? push.boost_neighbours : 0u);
+        count = add_history_neighbours(previous, q.x >= 0 ? q : previous,
+                                       min(tries, kRestirMaxNeighbours), surface,
+                                       expected_depth, count, rng);
+      }
+      if (count > 1u) {
+        g_canonical = r;
+        g_canonical_point =
+            restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
+        g_canonical_light = restir_sample_light(r.selected);
+        g_history_m_cap = restir_history_m_cap(push.m_cap, push.m_cap_moving, motions.zw);
+        // Visibility reuse only along a direct reprojection.
+        g_history_visibility = status == kRestirStatusReprojected &&
+                               (push.flags & kRestirFlagTemporalPermutation) == 0u;
+        r = restir_combine(count, push.bias_correction, rng);
       }
     }
   }

@@ -161,8 +161,13 @@ struct RestirPush {
   float m_cap_moving;     // m_cap's fraction where a point moves a pixel or more
                           // (restir_history_m_cap; 1: the same cap everywhere)
   float bsdf_min_gloss;   // BSDF candidates only where brdf_gloss (shared/brdf.h) reaches this
+  uint temporal_neighbours;  // restir.temporal's neighbours from last frame around the
+                             // reprojected pixel (0: the reprojected pixel alone)
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
-LANTERN_STATIC_SIZE(RestirPush, 96);
+LANTERN_STATIC_SIZE(RestirPush, 112);
 
 // The per-pixel surface the passes resample at, packed from the G-buffer by restir.initial
 // (and kept one frame as history for restir.temporal's disocclusion test). 48 bytes: albedo,

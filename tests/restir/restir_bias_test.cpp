@@ -9,7 +9,7 @@
 // same in every integrator and would swamp the lighting), not sky, and whose reference radiance
 // is positive.
 //
-// Asserted for balance, pairwise, bsdf, local-bsdf and permuted (kModes): the run resolves the
+// Asserted for balance, pairwise, bsdf, local-bsdf, permuted and temporal-neighbours (kModes): the run resolves the
 // tolerance (3 sigma < tolerance, else the test fails saying so) and the bias is within 3 sigma
 // of zero. A 1% gain injected into restir.shade reads +0.9..+1.1% against 3 sigma of
 // 0.24..0.41% and fails both tests. `none` is known to be biased dark where a neighbour's target
@@ -169,6 +169,13 @@ const Mode kModes[] = {
     // Temporal permutation (what the denoiser's frames use): each pixel's history comes from a
     // neighbour, which pairwise MIS weighs as such. The balance heuristic's: study only.
     {"permuted", {{"temporal_permutation", "on"}}, true, true},
+    // Spatiotemporal reuse in restir.temporal alone: last frame's neighbours around the
+    // reprojected pixel are more domains, each weighed at its own (last frame's) surface. The
+    // balance heuristic's: study only.
+    {"temporal-neighbours", {{"temporal_neighbours", "4"}, {"spatial_passes", "0"}}, true, true},
+    {"balance-temporal-neighbours",
+     {{"bias_correction", "balance"}, {"temporal_neighbours", "4"}, {"spatial_passes", "0"}}, true,
+     false},
     {"balance-permuted", {{"bias_correction", "balance"}, {"temporal_permutation", "on"}}, true,
      false},
     // Study only (named in LANTERN_BIAS_MODES): each stage alone. Temporal reuse only, one

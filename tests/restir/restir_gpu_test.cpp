@@ -308,8 +308,9 @@ TEST_F(RestirGpuTest, DisocclusionRecoversWithinFourFrames) {
 // Two lights: A (a bright spot on the floor's left half) first in the light list, B (a dim point
 // light) second. A is removed at frame 6: from then the image must equal the B-only image (B
 // alone is sampled exactly, W = 1, so the comparison is tight: 0.1% on the mean, 1e-3 per
-// pixel), in every bias mode; B's index moves 1 -> 0, so its history must be found through the
-// remap, not the old index (frames 7..9 reuse history again).
+// pixel), in every bias mode and with restir.temporal's neighbours from last frame; B's index
+// moves 1 -> 0, so its history must be found through the remap, not the old index (frames 7..9
+// reuse history again).
 TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
   const std::string json = R"({
     "materials": { "white": { "base_color": [0.7, 0.7, 0.7], "roughness": 0.8 } },
@@ -333,9 +334,21 @@ TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
   RenderHarness only_b(device, shaders, level_b, test::make_restir(device, shaders, {}), kW, kH);
   const ImageRGBA32F b = only_b.render(test::first_snapshot(level_b, kW, kH));
   const double mean_b = runtime::mean_rgb(b);
-  for (const char* mode : {"pairwise", "balance", "none"}) {
+  // Each bias mode, and restir.temporal's neighbours from last frame (each its own remap).
+  struct Config {
+    const char* mode;
+    const char* temporal_neighbours;
+  };
+  for (const Config& c : {Config{"pairwise", "0"}, Config{"balance", "0"}, Config{"none", "0"},
+                          Config{"pairwise", "4"}}) {
+    const bool fused = std::string(c.temporal_neighbours) != "0";
+    const std::string mode = std::string(c.mode) + (fused ? "+tn" : "");
     RenderHarness run(device, shaders, level,
-                      test::make_restir(device, shaders, {{"bias_correction", mode}}), kW, kH);
+                      test::make_restir(device, shaders,
+                                        {{"bias_correction", c.mode},
+                                         {"temporal_neighbours", c.temporal_neighbours},
+                                         {"spatial_passes", fused ? "0" : "1"}}),
+                      kW, kH);
     FrameSnapshot s = first;
     std::vector<ImageRGBA32F> images;
     for (int f = 0; f < 10; ++f) {
@@ -344,8 +357,8 @@ TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
       images.push_back(run.render(s));
     }
     const double mean_a = runtime::mean_rgb(images[5]);
-    std::printf("[restir light removal] %-8s mean with A %.5f, B only %.5f, after removal:", mode,
-                mean_a, mean_b);
+    std::printf("[restir light removal] %-11s mean with A %.5f, B only %.5f, after removal:",
+                mode.c_str(), mean_a, mean_b);
     for (int f = 6; f < 10; ++f) std::printf(" %.5f", runtime::mean_rgb(images[f]));
     std::printf("\n");
     ASSERT_GT(mean_a, 20.0 * mean_b) << "A must dominate before it is removed";
@@ -357,6 +370,51 @@ TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
       EXPECT_LT(max_diff, 1e-3) << mode << " frame " << f << ": per pixel, the B-only image";
     }
   }
+}
+
+// restir.temporal's neighbours from last frame (temporal_neighbours, RestirSettings), read through
+// the M debug view (M / M cap, shared/restir.h) on a still view of cornell_lights without spatial
+// passes. Frame 0 has no history: M is the 8 candidates everywhere, with or without neighbours.
+// Frame 1 merges the reprojected pixel (M 8 + 8) and, with 4 neighbours, up to 4 more of last
+// frame's pixels (M up to 8 + 5 x 8): never below the run without, never above that bound, and,
+// within a radius of 3 pixels, above it on most surface pixels (a neighbour fails off the image,
+// on another surface or where it rounds to the reprojected pixel itself; at the default 16 pixels
+// the depth test turns away most of those on the floor, ceiling and side walls, as it does for
+// restir.spatial's).
+TEST_F(RestirGpuTest, TemporalNeighboursMergeLastFramesNeighbours) {
+  const FrameSnapshot first = test::first_snapshot(cornell(), kW, kH);
+  auto run = [&](const char* neighbours) {
+    RenderHarness h(device, shaders, cornell(),
+                    test::make_restir(device, shaders,
+                                      {{"spatial_passes", "0"},
+                                       {"temporal_neighbours", neighbours},
+                                       {"radius", "3"},
+                                       {"debug_view", "m"}}),
+                    kW, kH);
+    std::vector<ImageRGBA32F> frames{h.render(first)};
+    frames.push_back(h.render(frozen(first)));
+    return frames;
+  };
+  const std::vector<ImageRGBA32F> alone = run("0"), merged = run("4");
+  const float m_cap = 20.0f * 8.0f;  // balanced: m_cap 20 x 8 light candidates
+  EXPECT_EQ(merged[0].pixels, alone[0].pixels) << "no history: no neighbour either";
+  std::size_t surface = 0, more = 0, below = 0, above_bound = 0;
+  for (std::size_t p = 0; p < std::size_t{kW} * kH; ++p) {
+    const float m_alone = alone[1].pixels[4 * p] * m_cap;
+    const float m_merged = merged[1].pixels[4 * p] * m_cap;
+    if (m_alone == 0.0f) continue;  // sky
+    ++surface;
+    below += m_merged < m_alone - 1e-3f ? 1 : 0;
+    above_bound += m_merged > 8.0f + 5.0f * 8.0f + 1e-3f ? 1 : 0;
+    more += m_merged > m_alone + 1e-3f ? 1 : 0;
+  }
+  std::printf("[restir temporal neighbours] %zu surface pixels: %zu merged more history, %zu "
+              "less, %zu above 5 domains\n",
+              surface, more, below, above_bound);
+  ASSERT_GT(surface, 2000u);
+  EXPECT_EQ(below, 0u) << "neighbours only add domains";
+  EXPECT_EQ(above_bound, 0u) << "at most the reprojected pixel and 4 neighbours";
+  EXPECT_GT(double(more), 0.9 * double(surface)) << "a still view finds most neighbours";
 }
 
 // (5) A camera cut: the frame after it reuses no history (every surface pixel "no history" in

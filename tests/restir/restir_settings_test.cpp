@@ -94,6 +94,9 @@ TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
            {"bsdf_min_gloss", "nan"},
            {"spatial_passes", "5"},
            {"neighbours", "9"},
+           {"temporal_neighbours", "9"},
+           {"temporal_neighbours", "-1"},
+           {"temporal_neighbours", "two"},
            {"radius", "0"},
            {"radius", "nan"},
            {"radius", "inf"},
@@ -347,6 +350,20 @@ TEST(RestirSettings, BsdfCandidatesOnlyWhereALevelHasGlossySurfaces) {
     EXPECT_EQ(push.short_history_m, 2u * (8u + expected));
   }
   EXPECT_EQ(restir_preset("quality").bsdf_min_gloss, 0.0f) << "quality: every surface";
+}
+
+// restir.temporal's neighbours from last frame reach the shaders as set, the spelling
+// "neighbors" too; every preset leaves them off (their measured trade: README).
+TEST(RestirSettings, TemporalNeighboursReachTheTemporalPass) {
+  const FrameInputs inputs = inputs_of(320, 180, 89);
+  for (const std::string& preset : restir_preset_names()) {
+    EXPECT_EQ(restir_preset(preset).temporal_neighbours, 0u) << preset;
+    EXPECT_EQ(RestirIntegrator::make_push(restir_preset(preset), inputs).temporal_neighbours, 0u);
+  }
+  RestirSettings s = make_restir_settings("balanced", {{"temporal_neighbours", "4"}});
+  EXPECT_EQ(RestirIntegrator::make_push(s, inputs).temporal_neighbours, 4u);
+  apply_setting(s, "temporal_neighbors", "8");
+  EXPECT_EQ(RestirIntegrator::make_push(s, inputs).temporal_neighbours, gpu::kRestirMaxNeighbours);
 }
 
 }  // namespace
