@@ -78,9 +78,11 @@ struct RestirSettings {
   // drawn within `radius` around it and passing the same disocclusion test (plus
   // disocclusion_boost where the reprojected pixel fails it): spatial reuse from last frame's
   // neighbours in the temporal pass itself (RTXDI's fused spatiotemporal mode), where
-  // restir.spatial reuses this frame's in a pass of its own. With spatial_passes 0 it replaces
-  // that pass at about half its cost; a disocclusion then finds only what last frame saw beside
-  // it. 0: the reprojected pixel alone. Unbiased with pairwise or balance MIS.
+  // restir.spatial reuses this frame's in a pass of its own. With spatial_passes 0 it stands in
+  // for that pass, saving the pass's fixed part only (on lavapipe a history neighbour costs what
+  // a spatial one does: the frame 1.00x at 320x180, 0.94x at 640x360, for noisier images:
+  // README); a disocclusion then finds only what last frame saw beside it. 0: the reprojected
+  // pixel alone. Unbiased with pairwise or balance MIS. No effect with `temporal` off.
   std::uint32_t temporal_neighbours = 0;
   // Spatial reuse passes. More passes spread good samples further (less noise) at a full pass's
   // cost each; 0 for temporal-only.
