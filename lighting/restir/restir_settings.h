@@ -91,10 +91,12 @@ struct RestirSettings {
   // quadratic (balance) cost.
   std::uint32_t neighbours = 4;
   // Extra neighbours where a pixel's history is short (just disoccluded): raise when
-  // disocclusions stay noisy for several frames.
+  // disocclusions stay noisy for several frames. With temporal_neighbours, also the extra
+  // history neighbours where the reprojected pixel fails the disocclusion test.
   std::uint32_t disocclusion_boost = 2;
-  // Search radius of spatial neighbours in pixels. Larger finds more light over flat areas but
-  // rejects more neighbours on busy geometry; scale it with resolution.
+  // Search radius of spatial neighbours in pixels (and of temporal_neighbours around the
+  // reprojected pixel). Larger finds more light over flat areas but rejects more neighbours on
+  // busy geometry; scale it with resolution.
   float radius = 16.0f;
   // How MIS weights combine reservoirs: none (1/M, fastest, darkens contact shadows), balance
   // (unbiased, O(k^2) target evaluations), pairwise (unbiased, O(k)).
@@ -177,7 +179,7 @@ std::vector<std::string> restir_preset_names();
 
 // Sets one knob by its key (the field names above: light_candidates, bsdf_candidates,
 // bsdf_min_gloss, temporal, m_cap (alias of m_cap_factor), m_cap_moving, spatial_passes,
-// neighbours, disocclusion_boost, radius, presample_tiles, local_candidates, local_min_lights,
+// neighbours, disocclusion_boost, temporal_neighbours, radius, presample_tiles, local_candidates, local_min_lights,
 // visibility_reuse, bias_correction (a name from restir_bias_corrections()), initial_visibility,
 // boiling_filter, depth_threshold, normal_threshold, debug_view (a name from
 // restir_debug_views()), temporal_permutation (a name from restir_temporal_permutations()); the

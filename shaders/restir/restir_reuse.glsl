@@ -11,9 +11,10 @@
 // combine_domain_reservoir(j) and combine_domain_target(j, y), and pairwise MIS through
 // combine_pairwise_targets(j, y_c, y_j) where a pass defines its own (both passes do: one decode
 // and one light fetch each), all defined by the including pass before this header
-// (restir.temporal: two named domains; restir.spatial: neighbours as pixel indices, decoded at
-// each use). Loop-indexed private arrays of decoded domains are what lavapipe spills: both
-// passes measured faster without them.
+// (restir.temporal: the canonical pixel decoded once, last frame's pixels as indices into the
+// history; restir.spatial: neighbours as pixel indices; both decoded at each use). Loop-indexed
+// private arrays of decoded domains are what lavapipe spills: both passes measured faster
+// without them.
 #include "shared/reservoir_combine.h"
 
 // Resamples the `count` domains into one finalized reservoir for the canonical pixel.

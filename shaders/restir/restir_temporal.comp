@@ -101,18 +101,13 @@ ShadingPoint history_domain_point(uint j) {
                               frame_constants.frame.prev_camera_position.xyz);
 }
 
-// Finds last frame's pixel for this surface along `motion` (the G-buffer motion's xy): the
-// reprojected pixel `previous` (-1 when the motion is not finite) and, returned, the pixel that
-// passed the disocclusion test (-1 when none did). status: kRestirStatus*. expected_depth: the
-// depth the previous camera saw this point at.
-ivec2 find_history(uvec2 pixel, vec2 motion, RestirSurface surface, float expected_depth,
-                   inout uint rng, out ivec2 previous, out uint status) {
+// Finds last frame's pixel for this surface at `reprojected` (the pixel centre plus the G-buffer
+// motion's xy): the pixel that passed the disocclusion test, -1 when none did. status:
+// kRestirStatus*. expected_depth: the depth the previous camera saw this point at.
+ivec2 find_history(vec2 reprojected, RestirSurface surface, float expected_depth, inout uint rng,
+                   out uint status) {
   status = kRestirStatusNoHistory;
-  previous = ivec2(-1);
   ivec2 size = ivec2(restir_size());
-  if (!(is_finite(motion.x) && is_finite(motion.y))) return ivec2(-1);
-  vec2 reprojected = vec2(pixel) + 0.5 + motion;
-  previous = ivec2(floor(reprojected));
   for (uint t = 0u; t < kRestirTemporalTries; ++t) {
     vec2 jitter = t == 0u ? vec2(0.0) : (rng_next_vec2(rng) - 0.5) * 3.0;
     ivec2 q = ivec2(floor(reprojected + jitter));
@@ -129,9 +124,10 @@ ivec2 find_history(uvec2 pixel, vec2 motion, RestirSurface surface, float expect
   return ivec2(-1);
 }
 
-// Adds to g_history_pixel[count...] up to `tries` of last frame's pixels drawn uniformly in a
-// disk of push.radius pixels around `centre` (not `skip`, the domain already taken) whose
-// surfaces pass the disocclusion test. Returns the new count.
+// Adds to the history domains (g_history_first, then g_history_pixel[count...]) up to `tries` of
+// last frame's pixels drawn uniformly in a disk of push.radius pixels around `centre` whose
+// surfaces pass the disocclusion test, other than `skip` (the domain already taken, or -1).
+// Returns the new count.
 uint add_history_neighbours(ivec2 centre, ivec2 skip, uint tries, RestirSurface surface,
                             float expected_depth, uint count, inout uint rng) {
   ivec2 size = ivec2(restir_size());
@@ -170,18 +166,22 @@ void main() {
       uint rng = frame_rng(pixel, kRestirRngTemporal);
       // xy: the reprojection; zw: the point's own motion, for the cap below.
       vec4 motions = imageLoad(gbuffer_motion, ivec2(pixel));
-      vec4 clip = frame_constants.frame.prev_view_proj * vec4(restir_surface_position(surface), 1.0);
+      vec4 clip =
+          frame_constants.frame.prev_view_proj * vec4(restir_surface_position(surface), 1.0);
       float expected_depth = clip.w;  // Vulkan perspective: clip w = linear view depth
-      ivec2 previous;
-      ivec2 q = find_history(pixel, motions.xy, surface, expected_depth, rng, previous, status);
+      bool reprojects = is_finite(motions.x) && is_finite(motions.y);
+      // Clamped far outside any image, so the integer pixels below cannot overflow.
+      vec2 reprojected = clamp(vec2(pixel) + 0.5 + motions.xy, vec2(-65536.0), vec2(65536.0));
+      ivec2 q = reprojects ? find_history(reprojected, surface, expected_depth, rng, status)
+                           : ivec2(-1);
       uint count = 1u;
       if (q.x >= 0) {
         g_history_first = uint(q.y) * restir_size().x + uint(q.x);
         count = 2u;
       }
-      if (previous.x >= 0 && push.temporal_neighbours > 0u) {
+      if (reprojects && push.temporal_neighbours > 0u) {
         uint tries = push.temporal_neighbours + (q.x < 0 ? push.boost_neighbours : 0u);
-        count = add_history_neighbours(previous, q.x >= 0 ? q : previous,
+        count = add_history_neighbours(ivec2(floor(reprojected)), q,
                                        min(tries, kRestirMaxNeighbours), surface,
                                        expected_depth, count, rng);
       }

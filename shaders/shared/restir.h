@@ -17,6 +17,7 @@ LANTERN_BEGIN_SHARED
 LANTERN_CONST uint kRestirMaxLightCandidates = 256u;
 LANTERN_CONST uint kRestirMaxBsdfCandidates = 16u;
 LANTERN_CONST uint kRestirMaxNeighbours = 8u;   // spatial neighbours per pass, boost included
+                                                // (and restir.temporal's history neighbours)
 LANTERN_CONST uint kRestirMaxSpatialPasses = 4u;
 LANTERN_CONST uint kRestirTemporalTries = 4u;   // reprojected pixel, then 3 jittered retries
 

@@ -9,9 +9,9 @@
 // same in every integrator and would swamp the lighting), not sky, and whose reference radiance
 // is positive.
 //
-// Asserted for balance, pairwise, bsdf, local-bsdf, permuted and temporal-neighbours (kModes): the run resolves the
-// tolerance (3 sigma < tolerance, else the test fails saying so) and the bias is within 3 sigma
-// of zero. A 1% gain injected into restir.shade reads +0.9..+1.1% against 3 sigma of
+// Asserted for balance, pairwise, bsdf, local-bsdf, permuted and temporal-neighbours (kModes):
+// the run resolves the tolerance (3 sigma < tolerance, else the test fails saying so) and the
+// bias is within 3 sigma of zero. A 1% gain injected into restir.shade reads +0.9..+1.1% against 3 sigma of
 // 0.24..0.41% and fails both tests. `none` is known to be biased dark where a neighbour's target
 // is zero and the canonical pixel's is not (its 1/M weights ignore that); its bias is printed and
 // only what is true of it asserted: it never exceeds the reference by more than 3 sigma.

@@ -308,9 +308,10 @@ TEST_F(RestirGpuTest, DisocclusionRecoversWithinFourFrames) {
 // Two lights: A (a bright spot on the floor's left half) first in the light list, B (a dim point
 // light) second. A is removed at frame 6: from then the image must equal the B-only image (B
 // alone is sampled exactly, W = 1, so the comparison is tight: 0.1% on the mean, 1e-3 per
-// pixel), in every bias mode and with restir.temporal's neighbours from last frame; B's index
-// moves 1 -> 0, so its history must be found through the remap, not the old index (frames 7..9
-// reuse history again).
+// pixel), in every bias mode and with restir.temporal's neighbours from last frame. The frame of
+// the removal reuses no history (RestirIntegrator: a removed light's share still weighs in every
+// history W); frames 7..9 reuse frame 6's, where B is already index 0. The remap itself:
+// InsertedLightRemapsEveryHistoryDomain.
 TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
   const std::string json = R"({
     "materials": { "white": { "base_color": [0.7, 0.7, 0.7], "roughness": 0.8 } },
@@ -334,7 +335,9 @@ TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
   RenderHarness only_b(device, shaders, level_b, test::make_restir(device, shaders, {}), kW, kH);
   const ImageRGBA32F b = only_b.render(test::first_snapshot(level_b, kW, kH));
   const double mean_b = runtime::mean_rgb(b);
-  // Each bias mode, and restir.temporal's neighbours from last frame (each its own remap).
+  // Each bias mode, and restir.temporal's neighbours from last frame (after the removal the
+  // frame reuses no history; from frame 7 five or more domains must still weigh B's exact W = 1
+  // sample to exactly 1).
   struct Config {
     const char* mode;
     const char* temporal_neighbours;
@@ -372,11 +375,78 @@ TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
   }
 }
 
+// A light inserted in front of the list: C (a point light under the floor, which lights none of
+// it) comes back at frame 6 as index 0, so B moves 0 -> 1 and every history sample must reach it
+// through light_previous_to_current (an inserted light does not stop reuse, a removed one does).
+// A history domain that kept the old index would name C, whose p̂ on the floor is 0, while its M
+// still claims most of the weight: the frame would go dark. Frames 6..9 must keep B's mean (B
+// alone is exact, W = 1; with C drawn as often as B the candidates' count of B varies: 1%,
+// measured within 0.06%),
+// with the reprojected pixel alone and with 4 of last frame's neighbours (each its own domain,
+// each remapped), in pairwise and balance MIS.
+TEST_F(RestirGpuTest, InsertedLightRemapsEveryHistoryDomain) {
+  const std::string json = R"({
+    "materials": { "white": { "base_color": [0.7, 0.7, 0.7], "roughness": 0.8 } },
+    "primitives": [ { "type": "plane", "name": "floor", "size": [4, 4], "material": "white" } ],
+    "lights": [
+      { "type": "point", "name": "c", "position": [0, -1, 0], "intensity": 2 },
+      { "type": "point", "name": "b", "position": [1, 2, 0], "intensity": 2 } ],
+    "camera": { "position": [0, 3, 3], "target": [0, 0, 0], "yfov_deg": 60 } })";
+  const std::string json_b = R"({
+    "materials": { "white": { "base_color": [0.7, 0.7, 0.7], "roughness": 0.8 } },
+    "primitives": [ { "type": "plane", "name": "floor", "size": [4, 4], "material": "white" } ],
+    "lights": [ { "type": "point", "name": "b", "position": [1, 2, 0], "intensity": 2 } ],
+    "camera": { "position": [0, 3, 3], "target": [0, 0, 0], "yfov_deg": 60 } })";
+  auto level = test::level_from_json("c_and_b", json);
+  auto level_b = test::level_from_json("light_b", json_b);
+  const FrameSnapshot both = test::first_snapshot(level, kW, kH);
+  ASSERT_EQ(both.lights.size(), 2u);
+  ASSERT_EQ(both.lights[0].stable_id, 0u) << "C first";
+  FrameSnapshot only_b_first = both;
+  only_b_first.lights.erase(only_b_first.lights.begin());
+
+  RenderHarness b_run(device, shaders, level_b, test::make_restir(device, shaders, {}), kW, kH);
+  const double mean_b = runtime::mean_rgb(b_run.render(test::first_snapshot(level_b, kW, kH)));
+  struct Config {
+    const char* mode;
+    const char* temporal_neighbours;
+  };
+  for (const Config& c : {Config{"pairwise", "0"}, Config{"pairwise", "4"},
+                          Config{"balance", "4"}}) {
+    const bool fused = std::string(c.temporal_neighbours) != "0";
+    RenderHarness run(device, shaders, level,
+                      test::make_restir(device, shaders,
+                                        {{"bias_correction", c.mode},
+                                         {"temporal_neighbours", c.temporal_neighbours},
+                                         {"spatial_passes", fused ? "0" : "1"}}),
+                      kW, kH);
+    FrameSnapshot s = only_b_first;
+    std::printf("[restir light insertion] %-8s neighbours %s, B only %.5f:", c.mode,
+                c.temporal_neighbours, mean_b);
+    for (int f = 0; f < 10; ++f) {
+      if (f > 0) s = frozen(s);
+      if (f == 6) s.lights.insert(s.lights.begin(), both.lights[0]);  // C back, in front of B
+      const ImageRGBA32F image = run.render(s);
+      EXPECT_TRUE(test::all_finite(image));
+      const double mean = runtime::mean_rgb(image);
+      std::printf(" %.5f", mean);
+      if (f < 6) {
+        EXPECT_NEAR(mean, mean_b, 1e-3 * mean_b) << c.mode << " frame " << f << ": B alone";
+      } else {
+        EXPECT_NEAR(mean, mean_b, 0.01 * mean_b)
+            << c.mode << " neighbours " << c.temporal_neighbours << " frame " << f;
+      }
+    }
+    std::printf("\n");
+  }
+}
+
 // restir.temporal's neighbours from last frame (temporal_neighbours, RestirSettings), read through
 // the M debug view (M / M cap, shared/restir.h) on a still view of cornell_lights without spatial
 // passes. Frame 0 has no history: M is the 8 candidates everywhere, with or without neighbours.
 // Frame 1 merges the reprojected pixel (M 8 + 8) and, with 4 neighbours, up to 4 more of last
-// frame's pixels (M up to 8 + 5 x 8): never below the run without, never above that bound, and,
+// frame's pixels (M up to 8 + 5 x 8; a still view reprojects every pixel onto itself, so no
+// disocclusion_boost): never below the run without, never above that bound, and,
 // within a radius of 3 pixels, above it on most surface pixels (a neighbour fails off the image,
 // on another surface or where it rounds to the reprojected pixel itself; at the default 16 pixels
 // the depth test turns away most of those on the floor, ceiling and side walls, as it does for
