@@ -32,27 +32,31 @@
 Reservoir g_canonical;
 ShadingPoint g_canonical_point;
 GpuLight g_canonical_light;
-// Domain j >= 1's pixel index in the history: domain 1's in a variable of its own (the only one
-// without temporal_neighbours: a private array costs lavapipe loads and stores), the rest in
-// g_history_pixel.
-uint g_history_first;
+// Domain 1 (the reprojected pixel, the only history domain without temporal_neighbours) read and
+// decoded once into named values, as the `balance` and `none` loops ask for it several times; a
+// private array would cost lavapipe loads and stores. Domains j >= 2 as pixel indices into the
+// history, read and decoded at each use.
+uint g_history_first;  // domain 1's pixel index in the history
+Reservoir g_history;
+ShadingPoint g_history_point;
 uint g_history_pixel[kRestirMaxNeighbours + 2u];
-uint history_domain_pixel(uint j) { return j == 1u ? g_history_first : g_history_pixel[j]; }
 float g_history_m_cap;
-bool g_history_visibility;  // domain 1 keeps its visibility verdict (a direct reprojection)
-Reservoir history_domain_reservoir(uint j);
-ShadingPoint history_domain_point(uint j);
+Reservoir history_reservoir(uint index, bool keep_visibility);
+ShadingPoint history_point(uint index);
 Reservoir combine_domain_reservoir(uint j) {
-  return j == 0u ? g_canonical : history_domain_reservoir(j);
+  if (j == 0u) return g_canonical;
+  return j == 1u ? g_history : history_reservoir(g_history_pixel[j], false);
 }
-float combine_domain_target(uint j, LightSample y) {
-  return restir_target(j == 0u ? g_canonical_point : history_domain_point(j), y);
+ShadingPoint domain_point(uint j) {
+  if (j == 0u) return g_canonical_point;
+  return j == 1u ? g_history_point : history_point(g_history_pixel[j]);
 }
+float combine_domain_target(uint j, LightSample y) { return restir_target(domain_point(j), y); }
 // Pairwise MIS's three evaluations for domain j: its point decoded once, the canonical sample's
 // light fetched once per pixel, domain j's once for both points.
 #define LANTERN_COMBINE_PAIRWISE_TARGETS
 vec3 combine_pairwise_targets(uint j, LightSample y_c, LightSample y_j) {
-  ShadingPoint p = history_domain_point(j);
+  ShadingPoint p = domain_point(j);
   GpuLight light_j = restir_sample_light(y_j);
   return vec3(restir_target_with_light(p, y_c, g_canonical_light),
               restir_target_with_light(p, y_j, light_j),
@@ -74,17 +78,17 @@ layout(std430, binding = PASS_BINDING(6)) writeonly buffer StatusOut {
 
 shared float s_weights[kPixelGroupThreads];
 
-// History domain j's reservoir as this frame sees it: a frame older, its light remapped (a
-// removed light, or an empty history reservoir, leaves no sample but keeps M: that domain
-// produced "nothing" this time, and the canonical sample's MIS weight must not depend on that
-// outcome; zeroing M there skipped the merge exactly when the history was empty: +7% on
+// The reservoir of history pixel `index` as this frame sees it: a frame older, its light
+// remapped (a removed light, or an empty history reservoir, leaves no sample but keeps M: that
+// domain produced "nothing" this time, and the canonical sample's MIS weight must not depend on
+// that outcome; zeroing M there skipped the merge exactly when the history was empty: +7% on
 // cornell_lights' lit surfaces, +18% with 1 candidate), M capped, and its visibility verdict
-// dropped unless it is the direct reprojection (a jittered retry, a permuted pixel or a
-// neighbour is another point).
-Reservoir history_domain_reservoir(uint j) {
-  Reservoir h = reservoir_unpack(reservoir_fetch(reservoirs_history, history_domain_pixel(j)));
+// dropped unless `keep_visibility` (the direct reprojection: a jittered retry, a permuted pixel
+// or a neighbour is another point).
+Reservoir history_reservoir(uint index, bool keep_visibility) {
+  Reservoir h = reservoir_unpack(reservoir_fetch(reservoirs_history, index));
   reservoir_age_one_frame(h);
-  if (j != 1u || !g_history_visibility) reservoir_set_visibility(h, false, false);
+  if (!keep_visibility) reservoir_set_visibility(h, false, false);
   uint light = h.selected.light_index;
   if (light != kInvalidLight && light != kEnvironmentLight) {
     light = scene_light_from_previous(light);
@@ -95,9 +99,9 @@ Reservoir history_domain_reservoir(uint j) {
   return h;
 }
 
-// History domain j's surface, seen from last frame's camera.
-ShadingPoint history_domain_point(uint j) {
-  return restir_shading_point(restir_surface_fetch(surfaces_history, history_domain_pixel(j)),
+// History pixel `index`'s surface, seen from last frame's camera.
+ShadingPoint history_point(uint index) {
+  return restir_shading_point(restir_surface_fetch(surfaces_history, index),
                               frame_constants.frame.prev_camera_position.xyz);
 }
 
@@ -189,11 +193,15 @@ void main() {
         g_canonical = r;
         g_canonical_point =
             restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
-        g_canonical_light = restir_sample_light(r.selected);
+        if (push.bias_correction == kBiasCorrectionPairwise) {
+          g_canonical_light = restir_sample_light(r.selected);
+        }
         g_history_m_cap = restir_history_m_cap(push.m_cap, push.m_cap_moving, motions.zw);
         // Visibility reuse only along a direct reprojection.
-        g_history_visibility = status == kRestirStatusReprojected &&
-                               (push.flags & kRestirFlagTemporalPermutation) == 0u;
+        g_history = history_reservoir(g_history_first,
+                                      status == kRestirStatusReprojected &&
+                                          (push.flags & kRestirFlagTemporalPermutation) == 0u);
+        g_history_point = history_point(g_history_first);
         r = restir_combine(count, push.bias_correction, rng);
       }
     }
