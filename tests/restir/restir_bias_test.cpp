@@ -9,12 +9,16 @@
 // same in every integrator and would swamp the lighting), not sky, and whose reference radiance
 // is positive.
 //
-// Asserted for balance, pairwise, bsdf, local-bsdf, permuted and temporal-neighbours (kModes):
-// the run resolves the tolerance (3 sigma < tolerance, else the test fails saying so) and the
-// bias is within 3 sigma of zero. A 1% gain injected into restir.shade reads +0.9..+1.1% against 3 sigma of
-// 0.24..0.41% and fails both tests. `none` is known to be biased dark where a neighbour's target
-// is zero and the canonical pixel's is not (its 1/M weights ignore that); its bias is printed and
-// only what is true of it asserted: it never exceeds the reference by more than 3 sigma.
+// Asserted for balance, pairwise, bsdf, local-bsdf, glossy-bsdf, permuted and
+// temporal-neighbours (kModes): the run resolves the tolerance (kSigmas sigma < tolerance, else
+// the test fails saying so) and the bias is within kSigmas sigma of zero. kSigmas is 4, not 3: a
+// CI run makes about 25 such checks, and at 3 sigma one of them fails by chance in ~7% of runs
+// (it happened: `bsdf` on the room read -0.41% against 3 sigma 0.39%, and the resolving study
+// then read +0.03% +- 0.20%); at 4 sigma ~0.2%. The printouts keep 3 sigma, the usual figure. A
+// 1% gain injected into restir.shade reads +0.63..+1.16% against 4 sigma of 0.32..0.59%
+// (balance and pairwise on cornell_lights and the room) and fails all four checks. `none` is known to be biased dark where a neighbour's target is zero and the
+// canonical pixel's is not (its 1/M weights ignore that); its bias is printed and only what is
+// true of it asserted: it never exceeds the reference by more than kSigmas sigma.
 //
 // CI: 1% at 96x54 (kCi below, ~25 s a scene). The resolving study (0.5%, kStudy: more runs, longer
 // chains, a larger image) is scripts/bias_study.sh: LANTERN_BIAS_STUDY=1 plus the LANTERN_BIAS_*
@@ -54,6 +58,9 @@ struct StudyParams {
   std::uint32_t ref_frames;  // reference frames (independent)
   double tolerance;          // relative bias the run must resolve and stay within
 };
+
+// How many standard errors a bias may read before a check fails (the header: the checks are many).
+constexpr double kSigmas = 4.0;
 
 constexpr StudyParams kCi{.width = 96, .height = 54, .seeds = 8, .chains = 8, .frames = 8,
                           .ref_spp = 64, .ref_frames = 32, .tolerance = 0.01};
@@ -364,17 +371,18 @@ class RestirBiasTest : public runtime::test::GpuTest {
                   scene, mode.name, 100.0 * bias, 300.0 * sigma, 100.0 * std::sqrt(var));
       std::fflush(stdout);
       if (mode.unbiased) {
-        EXPECT_LT(3.0 * sigma, p.tolerance)
+        EXPECT_LT(kSigmas * sigma, p.tolerance)
             << scene << " " << mode.name << ": this run cannot resolve a bias of "
-            << 100.0 * p.tolerance << "%: 3 sigma = " << 300.0 * sigma
+            << 100.0 * p.tolerance << "%: " << kSigmas << " sigma = " << 100.0 * kSigmas * sigma
             << "% (more LANTERN_BIAS_RUNS or LANTERN_BIAS_SEEDS)";
-        EXPECT_LE(std::abs(bias), 3.0 * sigma)
-            << scene << " " << mode.name << ": biased by " << 100.0 * bias << "% (3 sigma "
-            << 300.0 * sigma << "%, tolerance " << 100.0 * p.tolerance << "%)";
+        EXPECT_LE(std::abs(bias), kSigmas * sigma)
+            << scene << " " << mode.name << ": biased by " << 100.0 * bias << "% (" << kSigmas
+            << " sigma " << 100.0 * kSigmas * sigma << "%, tolerance " << 100.0 * p.tolerance
+            << "%)";
       } else {
-        EXPECT_LE(bias, 3.0 * sigma) << scene << " " << mode.name << ": brighter than the "
-                                     << "reference by " << 100.0 * bias << "% (3 sigma "
-                                     << 300.0 * sigma << "%)";
+        EXPECT_LE(bias, kSigmas * sigma)
+            << scene << " " << mode.name << ": brighter than the reference by " << 100.0 * bias
+            << "% (" << kSigmas << " sigma " << 100.0 * kSigmas * sigma << "%)";
       }
     }
   }
