@@ -25,17 +25,15 @@
 
 #include "restir/restir_common.glsl"
 
-// The domains: the canonical pixel (decoded once) and last frame's pixels kept as indices into
-// the history, each read and decoded where the combine loop asks for it (pairwise MIS: once).
-// Loop-indexed private arrays of decoded domains are what lavapipe spills (night_market 320x180:
-// restir.temporal 0.85-0.96x of such an array's time with named domains, 6 rounds alternating).
+// The domains: the canonical pixel (0) and domain 1 (the reprojected pixel, the only history
+// domain without temporal_neighbours) read and decoded once into named values, as the `balance`
+// and `none` loops ask for a domain several times (a loop-indexed private array of decoded
+// domains is what lavapipe spills: night_market 320x180, restir.temporal 0.85-0.96x of such an
+// array's time with named domains, 6 rounds alternating); domains j >= 2 as pixel indices into
+// the history, read and decoded at each use (pairwise MIS: once).
 Reservoir g_canonical;
 ShadingPoint g_canonical_point;
-GpuLight g_canonical_light;
-// Domain 1 (the reprojected pixel, the only history domain without temporal_neighbours) read and
-// decoded once into named values, as the `balance` and `none` loops ask for it several times; a
-// private array would cost lavapipe loads and stores. Domains j >= 2 as pixel indices into the
-// history, read and decoded at each use.
+GpuLight g_canonical_light;  // pairwise MIS only
 uint g_history_first;  // domain 1's pixel index in the history
 Reservoir g_history;
 ShadingPoint g_history_point;

@@ -305,6 +305,30 @@ TEST_F(RestirGpuTest, DisocclusionRecoversWithinFourFrames) {
       << "within 4 frames the newly visible pixels must be back within 2x of steady state";
 }
 
+// A floor under point light B at (1, 2, 0), with the light objects `before` (JSON, each followed
+// by a comma; none: "") listed ahead of B, so they take the lower light indices.
+std::string floor_lit_by_b(const std::string& before) {
+  return R"({
+    "materials": { "white": { "base_color": [0.7, 0.7, 0.7], "roughness": 0.8 } },
+    "primitives": [ { "type": "plane", "name": "floor", "size": [4, 4], "material": "white" } ],
+    "lights": [ )" + before + R"(
+      { "type": "point", "name": "b", "position": [1, 2, 0], "intensity": 2 } ],
+    "camera": { "position": [0, 3, 3], "target": [0, 0, 0], "yfov_deg": 60 } })";
+}
+
+// One MIS mode, with restir.temporal's neighbours from last frame in place of the spatial pass
+// where `temporal_neighbours` is not "0".
+struct ReuseConfig {
+  const char* mode;
+  const char* temporal_neighbours;
+  bool fused() const { return std::string(temporal_neighbours) != "0"; }
+  std::vector<std::pair<std::string, std::string>> settings() const {
+    return {{"bias_correction", mode},
+            {"temporal_neighbours", temporal_neighbours},
+            {"spatial_passes", fused() ? "0" : "1"}};
+  }
+};
+
 // Two lights: A (a bright spot on the floor's left half) first in the light list, B (a dim point
 // light) second. A is removed at frame 6: from then the image must equal the B-only image (B
 // alone is sampled exactly, W = 1, so the comparison is tight: 0.1% on the mean, 1e-3 per
@@ -313,21 +337,10 @@ TEST_F(RestirGpuTest, DisocclusionRecoversWithinFourFrames) {
 // history W); frames 7..9 reuse frame 6's, where B is already index 0. The remap itself:
 // InsertedLightRemapsEveryHistoryDomain.
 TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
-  const std::string json = R"({
-    "materials": { "white": { "base_color": [0.7, 0.7, 0.7], "roughness": 0.8 } },
-    "primitives": [ { "type": "plane", "name": "floor", "size": [4, 4], "material": "white" } ],
-    "lights": [
-      { "type": "spot", "name": "a", "position": [-1, 2, 0], "target": [-1, 0, 0],
-        "intensity": 400, "inner_cone_deg": 20, "outer_cone_deg": 30 },
-      { "type": "point", "name": "b", "position": [1, 2, 0], "intensity": 2 } ],
-    "camera": { "position": [0, 3, 3], "target": [0, 0, 0], "yfov_deg": 60 } })";
-  const std::string json_b = R"({
-    "materials": { "white": { "base_color": [0.7, 0.7, 0.7], "roughness": 0.8 } },
-    "primitives": [ { "type": "plane", "name": "floor", "size": [4, 4], "material": "white" } ],
-    "lights": [ { "type": "point", "name": "b", "position": [1, 2, 0], "intensity": 2 } ],
-    "camera": { "position": [0, 3, 3], "target": [0, 0, 0], "yfov_deg": 60 } })";
-  auto level = test::level_from_json("two_lights", json);
-  auto level_b = test::level_from_json("light_b", json_b);
+  auto level = test::level_from_json(
+      "two_lights", floor_lit_by_b(R"({ "type": "spot", "name": "a", "position": [-1, 2, 0],
+        "target": [-1, 0, 0], "intensity": 400, "inner_cone_deg": 20, "outer_cone_deg": 30 },)"));
+  auto level_b = test::level_from_json("light_b", floor_lit_by_b(""));
   ASSERT_EQ(level->lights.size(), 2u);
   const FrameSnapshot first = test::first_snapshot(level, kW, kH);
   ASSERT_EQ(first.lights.size(), 2u);
@@ -338,19 +351,10 @@ TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
   // Each bias mode, and restir.temporal's neighbours from last frame (after the removal the
   // frame reuses no history; from frame 7 five or more domains must still weigh B's exact W = 1
   // sample to exactly 1).
-  struct Config {
-    const char* mode;
-    const char* temporal_neighbours;
-  };
-  for (const Config& c : {Config{"pairwise", "0"}, Config{"balance", "0"}, Config{"none", "0"},
-                          Config{"pairwise", "4"}}) {
-    const bool fused = std::string(c.temporal_neighbours) != "0";
-    const std::string mode = std::string(c.mode) + (fused ? "+tn" : "");
-    RenderHarness run(device, shaders, level,
-                      test::make_restir(device, shaders,
-                                        {{"bias_correction", c.mode},
-                                         {"temporal_neighbours", c.temporal_neighbours},
-                                         {"spatial_passes", fused ? "0" : "1"}}),
+  for (const ReuseConfig& c : {ReuseConfig{"pairwise", "0"}, ReuseConfig{"balance", "0"},
+                               ReuseConfig{"none", "0"}, ReuseConfig{"pairwise", "4"}}) {
+    const std::string mode = std::string(c.mode) + (c.fused() ? "+tn" : "");
+    RenderHarness run(device, shaders, level, test::make_restir(device, shaders, c.settings()),
                       kW, kH);
     FrameSnapshot s = first;
     std::vector<ImageRGBA32F> images;
@@ -385,20 +389,10 @@ TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
 // with the reprojected pixel alone and with 4 of last frame's neighbours (each its own domain,
 // each remapped), in pairwise and balance MIS.
 TEST_F(RestirGpuTest, InsertedLightRemapsEveryHistoryDomain) {
-  const std::string json = R"({
-    "materials": { "white": { "base_color": [0.7, 0.7, 0.7], "roughness": 0.8 } },
-    "primitives": [ { "type": "plane", "name": "floor", "size": [4, 4], "material": "white" } ],
-    "lights": [
-      { "type": "point", "name": "c", "position": [0, -1, 0], "intensity": 2 },
-      { "type": "point", "name": "b", "position": [1, 2, 0], "intensity": 2 } ],
-    "camera": { "position": [0, 3, 3], "target": [0, 0, 0], "yfov_deg": 60 } })";
-  const std::string json_b = R"({
-    "materials": { "white": { "base_color": [0.7, 0.7, 0.7], "roughness": 0.8 } },
-    "primitives": [ { "type": "plane", "name": "floor", "size": [4, 4], "material": "white" } ],
-    "lights": [ { "type": "point", "name": "b", "position": [1, 2, 0], "intensity": 2 } ],
-    "camera": { "position": [0, 3, 3], "target": [0, 0, 0], "yfov_deg": 60 } })";
-  auto level = test::level_from_json("c_and_b", json);
-  auto level_b = test::level_from_json("light_b", json_b);
+  auto level = test::level_from_json(
+      "c_and_b",
+      floor_lit_by_b(R"({ "type": "point", "name": "c", "position": [0, -1, 0], "intensity": 2 },)"));
+  auto level_b = test::level_from_json("light_b", floor_lit_by_b(""));
   const FrameSnapshot both = test::first_snapshot(level, kW, kH);
   ASSERT_EQ(both.lights.size(), 2u);
   ASSERT_EQ(both.lights[0].stable_id, 0u) << "C first";
@@ -407,18 +401,9 @@ TEST_F(RestirGpuTest, InsertedLightRemapsEveryHistoryDomain) {
 
   RenderHarness b_run(device, shaders, level_b, test::make_restir(device, shaders, {}), kW, kH);
   const double mean_b = runtime::mean_rgb(b_run.render(test::first_snapshot(level_b, kW, kH)));
-  struct Config {
-    const char* mode;
-    const char* temporal_neighbours;
-  };
-  for (const Config& c : {Config{"pairwise", "0"}, Config{"pairwise", "4"},
-                          Config{"balance", "4"}}) {
-    const bool fused = std::string(c.temporal_neighbours) != "0";
-    RenderHarness run(device, shaders, level,
-                      test::make_restir(device, shaders,
-                                        {{"bias_correction", c.mode},
-                                         {"temporal_neighbours", c.temporal_neighbours},
-                                         {"spatial_passes", fused ? "0" : "1"}}),
+  for (const ReuseConfig& c : {ReuseConfig{"pairwise", "0"}, ReuseConfig{"pairwise", "4"},
+                               ReuseConfig{"balance", "4"}}) {
+    RenderHarness run(device, shaders, level, test::make_restir(device, shaders, c.settings()),
                       kW, kH);
     FrameSnapshot s = only_b_first;
     std::printf("[restir light insertion] %-8s neighbours %s, B only %.5f:", c.mode,
