@@ -16,9 +16,10 @@
 // (it happened: `bsdf` on the room read -0.41% against 3 sigma 0.39%, and the resolving study
 // then read +0.03% +- 0.20%); at 4 sigma ~0.2%. The printouts keep 3 sigma, the usual figure. A
 // 1% gain injected into restir.shade reads +0.63..+1.16% against 4 sigma of 0.32..0.59%
-// (balance and pairwise on cornell_lights and the room) and fails all four checks. `none` is known to be biased dark where a neighbour's target is zero and the
-// canonical pixel's is not (its 1/M weights ignore that); its bias is printed and only what is
-// true of it asserted: it never exceeds the reference by more than kSigmas sigma.
+// (balance and pairwise on cornell_lights and the room) and fails all four checks. `none` is
+// known to be biased dark where a neighbour's target is zero and the canonical pixel's is not
+// (its 1/M weights ignore that); its bias is printed and only what is true of it asserted: it
+// never exceeds the reference by more than kSigmas sigma.
 //
 // CI: 1% at 96x54 (kCi below, ~25 s a scene). The resolving study (0.5%, kStudy: more runs, longer
 // chains, a larger image) is scripts/bias_study.sh: LANTERN_BIAS_STUDY=1 plus the LANTERN_BIAS_*

@@ -385,13 +385,12 @@ TEST_F(RestirGpuTest, RemovedLightContributesNothingNextFrame) {
 // A history domain that kept the old index would name C, whose p̂ on the floor is 0, while its M
 // still claims most of the weight: the frame would go dark. Frames 6..9 must keep B's mean (B
 // alone is exact, W = 1; with C drawn as often as B the candidates' count of B varies: 1%,
-// measured within 0.06%),
-// with the reprojected pixel alone and with 4 of last frame's neighbours (each its own domain,
-// each remapped), in pairwise and balance MIS.
+// measured within 0.06%), with the reprojected pixel alone and with 4 of last frame's neighbours
+// (each its own domain, each remapped), in pairwise and balance MIS.
 TEST_F(RestirGpuTest, InsertedLightRemapsEveryHistoryDomain) {
   auto level = test::level_from_json(
-      "c_and_b",
-      floor_lit_by_b(R"({ "type": "point", "name": "c", "position": [0, -1, 0], "intensity": 2 },)"));
+      "c_and_b", floor_lit_by_b(R"({ "type": "point", "name": "c", "position": [0, -1, 0],
+        "intensity": 2 },)"));
   auto level_b = test::level_from_json("light_b", floor_lit_by_b(""));
   const FrameSnapshot both = test::first_snapshot(level, kW, kH);
   ASSERT_EQ(both.lights.size(), 2u);
