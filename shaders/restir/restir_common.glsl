@@ -44,6 +44,21 @@ bool restir_pixel(out uvec2 pixel) {
 
 uint restir_index(uvec2 pixel) { return pixel.y * restir_size().x + pixel.x; }
 
+// One neighbour drawn uniformly in a disk of push.radius pixels around `centre` (two rng draws,
+// always taken, so the sequence does not depend on where the draw lands). False when it lands on
+// `skip` or outside the image; otherwise `index` is its pixel index.
+bool restir_disk_neighbour(ivec2 centre, ivec2 skip, inout uint rng, out uint index) {
+  vec2 u = rng_next_vec2(rng);
+  float radius = push.radius * sqrt(u.x);
+  float angle = kTwoPi * u.y;
+  ivec2 q = centre + ivec2(round(radius * vec2(cos(angle), sin(angle))));
+  ivec2 size = ivec2(restir_size());
+  index = 0u;
+  if (q == skip || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return false;
+  index = uint(q.y) * uint(size.x) + uint(q.x);
+  return true;
+}
+
 // A surface decoded once for many p̂ evaluations.
 struct ShadingPoint {
   vec3 x;

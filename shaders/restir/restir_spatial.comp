@@ -71,16 +71,11 @@ void main() {
   uint rng = frame_rng(pixel, kRestirRngSpatial + push.spatial_pass);
   uint tries = push.neighbours + (r.M < float(push.short_history_m) ? push.boost_neighbours : 0u);
   tries = min(tries, kRestirMaxNeighbours);
-  ivec2 size = ivec2(restir_size());
   float depth = restir_surface_depth(surface);
   uint count = 1u;
   for (uint t = 0u; t < tries; ++t) {
-    vec2 u = rng_next_vec2(rng);
-    float radius = push.radius * sqrt(u.x);
-    float angle = kTwoPi * u.y;
-    ivec2 q = ivec2(pixel) + ivec2(round(radius * vec2(cos(angle), sin(angle))));
-    if (q == ivec2(pixel) || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-    uint q_index = uint(q.y) * restir_size().x + uint(q.x);
+    uint q_index;
+    if (!restir_disk_neighbour(ivec2(pixel), ivec2(pixel), rng, q_index)) continue;
     RestirSurface other = restir_surface_fetch(restir_surfaces, q_index);
     if (!restir_surfaces_similar(surface, depth, other, push.similarity)) continue;
     g_domain_pixel[count] = q_index;

@@ -132,14 +132,9 @@ ivec2 find_history(vec2 reprojected, RestirSurface surface, float expected_depth
 // Returns the new count.
 uint add_history_neighbours(ivec2 centre, ivec2 skip, uint tries, RestirSurface surface,
                             float expected_depth, uint count, inout uint rng) {
-  ivec2 size = ivec2(restir_size());
   for (uint t = 0u; t < tries; ++t) {
-    vec2 u = rng_next_vec2(rng);
-    float radius = push.radius * sqrt(u.x);
-    float angle = kTwoPi * u.y;
-    ivec2 q = centre + ivec2(round(radius * vec2(cos(angle), sin(angle))));
-    if (q == skip || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-    uint q_index = uint(q.y) * uint(size.x) + uint(q.x);
+    uint q_index;
+    if (!restir_disk_neighbour(centre, skip, rng, q_index)) continue;
     if (!restir_surfaces_similar(surface, expected_depth,
                                  restir_surface_fetch(surfaces_history, q_index),
                                  push.similarity)) {
