@@ -271,9 +271,9 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
       case ReservoirStage::Temporal: {
         // restir.temporal: each pixel's reservoir merged with last frame's final reservoir at its
         // reprojected pixel (and temporal_neighbours more around it) after the disocclusion test
-        // and the light remap; M capped. Without
-        // history this frame's surfaces and reservoirs stand in for the history bindings (the
-        // shader does not read them: kRestirFlagHistoryValid is clear).
+        // and the light remap; M capped. Without history this frame's surfaces and reservoirs
+        // stand in for the history bindings (the shader does not read them:
+        // kRestirFlagHistoryValid is clear).
         const bool reuse = step.history == ReservoirBuffer::History;
         gpu::RestirPush p = push;
         p.tile_bands = tile_bands_;
