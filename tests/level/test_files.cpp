@@ -4,28 +4,10 @@
 #include <cstring>
 #include <fstream>
 
+#include "tests/level/data_uri.h"
 #include "tests/runtime/scratch_dir.h"
 
 namespace lantern::test {
-namespace {
-
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0u,
-                        b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0u;
-    const std::uint32_t v = (b0 << 16) | (b1 << 8) | b2;
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[(v >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[v & 63] : '=';
-  }
-  return out;
-}
-
-}  // namespace
-
 std::filesystem::path data_dir() {
   return LANTERN_LEVEL_TEST_DATA;
 }
@@ -75,7 +57,7 @@ nlohmann::json triangle_gltf(const std::vector<glm::vec3>& positions,
       {"asset", {{"version", "2.0"}}},
       {"buffers",
        {{{"byteLength", bytes.size()},
-         {"uri", "data:application/octet-stream;base64," + base64(bytes)}}}},
+         {"uri", data_uri("application/octet-stream", bytes)}}}},
       {"bufferViews",
        {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}},
         {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", indices.size() * 4}}}},

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "runtime/image/image_encode.h"
+#include "tests/level/data_uri.h"
 
 namespace lantern::test {
 
@@ -25,21 +26,6 @@ std::vector<std::uint8_t> make_rgba8(
 std::vector<std::uint8_t> png_of(std::uint32_t w, std::uint32_t h,
                                  const std::vector<std::uint8_t>& rgba8) {
   return runtime::encode_rgba8(w, h, rgba8, ".png");
-}
-
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0u,
-                        b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0u;
-    const std::uint32_t v = (b0 << 16) | (b1 << 8) | b2;
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[(v >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[v & 63] : '=';
-  }
-  return out;
 }
 
 std::int32_t add_png(Level& level, std::uint32_t w, std::uint32_t h,
@@ -93,7 +79,7 @@ nlohmann::json textured_quad_gltf(const TexturedQuadOptions& o) {
         {{"buffer", 0}, {"byteOffset", image_offset}, {"byteLength", o.image_bytes.size()}});
     image["mimeType"] = o.mime_type;
   } else if (o.storage == ImageStorage::DataUri) {
-    image["uri"] = "data:" + o.mime_type + ";base64," + base64(o.image_bytes);
+    image["uri"] = data_uri(o.mime_type, o.image_bytes);
   } else {
     std::ofstream(o.image_file, std::ios::binary)
         .write(reinterpret_cast<const char*>(o.image_bytes.data()),
@@ -115,7 +101,7 @@ nlohmann::json textured_quad_gltf(const TexturedQuadOptions& o) {
       {"asset", {{"version", "2.0"}}},
       {"buffers",
        {{{"byteLength", bin.size()},
-         {"uri", "data:application/octet-stream;base64," + base64(bin)}}}},
+         {"uri", data_uri("application/octet-stream", bin)}}}},
       {"bufferViews", views},
       {"accessors",
        {{{"bufferView", 0},

@@ -23,7 +23,6 @@ std::vector<std::uint8_t> make_rgba8(
     const std::function<glm::vec4(std::uint32_t, std::uint32_t)>& f);
 std::vector<std::uint8_t> png_of(std::uint32_t w, std::uint32_t h,
                                  const std::vector<std::uint8_t>& rgba8);
-std::string base64(const std::vector<std::uint8_t>& bytes);
 
 // Appends an embedded PNG to level.images; returns its index.
 std::int32_t add_png(Level& level, std::uint32_t w, std::uint32_t h,
