@@ -182,9 +182,9 @@ std::vector<std::string> restir_preset_names();
 // neighbours, disocclusion_boost, temporal_neighbours, radius, presample_tiles,
 // local_candidates, local_min_lights, visibility_reuse, bias_correction (a name from
 // restir_bias_corrections()), initial_visibility, boiling_filter, depth_threshold,
-// normal_threshold, debug_view (a name from
-// restir_debug_views()), temporal_permutation (a name from restir_temporal_permutations()); the
-// media's volume_candidates, volume_temporal, volume_m_cap, volume_neighbours, volume_radius).
+// normal_threshold, debug_view (a name from restir_debug_views()), temporal_permutation (a name
+// from restir_temporal_permutations()); the media's volume_candidates, volume_temporal,
+// volume_m_cap, volume_neighbours, volume_radius).
 // lantern::InputError naming the key and the value for unknown keys, unparsable values and
 // values outside the allowed range (e.g. light_candidates = 0 or 10^9).
 void apply_setting(RestirSettings& settings, std::string_view key, std::string_view value);

@@ -52,10 +52,10 @@ bool restir_disk_neighbour(ivec2 centre, ivec2 skip, inout uint rng, out uint in
   float radius = push.radius * sqrt(u.x);
   float angle = kTwoPi * u.y;
   ivec2 q = centre + ivec2(round(radius * vec2(cos(angle), sin(angle))));
-  ivec2 size = ivec2(restir_size());
   index = 0u;
-  if (q == skip || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return false;
-  index = uint(q.y) * uint(size.x) + uint(q.x);
+  if (q == skip || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(restir_size()))))
+    return false;
+  index = restir_index(uvec2(q));
   return true;
 }
 

@@ -173,7 +173,7 @@ void main() {
                            : ivec2(-1);
       uint count = 1u;
       if (q.x >= 0) {
-        g_history_first = uint(q.y) * restir_size().x + uint(q.x);
+        g_history_first = restir_index(uvec2(q));
         count = 2u;
       }
       if (reprojects && push.temporal_neighbours > 0u) {
