@@ -109,6 +109,19 @@ std::uint32_t RestirIntegrator::bsdf_candidates(const RestirSettings& s,
   return inputs.max_gloss >= s.bsdf_min_gloss ? s.bsdf_candidates : 0u;
 }
 
+namespace {
+
+// With one reservoir per stride x stride pixels, this frame's offset of each cell's representative
+// pixel (RestirPush::representative: x | y << 16): every offset once in stride^2 frames,
+// (x, y) = (k mod stride, (k / stride + k) mod stride), so consecutive frames move diagonally.
+std::uint32_t representative_offset(std::uint32_t stride, std::uint64_t frame_index) {
+  if (stride <= 1) return 0;
+  const auto k = static_cast<std::uint32_t>(frame_index % (std::uint64_t{stride} * stride));
+  return (k % stride) | (((k / stride + k) % stride) << 16);
+}
+
+}  // namespace
+
 gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const FrameInputs& inputs) {
   if (inputs.light_count >= gpu::kEnvironmentLight) {
     throw InputError(fmt::format("restir: {} lights exceed the {} a packed reservoir can index",
@@ -139,7 +152,11 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   p.boiling_filter = s.boiling_filter;
   p.presample_tiles = presample_tiles(s, inputs);
   p.local_candidates = local_candidates(s, inputs);
-  p.visibility_reuse = s.temporal ? s.visibility_reuse : 0u;
+  // A verdict is one pixel's: none kept where pixels share a reservoir (make_restir_settings
+  // refuses the pair; the play panel can still set it).
+  p.visibility_reuse = s.temporal && s.reservoir_stride == 1 ? s.visibility_reuse : 0u;
+  p.reservoir_stride = s.reservoir_stride;
+  p.representative = representative_offset(s.reservoir_stride, inputs.frame_index);
   p.similarity = {s.depth_threshold, s.normal_threshold, 0.25f, 0.0f};
   return p;
 }
@@ -172,11 +189,20 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   gpu::RestirPush push = make_push(s, inputs);
   confidence_ = {};
   const VkDeviceSize pixels = VkDeviceSize{inputs.width} * inputs.height;
-  const runtime::graph::BufferDesc reservoir_desc{pixels * sizeof(gpu::PackedReservoir)};
+  // The reservoir grid: one cell per push.reservoir_stride^2 pixels (RestirSettings).
+  const std::uint32_t stride = push.reservoir_stride;
+  const VkDeviceSize cells = VkDeviceSize{(inputs.width + stride - 1) / stride} *
+                             ((inputs.height + stride - 1) / stride);
+  const runtime::graph::BufferDesc reservoir_desc{cells * sizeof(gpu::PackedReservoir)};
 
-  // History resources: this frame's versions, and last frame's when reuse is possible.
+  // History resources: this frame's versions, and last frame's when reuse is possible. The
+  // surfaces are the cells' (each its representative pixel's).
   BufferHandle surfaces = graph.create_history_buffer(
-      "restir.surfaces", {pixels * sizeof(gpu::RestirSurface)});
+      "restir.surfaces", {cells * sizeof(gpu::RestirSurface)});
+  // Every pixel's surface, for restir.shade, written by restir.initial beside the cells'; with
+  // one reservoir per pixel the cells' own (then a one-surface stand-in, not written, is bound).
+  BufferHandle pixel_surfaces = graph.create_buffer(
+      "restir.pixel_surfaces", {(stride > 1 ? pixels : 1) * sizeof(gpu::RestirSurface)});
   BufferHandle final_reservoirs = graph.create_history_buffer("restir.reservoirs", reservoir_desc);
   BufferHandle surfaces_history;
   BufferHandle reservoirs_history;
@@ -218,7 +244,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   };
 
   BufferHandle status =
-      graph.create_buffer("restir.temporal_status", {pixels * sizeof(std::uint32_t)});
+      graph.create_buffer("restir.temporal_status", {cells * sizeof(std::uint32_t)});
   bool status_written = false;
   for (const ReservoirStep& step : plan) {
     switch (step.stage) {
@@ -246,7 +272,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
           // Host visibility: the BSDF candidates' rays are written by restir.initial_rays,
           // traced by visibility.host_closest, and their hits read by restir.initial.
           const BufferHandle hits = host_->add_closest_rays(
-              graph, static_cast<std::uint32_t>(pixels * push.bsdf_candidates),
+              graph, static_cast<std::uint32_t>(cells * push.bsdf_candidates),
               [&](BufferHandle empty) {
                 return initial_rays_->add(
                     graph, inputs, push,
@@ -257,15 +283,18 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
               {{"restir_surfaces", surfaces, RestirPass::Buffer::Write},
                {"reservoirs_out", handle(step.write), RestirPass::Buffer::Write},
                {"presampled_lights", presampled},
-               {"host_closest_rays", hits}});
+               {"host_closest_rays", hits},
+               {"pixel_surfaces", pixel_surfaces, RestirPass::Buffer::Write}});
         } else {
           out = initial_.add(graph, inputs, push,
                              {{"restir_surfaces", surfaces, RestirPass::Buffer::Write},
                               {"reservoirs_out", handle(step.write), RestirPass::Buffer::Write},
-                              {"presampled_lights", presampled}});
+                              {"presampled_lights", presampled},
+                              {"pixel_surfaces", pixel_surfaces, RestirPass::Buffer::Write}});
         }
         surfaces = out[0];
         handle(step.write) = out[1];
+        pixel_surfaces = stride > 1 ? out[2] : surfaces;
         break;
       }
       case ReservoirStage::Temporal: {
@@ -317,13 +346,13 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
         if (host_ == nullptr) {
           const std::vector<BufferHandle> out =
               shade_.add(graph, inputs, push,
-                         {{"restir_surfaces", surfaces},
+                         {{"restir_surfaces", pixel_surfaces},
                           {"reservoirs_in", handle(step.read), RestirPass::Buffer::ReadWrite},
                           {"temporal_status", status},
                           {"hdr", hdr, RestirPass::Buffer::Write}});
           handle(step.read) = out[0];
           hdr = out[1];
-          confidence_ = handle(step.read);
+          confidence_ = stride == 1 ? handle(step.read) : BufferHandle{};
           break;
         }
         // Host visibility: restir.shade shades as if every ray got through and writes the rays,
@@ -333,7 +362,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
             graph, static_cast<std::uint32_t>(pixels), [&](BufferHandle empty) {
               const std::vector<BufferHandle> shaded =
                   shade_emit_->add(graph, inputs, push,
-                                   {{"restir_surfaces", surfaces},
+                                   {{"restir_surfaces", pixel_surfaces},
                                     {"reservoirs_in", handle(step.read)},
                                     {"temporal_status", status},
                                     {"host_rays", empty, RestirPass::Buffer::Write},
@@ -348,7 +377,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
              {"hdr", hdr, RestirPass::Buffer::ReadWrite}});
         handle(step.read) = out[0];
         hdr = out[1];
-        confidence_ = handle(step.read);
+        confidence_ = stride == 1 ? handle(step.read) : BufferHandle{};
         break;
       }
     }

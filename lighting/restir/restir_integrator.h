@@ -84,7 +84,9 @@ class RestirIntegrator final : public Integrator {
   // (initial_rays_, initial_closest_) the first time it is true.
   bool host_traces_bsdf(std::uint32_t bsdf_candidates);
 
-  runtime::graph::BufferHandle confidence_;  // this frame's final reservoirs (add_passes)
+  // This frame's final reservoirs, one per pixel (add_passes); none with reservoir_stride > 1,
+  // whose reservoirs are per cell (the denoiser then counts every frame alike).
+  runtime::graph::BufferHandle confidence_;
   runtime::Device& device_;
   runtime::ShaderLibrary& shaders_;
   RestirSettings settings_;

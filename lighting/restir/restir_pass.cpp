@@ -1,6 +1,8 @@
 // RestirPass: a restir.* ShaderPass with its dispatch over the image's tiles (restir_pass.h).
 #include "lighting/restir/restir_pass.h"
 
+#include <algorithm>
+
 #include "lighting/frame/tile_order.h"
 #include "shared/pixel_groups.h"
 
@@ -21,13 +23,15 @@ runtime::SpecConstants stage_constants(const runtime::Device& device, const std:
 RestirPass::RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
                        const std::string& stage, VisibilityBackend visibility)
     : pass_(device, shaders, "restir." + stage, "restir/restir_" + stage + ".comp",
-            visibility_variant(visibility), stage_constants(device, stage)) {}
+            visibility_variant(visibility), stage_constants(device, stage)),
+      over_cells_(stage != "shade") {}
 
 RestirPass::RestirPass(runtime::Device& device, runtime::ShaderLibrary& shaders,
                        const std::string& name, const std::string& stage,
                        std::string_view variant)
     : pass_(device, shaders, name, "restir/restir_" + stage + ".comp", variant,
-            stage_constants(device, stage)) {}
+            stage_constants(device, stage)),
+      over_cells_(stage != "shade") {}
 
 std::vector<runtime::graph::BufferHandle> RestirPass::add(runtime::graph::RenderGraph& graph,
                                                           const FrameInputs& inputs,
@@ -35,8 +39,11 @@ std::vector<runtime::graph::BufferHandle> RestirPass::add(runtime::graph::Render
                                                           std::initializer_list<Buffer> buffers,
                                                           std::uint32_t workgroups) const {
   if (workgroups != 0) return pass_.add(graph, inputs, push, buffers, {.x = workgroups});
-  // The shuffle's stride for this pass's own tiles (its shape is the stage's).
-  const std::uint32_t tiles = tile_count(inputs.width, inputs.height, pass_.pipeline());
+  // The shuffle's stride for this pass's own tiles (its shape is the stage's), over the reservoir
+  // grid's cells or the image's pixels.
+  const std::uint32_t stride = over_cells_ ? std::max(push.reservoir_stride, 1u) : 1u;
+  const std::uint32_t tiles = tile_count((inputs.width + stride - 1) / stride,
+                                         (inputs.height + stride - 1) / stride, pass_.pipeline());
   gpu::RestirPush p = push;
   p.tile_stride = tile_stride(tiles);
   return pass_.add(graph, inputs, p, buffers, {.x = tiles});

@@ -1,7 +1,9 @@
 // RestirPass: one restir.* compute pass, a ShaderPass (lighting/frame/shader_pass.h) of
 // shaders/restir/restir_<stage>.comp named "restir.<stage>", with RestirPush and one workgroup per
 // tile, in pixel_tile_origin's order (lighting/frame/tile_order.h): tiles of the device's pixel
-// group shape (rows on CPU devices), 8x8 for restir.initial (restir_pass.cpp). What
+// group shape (rows on CPU devices), 8x8 for restir.initial (restir_pass.cpp), over the image's
+// pixels (restir.shade) or the reservoir grid's cells (the other stages: RestirPush's
+// reservoir_stride). What
 // each pass reads and writes is listed where RestirIntegrator adds it (restir_integrator.cpp)
 // and in its shader's header.
 #pragma once
@@ -47,6 +49,7 @@ class RestirPass {
 
  private:
   ShaderPass pass_;
+  bool over_cells_;  // dispatched over the reservoir grid, not the image
 };
 
 }  // namespace lantern::lighting

@@ -171,6 +171,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.m_cap_factor = parse_float(key, value, 1.0f, 1000.0f);
   } else if (key == "m_cap_moving") {
     s.m_cap_moving = parse_float(key, value, 0.01f, 1.0f);
+  } else if (key == "reservoir_stride") {
+    s.reservoir_stride = parse_uint(key, value, 1, gpu::kRestirMaxReservoirStride);
   } else if (key == "spatial_passes") {
     s.spatial_passes = parse_uint(key, value, 0, gpu::kRestirMaxSpatialPasses);
   } else if (key == "neighbours" || key == "neighbors") {
@@ -233,6 +235,12 @@ RestirSettings make_restir_settings(
     std::string_view preset, const std::vector<std::pair<std::string, std::string>>& settings) {
   RestirSettings s = restir_preset(preset);
   for (const auto& [key, value] : settings) apply_setting(s, key, value);
+  if (s.reservoir_stride > 1 && s.visibility_reuse > 0) {
+    throw InputError(fmt::format(
+        "restir settings: visibility_reuse {} needs reservoir_stride 1 (a verdict is one "
+        "pixel's; reservoir_stride {} shares each reservoir among {} pixels)",
+        s.visibility_reuse, s.reservoir_stride, s.reservoir_stride * s.reservoir_stride));
+  }
   return s;
 }
 
@@ -246,6 +254,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"temporal_permutation", choice_name(kTemporalPermutations, s.temporal_permutation)},
       {"m_cap", format_float(s.m_cap_factor)},
       {"m_cap_moving", format_float(s.m_cap_moving)},
+      {"reservoir_stride", std::to_string(s.reservoir_stride)},
       {"spatial_passes", std::to_string(s.spatial_passes)},
       {"neighbours", std::to_string(s.neighbours)},
       {"disocclusion_boost", std::to_string(s.disocclusion_boost)},

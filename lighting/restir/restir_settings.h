@@ -84,6 +84,13 @@ struct RestirSettings {
   // README); a disocclusion then finds only what last frame saw beside it. 0: the reprojected
   // pixel alone. Unbiased with pairwise or balance MIS. No effect with `temporal` off.
   std::uint32_t temporal_neighbours = 0;
+  // One reservoir per reservoir_stride x reservoir_stride pixels: restir.initial, restir.temporal
+  // and restir.spatial resample for one representative pixel of each block (a different one
+  // each frame), and restir.shade resamples the block's final reservoir again for each of its
+  // other pixels with one light candidate of the pixel's own (unbiased: restir_shade.comp's
+  // resample_for_pixel). 2 cuts the resampling passes to about a quarter for more noise. 1: one
+  // per pixel. Not with visibility_reuse (a verdict is one pixel's).
+  std::uint32_t reservoir_stride = 1;
   // Spatial reuse passes. More passes spread good samples further (less noise) at a full pass's
   // cost each; 0 for temporal-only.
   std::uint32_t spatial_passes = 1;
@@ -178,7 +185,8 @@ RestirSettings restir_preset(std::string_view name);
 std::vector<std::string> restir_preset_names();
 
 // Sets one knob by its key (the field names above: light_candidates, bsdf_candidates,
-// bsdf_min_gloss, temporal, m_cap (alias of m_cap_factor), m_cap_moving, spatial_passes,
+// bsdf_min_gloss, temporal, m_cap (alias of m_cap_factor), m_cap_moving, reservoir_stride,
+// spatial_passes,
 // neighbours, disocclusion_boost, temporal_neighbours, radius, presample_tiles,
 // local_candidates, local_min_lights, visibility_reuse, bias_correction (a name from
 // restir_bias_corrections()), initial_visibility, boiling_filter, depth_threshold,
@@ -189,7 +197,8 @@ std::vector<std::string> restir_preset_names();
 // values outside the allowed range (e.g. light_candidates = 0 or 10^9).
 void apply_setting(RestirSettings& settings, std::string_view key, std::string_view value);
 
-// Presets then settings in order: what --preset P --set K=V ... means.
+// Presets then settings in order: what --preset P --set K=V ... means. lantern::InputError for
+// settings that exclude each other (visibility_reuse with reservoir_stride > 1).
 RestirSettings make_restir_settings(
     std::string_view preset, const std::vector<std::pair<std::string, std::string>>& settings);
 

@@ -32,29 +32,47 @@ uvec2 restir_size() { return frame_constants.frame.frame.xy; }
 uint restir_light_count() { return frame_constants.frame.counts.x; }
 float restir_scene_radius() { return frame_constants.frame.scene.x; }
 
-// Pixel of this invocation (tiles of the workgroup's shape in pixel_tile_origin's order); false
-// outside the image.
-bool restir_pixel(out uvec2 pixel) {
-  uvec2 size = restir_size();
-  pixel = pixel_tile_origin(gl_WorkGroupID.x, push.tile_stride, push.tile_bands, size,
-                            gl_WorkGroupSize.xy) +
-          gl_LocalInvocationID.xy;
-  return pixel.x < size.x && pixel.y < size.y;
+// The reservoir grid: one reservoir per push.reservoir_stride x push.reservoir_stride pixels
+// (restir.initial, restir.temporal and restir.spatial run over its cells; restir.shade over the
+// pixels). Each cell resamples for one representative pixel of its block, which moves every frame.
+uint restir_stride() { return max(push.reservoir_stride, 1u); }
+uvec2 restir_grid_size() { return (restir_size() + restir_stride() - 1u) / restir_stride(); }
+uvec2 restir_representative(uvec2 cell) {
+  uvec2 offset = uvec2(push.representative & 0xffffu, push.representative >> 16u);
+  return min(cell * restir_stride() + offset, restir_size() - 1u);
 }
 
-uint restir_index(uvec2 pixel) { return pixel.y * restir_size().x + pixel.x; }
+// Position of this invocation among tiles of the workgroup's shape (pixel_tile_origin's order)
+// over an image of `size`; false outside it.
+bool restir_invocation(uvec2 size, out uvec2 position) {
+  position = pixel_tile_origin(gl_WorkGroupID.x, push.tile_stride, push.tile_bands, size,
+                               gl_WorkGroupSize.xy) +
+             gl_LocalInvocationID.xy;
+  return position.x < size.x && position.y < size.y;
+}
+// Pixel of this invocation (restir.shade); false outside the image.
+bool restir_pixel(out uvec2 pixel) { return restir_invocation(restir_size(), pixel); }
+// Reservoir cell of this invocation (the grid passes); false outside the grid.
+bool restir_cell(out uvec2 cell) { return restir_invocation(restir_grid_size(), cell); }
 
-// One neighbour drawn uniformly in a disk of push.radius pixels around `centre` (two rng draws,
-// always taken, so the sequence does not depend on where the draw lands). False when it lands on
-// `skip` or outside the image; otherwise `index` is its pixel index.
+// Index of a cell in the grid's buffers (reservoirs, cell surfaces, temporal status).
+uint restir_index(uvec2 cell) { return cell.y * restir_grid_size().x + cell.x; }
+// Index of a pixel in the image's buffers (pixel surfaces, hdr, host rays).
+uint restir_pixel_index(uvec2 pixel) { return pixel.y * restir_size().x + pixel.x; }
+
+// One neighbour cell drawn uniformly in a disk of push.radius cells around `centre` (two rng
+// draws, always taken, so the sequence does not depend on where the draw lands). False when it
+// lands on `skip` or outside the grid; otherwise `index` is its cell index.
 bool restir_disk_neighbour(ivec2 centre, ivec2 skip, inout uint rng, out uint index) {
   vec2 u = rng_next_vec2(rng);
   float radius = push.radius * sqrt(u.x);
   float angle = kTwoPi * u.y;
   ivec2 q = centre + ivec2(round(radius * vec2(cos(angle), sin(angle))));
   index = 0u;
-  if (q == skip || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(restir_size()))))
+  if (q == skip || any(lessThan(q, ivec2(0))) ||
+      any(greaterThanEqual(q, ivec2(restir_grid_size())))) {
     return false;
+  }
   index = restir_index(uvec2(q));
   return true;
 }
@@ -89,6 +107,21 @@ ShadingPoint restir_shading_point(RestirSurface s, vec3 camera) {
 
 // Probability that a light-strategy candidate is the environment map (0 without one).
 float restir_env_probability() { return env_header.env.params.x; }
+
+// The uv a shader will see after the reservoir is stored: evaluating there keeps p̂ and W exact.
+vec2 restir_stored_uv(vec2 uv) { return unpackUnorm2x16(packUnorm2x16(uv)); }
+
+// Light strategy density of (light, uv): selection pdf * point density (the alias table's pdf
+// is over the emitters; the environment takes p_env of the selections first). Presampled
+// candidates have the same marginal density (restir.presample stores it).
+float restir_light_strategy_pdf(uint index, float p_env) {
+  return (1.0 - p_env) * scene_light_selection_pdf(index) * light_eval_point_pdf(scene_light(index));
+}
+
+// Light strategy density of environment direction l (solid angle).
+float restir_env_strategy_pdf(vec3 l, float p_env) {
+  return p_env > 0.0 ? p_env * env_pdf(env_header.env, l) : 0.0;
+}
 
 // Unshadowed contribution of the environment direction stored as map coordinate uv:
 // f(v, l) cos(n, l) Le(l) (solid-angle measure).

@@ -1,4 +1,6 @@
-// restir.initial: per pixel, packs the G-buffer into a RestirSurface and resamples
+// restir.initial: per cell of the reservoir grid (a pixel, or with push.reservoir_stride > 1 a
+// block's representative, restir_representative, whose block's surfaces it also packs into
+// pixel_surfaces), packs the G-buffer into a RestirSurface and resamples
 // push.light_candidates light candidates (the environment map with its selection probability,
 // else a light by power, or through the local light list, x uniform point on the light) plus
 // push.bsdf_candidates BSDF candidates where the surface is at least push.bsdf_min_gloss glossy
@@ -12,7 +14,8 @@
 // Reads: gbuffer position/normal/albedo_roughness/emission_metallic/ids, scene materials,
 // instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility),
 // presampled_lights (restir.presample's; a stand-in when presampling is off).
-// Writes: restir_surfaces (history resource "restir.surfaces"), reservoirs_out. History: none.
+// Writes: restir_surfaces (history resource "restir.surfaces"), reservoirs_out, pixel_surfaces
+// (push.reservoir_stride > 1). History: none.
 // Dispatch: one workgroup per 8x8 tile on every device (its local light list is the tile's:
 // lighting/restir/restir_pass.cpp), shuffled (push.tile_stride).
 // Host closest hits (shared/host_visibility.h, with the host visibility backend and BSDF
@@ -42,6 +45,11 @@ layout(std430, binding = PASS_BINDING(6)) writeonly buffer ReservoirOut {
   PackedReservoir r[];
 } reservoirs_out;
 layout(binding = PASS_BINDING(7)) uniform utextureBuffer presampled_lights;
+// With push.reservoir_stride > 1: every pixel's surface (restir.shade's); restir_surfaces then
+// holds each cell's representative's.
+layout(std430, binding = PASS_BINDING(8)) writeonly buffer PixelSurfaceOut {
+  RestirSurface s[];
+} pixel_surfaces;
 
 // Probability of the GGX lobe in the BSDF sampling mixture (the rest is cosine-weighted).
 float specular_lobe_probability(ShadingPoint p) {
@@ -69,13 +77,6 @@ float bsdf_area_pdf(ShadingPoint p, GpuLight light, vec3 y) {
   vec3 l = to_light * inversesqrt(dist2);
   float geometry = light_eval_triangle_geometry(light, l, dist2);
   return geometry > 0.0 ? bsdf_direction_pdf(p, l) * geometry : 0.0;
-}
-
-// Light strategy density of (light, uv): selection pdf * point density (the alias table's pdf
-// is over the emitters; the environment takes p_env of the selections first). Presampled
-// candidates have the same marginal density (restir.presample stores it).
-float light_strategy_pdf(uint index, float p_env) {
-  return (1.0 - p_env) * scene_light_selection_pdf(index) * light_eval_point_pdf(scene_light(index));
 }
 
 // restir.initial's local light list (shared/restir.h, push.local_candidates > 0): per slot, the
@@ -130,13 +131,13 @@ vec4 strategy_entry_position(uint entry, out float pdf) {
 // with target pdf(l) x g(l), g = 1 / max(d^2, r^2), d from x to the light's first vertex or
 // position (a directional light counts as one scene radius away; without a surface point g = 1).
 // The slot keeps the pick with density pdf x g x N / sum(g).
-void fill_local_slot(uvec2 pixel, bool has_point, vec3 x, uint tile_base) {
+void fill_local_slot(uvec2 cell, bool has_point, vec3 x, uint tile_base) {
   uint slot = gl_LocalInvocationIndex;
   local_entry[slot] = 0u;
   local_pdf[slot] = 0.0;
   local_strategy_pdf[slot] = 0.0;
   if (restir_light_count() == 0u) return;
-  uint rng = frame_rng(pixel, kRestirRngLocalLights);
+  uint rng = frame_rng(cell, kRestirRngLocalLights);
   float min_distance = kRestirLocalMinDistance * restir_scene_radius();
   float min_dist2 = max(min_distance * min_distance, 1e-12);
   float far_dist2 = restir_scene_radius() * restir_scene_radius();
@@ -202,23 +203,15 @@ uint presampled_tile_base() {
   return ((run + rotation) % push.presample_tiles) * kRestirPresampleTileSize;
 }
 
-// Light strategy density of environment direction l (solid angle).
-float env_strategy_pdf(vec3 l, float p_env) {
-  return p_env > 0.0 ? p_env * env_pdf(env_header.env, l) : 0.0;
-}
-
-// The uv a shader will see after the reservoir is stored: evaluating there keeps p̂ and W exact.
-vec2 stored_uv(vec2 uv) { return unpackUnorm2x16(packUnorm2x16(uv)); }
-
 // An environment candidate in direction l (from either strategy): its stored uv and the balance
 // heuristic weight p̂ / (m_light p_light + m_bsdf p_bsdf), both densities in solid angle.
 float env_candidate(ShadingPoint p, vec3 l, float p_env, float m_light, float m_bsdf,
                     out vec2 uv, out float target) {
-  uv = stored_uv(env_world_direction_to_uv(env_header.env, l));
+  uv = restir_stored_uv(env_world_direction_to_uv(env_header.env, l));
   vec3 stored = env_uv_to_world_direction(env_header.env, uv);
   target = light_eval_target(restir_env_contribution(p, uv));
   if (!(target > 0.0)) return 0.0;
-  float denominator = m_light * env_strategy_pdf(stored, p_env);
+  float denominator = m_light * restir_env_strategy_pdf(stored, p_env);
   if (m_bsdf > 0.0) denominator += m_bsdf * bsdf_direction_pdf(p, stored);
   return safe_ratio(target, denominator);
 }
@@ -246,7 +239,7 @@ void resample_lights(ShadingPoint p, Strategies s, uint tile_base, inout uint rn
   for (uint i = 0u; i < push.light_candidates; ++i) {
     float u0 = rng_next_float(rng);
     float u1 = rng_next_float(rng);
-    vec2 uv = stored_uv(rng_next_vec2(rng));
+    vec2 uv = restir_stored_uv(rng_next_vec2(rng));
     float u_pick = rng_next_float(rng);
     if (u0 < s.p_env || s.light_count == 0u) {
       // The environment: u0 rescaled picks its row, the rest the column and the point.
@@ -313,7 +306,7 @@ void resample_bsdf(ShadingPoint p, Strategies s, inout uint rng, inout Reservoir
         uint first = scene_instances.i[hit.instance].bvh.y;
         if (first != kInvalidLight && first + hit.primitive < s.light_count) {
           index = first + hit.primitive;
-          uv = stored_uv(triangle_barycentrics_to_uv(hit.u, hit.v));
+          uv = restir_stored_uv(triangle_barycentrics_to_uv(hit.u, hit.v));
         }
       } else if (s.p_env > 0.0) {
         // The ray escapes: it sees the environment in direction l.
@@ -325,7 +318,7 @@ void resample_bsdf(ShadingPoint p, Strategies s, inout uint rng, inout Reservoir
         light_kind(scene_light(index)) == kLightTriangle) {
       target = light_eval_target(restir_contribution(p, index, uv));
       vec3 y = light_eval_position(scene_light(index), uv, p.x, restir_scene_radius());
-      float denominator = s.m_light * light_strategy_pdf(index, s.p_env) +
+      float denominator = s.m_light * restir_light_strategy_pdf(index, s.p_env) +
                           s.m_bsdf * bsdf_area_pdf(p, scene_light(index), y);
       weight = safe_ratio(target, denominator);
     }
@@ -333,16 +326,16 @@ void resample_bsdf(ShadingPoint p, Strategies s, inout uint rng, inout Reservoir
   }
 }
 
-Reservoir resample(ShadingPoint p, uvec2 pixel, uint tile_base) {
+Reservoir resample(ShadingPoint p, uvec2 cell, uint tile_base) {
   Reservoir r = reservoir_empty();
   Strategies s = restir_strategies(p);
   if (strategies_empty(s)) {
     r.M = s.m_light + s.m_bsdf;
     return r;
   }
-  uint rng = frame_rng(pixel, kRestirRngInitial);
+  uint rng = frame_rng(cell, kRestirRngInitial);
   resample_lights(p, s, tile_base, rng, r);
-  uint bsdf_rng = frame_rng(pixel, kRestirRngInitialBsdf);
+  uint bsdf_rng = frame_rng(cell, kRestirRngInitialBsdf);
   resample_bsdf(p, s, bsdf_rng, r);
   reservoir_finalize(r);
   return r;
@@ -365,15 +358,15 @@ RestirSurface gbuffer_surface(ivec2 ip, vec4 position) {
 // The "closestemit" variant: only the BSDF candidates' rays, as restir.initial will ask them
 // (the same surface, stream and draws), into the host's closest-hit ray buffer.
 void main() {
-  uvec2 pixel;
-  if (!restir_pixel(pixel)) return;
-  ivec2 ip = ivec2(pixel);
-  vis_host_closest_begin(restir_index(pixel) * push.bsdf_candidates, push.bsdf_candidates);
+  uvec2 cell;
+  if (!restir_cell(cell)) return;
+  ivec2 ip = ivec2(restir_representative(cell));
+  vis_host_closest_begin(restir_index(cell) * push.bsdf_candidates, push.bsdf_candidates);
   RestirSurface surface = gbuffer_surface(ip, imageLoad(gbuffer_position, ip));
   ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
   Strategies s = restir_strategies(p);
   if (p.valid && !strategies_empty(s)) {
-    uint rng = frame_rng(pixel, kRestirRngInitialBsdf);
+    uint rng = frame_rng(cell, kRestirRngInitialBsdf);
     // The count resample_bsdf loops over, from the same Strategies.
     for (uint j = 0u; j < uint(s.m_bsdf); ++j) {
       vec3 origin;
@@ -387,27 +380,44 @@ void main() {
   vis_host_closest_end();
 }
 #else
+// With push.reservoir_stride > 1, every pixel of the cell's block into pixel_surfaces
+// (`surface`, the representative's, already packed).
+void pack_block_surfaces(uvec2 cell, uvec2 representative, RestirSurface surface) {
+  uvec2 first = cell * restir_stride();
+  uvec2 last = min(first + restir_stride(), restir_size());
+  for (uint y = first.y; y < last.y; ++y) {
+    for (uint x = first.x; x < last.x; ++x) {
+      uvec2 pixel = uvec2(x, y);
+      ivec2 ip = ivec2(pixel);
+      pixel_surfaces.s[restir_pixel_index(pixel)] =
+          pixel == representative ? surface : gbuffer_surface(ip, imageLoad(gbuffer_position, ip));
+    }
+  }
+}
+
 void main() {
-  uvec2 pixel;
-  bool inside = restir_pixel(pixel);
+  uvec2 cell;
+  bool inside = restir_cell(cell);
+  uvec2 pixel = inside ? restir_representative(cell) : uvec2(0u);
   ivec2 ip = ivec2(pixel);
   vec4 position = inside ? imageLoad(gbuffer_position, ip) : vec4(0.0);
   uint tile_base = presampled_tile_base();
   if (push.local_candidates > 0u) {
-    // Every invocation fills its slot, inside the image or not, before any reads the list.
-    fill_local_slot(pixel, inside && !gbuffer_is_sky(position.w), position.xyz, tile_base);
+    // Every invocation fills its slot, inside the grid or not, before any reads the list.
+    fill_local_slot(cell, inside && !gbuffer_is_sky(position.w), position.xyz, tile_base);
     barrier();
   }
   if (!inside) return;
-  uint index = restir_index(pixel);
+  uint index = restir_index(cell);
   RestirSurface surface = gbuffer_surface(ip, position);
   restir_surfaces.s[index] = surface;
+  if (restir_stride() > 1u) pack_block_surfaces(cell, pixel, surface);
 
   ShadingPoint p = restir_shading_point(surface, frame_constants.frame.camera_position.xyz);
   Reservoir r = reservoir_empty();
   if (p.valid) {
     vis_host_closest_begin(index * push.bsdf_candidates, push.bsdf_candidates);
-    r = resample(p, pixel, tile_base);
+    r = resample(p, cell, tile_base);
     if ((push.flags & kRestirFlagInitialVisibility) != 0u && reservoir_has_sample(r)) {
       vec3 y = restir_light_position(p, r.selected.light_index, vec2(r.selected.u, r.selected.v));
       if (!vis_visible(p.x, y)) {

@@ -1,4 +1,6 @@
-// restir.spatial (pass push.spatial_pass of N): merges each pixel's reservoir with up to
+// restir.spatial (pass push.spatial_pass of N; per cell of the reservoir grid, restir_cell: a
+// pixel, or a block's representative with push.reservoir_stride > 1, radius in cells): merges each
+// pixel's reservoir with up to
 // push.neighbours neighbours drawn uniformly in a disk of push.radius pixels, skipping neighbours
 // whose surface is dissimilar (depth, normal, material, roughness). Pixels short of history
 // (M below push.short_history_m, e.g. just disoccluded) draw push.boost_neighbours more
@@ -53,9 +55,9 @@ vec3 combine_pairwise_targets(uint j, LightSample y_c, LightSample y_j) {
 #include "restir/restir_reuse.glsl"
 
 void main() {
-  uvec2 pixel;
-  if (!restir_pixel(pixel)) return;
-  uint index = restir_index(pixel);
+  uvec2 cell;
+  if (!restir_cell(cell)) return;
+  uint index = restir_index(cell);
   RestirSurface surface = restir_surface_fetch(restir_surfaces, index);
   Reservoir r = reservoir_unpack(reservoir_fetch(reservoirs_in, index));
   if (!restir_surface_valid(surface)) {
@@ -68,14 +70,14 @@ void main() {
   g_canonical_point = restir_shading_point(surface, camera);
   g_canonical_light = restir_sample_light(r.selected);
   g_domain_pixel[0] = index;
-  uint rng = frame_rng(pixel, kRestirRngSpatial + push.spatial_pass);
+  uint rng = frame_rng(cell, kRestirRngSpatial + push.spatial_pass);
   uint tries = push.neighbours + (r.M < float(push.short_history_m) ? push.boost_neighbours : 0u);
   tries = min(tries, kRestirMaxNeighbours);
   float depth = restir_surface_depth(surface);
   uint count = 1u;
   for (uint t = 0u; t < tries; ++t) {
     uint q_index;
-    if (!restir_disk_neighbour(ivec2(pixel), ivec2(pixel), rng, q_index)) continue;
+    if (!restir_disk_neighbour(ivec2(cell), ivec2(cell), rng, q_index)) continue;
     RestirSurface other = restir_surface_fetch(restir_surfaces, q_index);
     if (!restir_surfaces_similar(surface, depth, other, push.similarity)) continue;
     g_domain_pixel[count] = q_index;

@@ -1,4 +1,6 @@
-// restir.temporal: merges each pixel's initial reservoir with last frame's final reservoir at the
+// restir.temporal (per cell of the reservoir grid, restir_cell: a pixel, or a block's
+// representative with push.reservoir_stride > 1, whose motion it reprojects into last frame's
+// cells): merges each pixel's initial reservoir with last frame's final reservoir at the
 // reprojected pixel (motion vector; with kRestirFlagTemporalPermutation a neighbour of it,
 // restir_permuted_history_pixel; then up to 3 jittered retries within 1.5 px), when the
 // surface there passes the disocclusion test (relative view depth against the depth the previous
@@ -103,13 +105,14 @@ ShadingPoint history_point(uint index) {
                               frame_constants.frame.prev_camera_position.xyz);
 }
 
-// Finds last frame's pixel for this surface at `reprojected` (the pixel centre plus the G-buffer
-// motion's xy): the pixel that passed the disocclusion test, -1 when none did. status:
-// kRestirStatus*. expected_depth: the depth the previous camera saw this point at.
+// Finds last frame's cell for this surface at `reprojected` (the representative pixel's centre
+// plus the G-buffer motion's xy, in cells): the cell whose surface passed the disocclusion test,
+// -1 when none did. status: kRestirStatus*. expected_depth: the depth the previous camera saw
+// this point at.
 ivec2 find_history(vec2 reprojected, RestirSurface surface, float expected_depth, inout uint rng,
                    out uint status) {
   status = kRestirStatusNoHistory;
-  ivec2 size = ivec2(restir_size());
+  ivec2 size = ivec2(restir_grid_size());
   for (uint t = 0u; t < kRestirTemporalTries; ++t) {
     vec2 jitter = t == 0u ? vec2(0.0) : (rng_next_vec2(rng) - 0.5) * 3.0;
     ivec2 q = ivec2(floor(reprojected + jitter));
@@ -117,7 +120,7 @@ ivec2 find_history(vec2 reprojected, RestirSurface surface, float expected_depth
       q = restir_permuted_history_pixel(q, push.permutation_bits);
     }
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-    RestirSurface old = restir_surface_fetch(surfaces_history, q.y * size.x + q.x);
+    RestirSurface old = restir_surface_fetch(surfaces_history, restir_index(uvec2(q)));
     if (restir_surfaces_similar(surface, expected_depth, old, push.similarity)) {
       status = kRestirStatusReprojected + t;
       return q;
@@ -151,24 +154,28 @@ uint add_history_neighbours(ivec2 centre, ivec2 skip, uint tries, RestirSurface 
 }
 
 void main() {
-  uvec2 pixel;
-  bool inside = restir_pixel(pixel);
-  uint index = inside ? restir_index(pixel) : 0u;
+  uvec2 cell;
+  bool inside = restir_cell(cell);
+  uint index = inside ? restir_index(cell) : 0u;
   Reservoir r = reservoir_empty();
   uint status = kRestirStatusNoHistory;
   if (inside) {
     RestirSurface surface = restir_surface_fetch(restir_surfaces, index);
     r = reservoir_unpack(reservoir_fetch(reservoirs_in, index));
     if (restir_surface_valid(surface) && (push.flags & kRestirFlagHistoryValid) != 0u) {
-      uint rng = frame_rng(pixel, kRestirRngTemporal);
-      // xy: the reprojection; zw: the point's own motion, for the cap below.
+      uint rng = frame_rng(cell, kRestirRngTemporal);
+      // The representative pixel's motion. xy: the reprojection; zw: the point's own motion, for
+      // the cap below.
+      uvec2 pixel = restir_representative(cell);
       vec4 motions = imageLoad(gbuffer_motion, ivec2(pixel));
       vec4 clip =
           frame_constants.frame.prev_view_proj * vec4(restir_surface_position(surface), 1.0);
       float expected_depth = clip.w;  // Vulkan perspective: clip w = linear view depth
       bool reprojects = is_finite(motions.x) && is_finite(motions.y);
       // Clamped far outside any image, so the integer pixels below cannot overflow.
-      vec2 reprojected = clamp(vec2(pixel) + 0.5 + motions.xy, vec2(-65536.0), vec2(65536.0));
+      // In cells (last frame's cell of that pixel: its representative may have been another).
+      vec2 reprojected = clamp((vec2(pixel) + 0.5 + motions.xy) / float(restir_stride()),
+                               vec2(-65536.0), vec2(65536.0));
       ivec2 q = reprojects ? find_history(reprojected, surface, expected_depth, rng, status)
                            : ivec2(-1);
       uint count = 1u;

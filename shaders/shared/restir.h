@@ -18,6 +18,7 @@ LANTERN_CONST uint kRestirMaxLightCandidates = 256u;
 LANTERN_CONST uint kRestirMaxBsdfCandidates = 16u;
 LANTERN_CONST uint kRestirMaxNeighbours = 8u;   // spatial neighbours per pass, boost included
                                                 // (and restir.temporal's history neighbours)
+LANTERN_CONST uint kRestirMaxReservoirStride = 4u;  // RestirSettings::reservoir_stride
 LANTERN_CONST uint kRestirMaxSpatialPasses = 4u;
 LANTERN_CONST uint kRestirTemporalTries = 4u;   // reprojected pixel, then 3 jittered retries
 
@@ -51,6 +52,7 @@ LANTERN_CONST uint kRestirRngPresampleTile = 0x524a1u;
 LANTERN_CONST uint kRestirRngLocalLights = 0x524a2u;
 LANTERN_CONST uint kRestirRngInitialBsdf = 0x524a3u;  // restir.initial's BSDF candidates
 LANTERN_CONST uint kRestirRngShadeMedia = 0x524b0u;  // restir.shade's transmittance estimate
+LANTERN_CONST uint kRestirRngShadeCanonical = 0x524b1u;  // restir.shade's own candidate
 LANTERN_CONST uint kRestirRngTemporalPermutation = 0x524c0u;  // one draw per frame, every pixel's
 
 // Temporal permutation (kRestirFlagTemporalPermutation): the previous pixel restir.temporal first
@@ -164,9 +166,12 @@ struct RestirPush {
   float bsdf_min_gloss;   // BSDF candidates only where brdf_gloss (shared/brdf.h) reaches this
   uint temporal_neighbours;  // restir.temporal's neighbours from last frame around the
                              // reprojected pixel (0: the reprojected pixel alone)
+  uint reservoir_stride;     // one reservoir per stride x stride pixels (restir_grid_size); 1:
+                             // one per pixel
+  uint representative;       // this frame's offset of the pixel each reservoir resamples for,
+                             // inside its stride x stride block: x | y << 16
+                             // (restir_representative)
   uint pad0;
-  uint pad1;
-  uint pad2;
 };
 LANTERN_STATIC_SIZE(RestirPush, 112);
 

@@ -9,8 +9,8 @@
 // same in every integrator and would swamp the lighting), not sky, and whose reference radiance
 // is positive.
 //
-// Asserted for balance, pairwise, bsdf, local-bsdf, glossy-bsdf, permuted and
-// temporal-neighbours (kModes): the run resolves the tolerance (kSigmas sigma < tolerance, else
+// Asserted for balance, pairwise, bsdf, local-bsdf, glossy-bsdf, permuted, temporal-neighbours
+// and stride-2 (kModes; stride-2 in CI on cornell_lights only, study's `ci_skips`): the run resolves the tolerance (kSigmas sigma < tolerance, else
 // the test fails saying so) and the bias is within kSigmas sigma of zero. kSigmas is 4, not 3: a
 // CI run makes about 25 such checks, and at 3 sigma one of them fails by chance in ~7% of runs
 // (it happened: `bsdf` on the room read -0.41% against 3 sigma 0.39%, and the resolving study
@@ -181,6 +181,10 @@ const Mode kModes[] = {
     // reprojected pixel are more domains, each weighed at its own (last frame's) surface. The
     // balance heuristic's: study only.
     {"temporal-neighbours", {{"temporal_neighbours", "4"}, {"spatial_passes", "0"}}, true, true},
+    // One reservoir per 2x2 pixels: the chain resamples for one representative pixel a frame, and
+    // every other pixel resamples a similar cell's reservoir with one light candidate of its own
+    // (restir_shade.comp's resample_for_pixel), weighed by the balance heuristic.
+    {"stride-2", {{"reservoir_stride", "2"}}, true, true},
     {"balance-temporal-neighbours",
      {{"bias_correction", "balance"}, {"temporal_neighbours", "4"}, {"spatial_passes", "0"}}, true,
      false},
@@ -234,8 +238,11 @@ class RestirBiasTest : public runtime::test::GpuTest {
   // reference frames, 8-frame runs), so their expectations are equal, and ReSTIR's temporal reuse
   // must stay unbiased with motion vectors that carry the jitter. Only the balance mode runs then.
   // `level_settings` apply after the preset and before each mode's (a level's own "settings").
+  // `ci_skips`: modes that this scene's CI run leaves to the study (named in LANTERN_BIAS_MODES,
+  // they run).
   void study(const char* scene, std::shared_ptr<const Level> level, bool jitter = false,
-             const std::vector<std::pair<std::string, std::string>>& level_settings = {}) {
+             const std::vector<std::pair<std::string, std::string>>& level_settings = {},
+             const std::vector<std::string>& ci_skips = {}) {
     const StudyParams p = study_params();
     const FrameSnapshot first = test::first_snapshot(level, p.width, p.height);
     const std::size_t pixels = std::size_t{p.width} * p.height;
@@ -323,10 +330,14 @@ class RestirBiasTest : public runtime::test::GpuTest {
     // numbers (they hash the frame index, which never repeats in a renderer): every run is an
     // independent batch. The modes share the renderer (the mode is a push constant).
     std::vector<const Mode*> modes;
-    for (const Mode& mode : kModes)
-      if (mode_selected(mode) && (!jitter || std::getenv("LANTERN_BIAS_MODES") != nullptr ||
-                                  std::string(mode.name) == "balance"))
+    const bool named = std::getenv("LANTERN_BIAS_MODES") != nullptr;
+    for (const Mode& mode : kModes) {
+      const bool skipped =
+          !named && std::find(ci_skips.begin(), ci_skips.end(), mode.name) != ci_skips.end();
+      if (mode_selected(mode) && !skipped &&
+          (!jitter || named || std::string(mode.name) == "balance"))
         modes.push_back(&mode);
+    }
     ASSERT_FALSE(modes.empty()) << "LANTERN_BIAS_MODES names no mode this test runs";
     std::vector<std::vector<double>> errors(modes.size());
     const bool trace = std::getenv("LANTERN_BIAS_TRACE") != nullptr;
@@ -401,7 +412,10 @@ TEST_F(RestirBiasTest, CornellLightsLitSurfacesWithJitter) {
 }
 
 TEST_F(RestirBiasTest, OccludedRoomLitSurfaces) {
-  study("occluders", test::level_from_json("bias_occluders", kOccludersJson));
+  // stride-2: one run's spread here is 1.7–1.8%, so CI's 64 runs put 4 sigma at 0.85–0.91%, too
+  // near the 1% they must resolve to pass every time; the study resolves it (README).
+  study("occluders", test::level_from_json("bias_occluders", kOccludersJson), false, {},
+        {"stride-2"});
 }
 
 // Presampled tiles and the local light lists (balanced's light candidates there come from them;
@@ -416,7 +430,10 @@ TEST_F(RestirBiasTest, ManyLightsPresampledLitSurfaces) {
   ASSERT_GT(triangles, gpu::kRestirPresampleTileSize) << "presampling must be on";
   ASSERT_GT(lighting::restir_preset("balanced").presample_tiles, 0u);
   ASSERT_GT(lighting::restir_preset("balanced").local_candidates, 0u) << "local lists must be on";
-  study("many_lights", level, false, {{"light_spread", "1000"}});
+  // stride-2: one run's spread here is 2.5% (pairwise's 1.6%), so CI's 64 runs put 4 sigma at
+  // 1.26%, above the 1% they must resolve; the study resolves it (README, "One reservoir per 2×2
+  // pixels").
+  study("many_lights", level, false, {{"light_spread", "1000"}}, {"stride-2"});
 }
 
 }  // namespace

@@ -6,8 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "lighting/frame/frame_inputs.h"
@@ -97,6 +100,8 @@ TEST(RestirSettings, RejectsBadKeysAndValuesNamingThem) {
            {"temporal_neighbours", "9"},
            {"temporal_neighbours", "-1"},
            {"temporal_neighbours", "two"},
+           {"reservoir_stride", "0"},
+           {"reservoir_stride", "5"},
            {"radius", "0"},
            {"radius", "nan"},
            {"radius", "inf"},
@@ -364,6 +369,47 @@ TEST(RestirSettings, TemporalNeighboursReachTheTemporalPass) {
   EXPECT_EQ(RestirIntegrator::make_push(s, inputs).temporal_neighbours, 4u);
   apply_setting(s, "temporal_neighbors", "8");
   EXPECT_EQ(RestirIntegrator::make_push(s, inputs).temporal_neighbours, gpu::kRestirMaxNeighbours);
+}
+
+// One reservoir per stride x stride pixels: off (1) in every preset; the stride reaches the
+// shaders, and each cell's representative pixel visits every offset of its block once in
+// stride^2 frames; visibility reuse (one pixel's verdict) is refused beside it.
+TEST(RestirSettings, ReservoirStrideReachesThePassesAndVisitsEveryPixel) {
+  FrameInputs inputs = inputs_of(320, 180, 89);
+  for (const std::string& preset : restir_preset_names()) {
+    EXPECT_EQ(restir_preset(preset).reservoir_stride, 1u) << preset;
+    const gpu::RestirPush push = RestirIntegrator::make_push(restir_preset(preset), inputs);
+    EXPECT_EQ(push.reservoir_stride, 1u);
+    EXPECT_EQ(push.representative, 0u);
+  }
+  for (std::uint32_t stride : {2u, 3u, 4u}) {
+    const RestirSettings s =
+        make_restir_settings("balanced", {{"reservoir_stride", std::to_string(stride)}});
+    std::vector<int> visits(stride * stride, 0);
+    for (std::uint32_t frame = 0; frame < stride * stride; ++frame) {
+      inputs.frame_index = 100 + frame;
+      const gpu::RestirPush push = RestirIntegrator::make_push(s, inputs);
+      EXPECT_EQ(push.reservoir_stride, stride);
+      const std::uint32_t x = push.representative & 0xffffu;
+      const std::uint32_t y = push.representative >> 16;
+      ASSERT_LT(x, stride);
+      ASSERT_LT(y, stride);
+      ++visits[y * stride + x];
+    }
+    EXPECT_EQ(std::count(visits.begin(), visits.end(), 1), static_cast<long>(stride * stride))
+        << "stride " << stride << ": every offset once";
+  }
+  try {
+    make_restir_settings("balanced", {{"reservoir_stride", "2"}, {"visibility_reuse", "4"}});
+    ADD_FAILURE() << "visibility_reuse with reservoir_stride 2 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("visibility_reuse"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("reservoir_stride"), std::string::npos) << e.what();
+  }
+  // The play panel sets fields directly: the passes then keep no verdict.
+  RestirSettings both = make_restir_settings("balanced", {{"reservoir_stride", "2"}});
+  both.visibility_reuse = 4;
+  EXPECT_EQ(RestirIntegrator::make_push(both, inputs).visibility_reuse, 0u);
 }
 
 }  // namespace

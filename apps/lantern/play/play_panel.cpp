@@ -149,6 +149,8 @@ void draw_panel(PanelState& s) {
     slider_f("M cap factor", r.m_cap_factor, 1.0f, 100.0f, "%.1f");
     slider_f("M cap where moving", r.m_cap_moving, 0.01f, 1.0f, "%.2f");
     slider_u("temporal neighbours", r.temporal_neighbours, 0, kMaxNeighbours);
+    slider_u("reservoir stride", r.reservoir_stride, 1,
+             static_cast<int>(gpu::kRestirMaxReservoirStride));
     slider_u("spatial passes", r.spatial_passes, 0, static_cast<int>(gpu::kRestirMaxSpatialPasses));
     slider_u("neighbours", r.neighbours, 0, kMaxNeighbours);
     slider_u("disocclusion boost", r.disocclusion_boost, 0, kMaxNeighbours);
