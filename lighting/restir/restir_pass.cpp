@@ -1,8 +1,6 @@
 // RestirPass: a restir.* ShaderPass with its dispatch over the image's tiles (restir_pass.h).
 #include "lighting/restir/restir_pass.h"
 
-#include <algorithm>
-
 #include "lighting/frame/tile_order.h"
 #include "shared/pixel_groups.h"
 
@@ -41,9 +39,9 @@ std::vector<runtime::graph::BufferHandle> RestirPass::add(runtime::graph::Render
   if (workgroups != 0) return pass_.add(graph, inputs, push, buffers, {.x = workgroups});
   // The shuffle's stride for this pass's own tiles (its shape is the stage's), over the reservoir
   // grid's cells or the image's pixels.
-  const std::uint32_t stride = over_cells_ ? std::max(push.reservoir_stride, 1u) : 1u;
-  const std::uint32_t tiles = tile_count((inputs.width + stride - 1) / stride,
-                                         (inputs.height + stride - 1) / stride, pass_.pipeline());
+  const glm::uvec2 extent = gpu::restir_grid_extent({inputs.width, inputs.height},
+                                                    over_cells_ ? push.reservoir_stride : 1u);
+  const std::uint32_t tiles = tile_count(extent.x, extent.y, pass_.pipeline());
   gpu::RestirPush p = push;
   p.tile_stride = tile_stride(tiles);
   return pass_.add(graph, inputs, p, buffers, {.x = tiles});

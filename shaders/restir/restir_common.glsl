@@ -36,7 +36,7 @@ float restir_scene_radius() { return frame_constants.frame.scene.x; }
 // (restir.initial, restir.temporal and restir.spatial run over its cells; restir.shade over the
 // pixels). Each cell resamples for one representative pixel of its block, which moves every frame.
 uint restir_stride() { return max(push.reservoir_stride, 1u); }
-uvec2 restir_grid_size() { return (restir_size() + restir_stride() - 1u) / restir_stride(); }
+uvec2 restir_grid_size() { return restir_grid_extent(restir_size(), push.reservoir_stride); }
 uvec2 restir_representative(uvec2 cell) {
   uvec2 offset = uvec2(push.representative & 0xffffu, push.representative >> 16u);
   return min(cell * restir_stride() + offset, restir_size() - 1u);

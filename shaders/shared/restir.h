@@ -175,6 +175,13 @@ struct RestirPush {
 };
 LANTERN_STATIC_SIZE(RestirPush, 112);
 
+// The reservoir grid of an image of `size` pixels: one cell per stride x stride pixels, the last
+// column and row of cells holding what is left (RestirPush::reservoir_stride).
+LANTERN_FUNC uvec2 restir_grid_extent(uvec2 size, uint stride) {
+  uint s = max(stride, 1u);
+  return (size + s - 1u) / s;
+}
+
 // The per-pixel surface the passes resample at, packed from the G-buffer by restir.initial
 // (and kept one frame as history for restir.temporal's disocclusion test). 48 bytes: albedo,
 // roughness, metallic and specular are unorm16 (error <= 7.6e-6), so ReSTIR shades the G-buffer's
