@@ -101,7 +101,7 @@ bool own_light_candidate(ShadingPoint p, inout uint rng, out LightSample y, out 
 
 // The cell whose representative a pixel that is not one resamples from: its own cell's when the
 // two surfaces are similar (restir_surfaces_similar), else the first that is of the adjacent
-// cells towards the pixel. False when none is: `found` is then the pixel's own cell.
+// cells towards the pixel. False when none is.
 bool similar_cell(uvec2 pixel, RestirSurface surface, uvec2 cell, out uvec2 found,
                   out RestirSurface found_surface) {
   ivec2 towards = ivec2(sign(vec2(pixel) - vec2(restir_representative(cell))));
@@ -118,9 +118,6 @@ bool similar_cell(uvec2 pixel, RestirSurface surface, uvec2 cell, out uvec2 foun
         restir_surface_fetch(restir_surfaces, restir_pixel_index(restir_representative(found)));
     if (restir_surfaces_similar(surface, depth, found_surface, push.similarity)) return true;
   }
-  found = cell;
-  found_surface =
-      restir_surface_fetch(restir_surfaces, restir_pixel_index(restir_representative(cell)));
   return false;
 }
 
@@ -130,16 +127,19 @@ bool similar_cell(uvec2 pixel, RestirSurface surface, uvec2 cell, out uvec2 foun
 // light-strategy candidate, confidence 1), MIS weights by the balance heuristic over their
 // targets: m_q(y) = c p̂_q(y) / (c p̂_q(y) + p̂_p(y)). The own candidate keeps the estimate
 // unbiased where p̂_q is zero and p̂_p is not (at a light's reach, past q's horizon). Where no
-// cell is similar (an edge, a strip one pixel wide), the own cell's with confidence 1: with M
-// there, its samples' weight p̂_p / p̂_q made fireflies; without it, pixels that only a near
-// light reaches stayed dark for frames.
+// cell is similar (an edge, a strip one pixel wide) the own candidate alone: the own cell's
+// reservoir there, weighed with its M, made fireflies (its samples' weight carries p̂_p / p̂_q),
+// and weighed with 1 it raised night_market's raw relMSE (README, "One reservoir per 2×2
+// pixels").
 Reservoir resample_for_pixel(ShadingPoint p, RestirSurface surface, uvec2 pixel, uvec2 cell) {
   uvec2 found;
   RestirSurface q_surface;
-  bool similar = similar_cell(pixel, surface, cell, found, q_surface);
-  Reservoir r = reservoir_unpack(reservoirs_in.r[restir_index(found)]);
+  Reservoir r = reservoir_empty();
+  if (similar_cell(pixel, surface, cell, found, q_surface)) {
+    r = reservoir_unpack(reservoirs_in.r[restir_index(found)]);
+  }
   ShadingPoint q = restir_shading_point(q_surface, frame_constants.frame.camera_position.xyz);
-  float confidence = similar ? max(r.M, 0.0) : min(max(r.M, 0.0), 1.0);
+  float confidence = max(r.M, 0.0);
   uint rng = frame_rng(pixel, kRestirRngShadeCanonical);
   Reservoir out_r = reservoir_empty();
   if (reservoir_has_sample(r)) {
