@@ -191,8 +191,7 @@ BufferHandle RestirIntegrator::add_passes(runtime::graph::RenderGraph& graph,
   const VkDeviceSize pixels = VkDeviceSize{inputs.width} * inputs.height;
   // The reservoir grid: one cell per push.reservoir_stride^2 pixels (RestirSettings).
   const std::uint32_t stride = push.reservoir_stride;
-  const glm::uvec2 grid =
-      gpu::restir_grid_extent({inputs.width, inputs.height}, push.reservoir_stride);
+  const glm::uvec2 grid = gpu::restir_grid_extent({inputs.width, inputs.height}, stride);
   const VkDeviceSize cells = VkDeviceSize{grid.x} * grid.y;
   const runtime::graph::BufferDesc reservoir_desc{cells * sizeof(gpu::PackedReservoir)};
 

@@ -186,8 +186,7 @@ std::vector<std::string> restir_preset_names();
 
 // Sets one knob by its key (the field names above: light_candidates, bsdf_candidates,
 // bsdf_min_gloss, temporal, m_cap (alias of m_cap_factor), m_cap_moving, reservoir_stride,
-// spatial_passes,
-// neighbours, disocclusion_boost, temporal_neighbours, radius, presample_tiles,
+// spatial_passes, neighbours, disocclusion_boost, temporal_neighbours, radius, presample_tiles,
 // local_candidates, local_min_lights, visibility_reuse, bias_correction (a name from
 // restir_bias_corrections()), initial_visibility, boiling_filter, depth_threshold,
 // normal_threshold, debug_view (a name from restir_debug_views()), temporal_permutation (a name

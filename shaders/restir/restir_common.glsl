@@ -111,6 +111,18 @@ float restir_env_probability() { return env_header.env.params.x; }
 // The uv a shader will see after the reservoir is stored: evaluating there keeps p̂ and W exact.
 vec2 restir_stored_uv(vec2 uv) { return unpackUnorm2x16(packUnorm2x16(uv)); }
 
+// Where a light-strategy draw u0 in [0,1) goes: true for the environment (its share p_env, or
+// every draw when there is no light), u0 then rescaled to [0,1) as the map row's coordinate;
+// false for a light, u0 rescaled to [0,1) for the light draw.
+bool restir_strategy_environment(inout float u0, float p_env, uint light_count) {
+  if (u0 < p_env || light_count == 0u) {
+    u0 = clamp(u0 / max(p_env, 1e-30), 0.0, 0.99999994);
+    return true;
+  }
+  u0 = p_env > 0.0 ? clamp((u0 - p_env) / (1.0 - p_env), 0.0, 0.99999994) : u0;
+  return false;
+}
+
 // Light strategy density of (light, uv): selection pdf * point density (the alias table's pdf
 // is over the emitters; the environment takes p_env of the selections first). Presampled
 // candidates have the same marginal density (restir.presample stores it).

@@ -241,18 +241,16 @@ void resample_lights(ShadingPoint p, Strategies s, uint tile_base, inout uint rn
     float u1 = rng_next_float(rng);
     vec2 uv = restir_stored_uv(rng_next_vec2(rng));
     float u_pick = rng_next_float(rng);
-    if (u0 < s.p_env || s.light_count == 0u) {
-      // The environment: u0 rescaled picks its row, the rest the column and the point.
+    if (restir_strategy_environment(u0, s.p_env, s.light_count)) {
+      // The environment: u0 (rescaled) picks its row, the rest the column and the point.
       vec3 l, le;
-      float u_row = clamp(u0 / max(s.p_env, 1e-30), 0.0, 0.99999994);
-      env_sample(env_header.env, vec4(u_row, u1, uv), l, le);
+      env_sample(env_header.env, vec4(u0, u1, uv), l, le);
       vec2 env_uv;
       float target;
       float weight = env_candidate(p, l, s.p_env, s.m_light, s.m_bsdf, env_uv, target);
       reservoir_update(r, light_sample_make(kEnvironmentLight, env_uv, target), weight, u_pick);
       continue;
     }
-    u0 = s.p_env > 0.0 ? clamp((u0 - s.p_env) / (1.0 - s.p_env), 0.0, 0.99999994) : u0;
     GpuLight light;
     float pdf;
     float strategy_pdf;

@@ -83,16 +83,14 @@ bool own_light_candidate(ShadingPoint p, inout uint rng, out LightSample y, out 
   y = light_sample_make(kInvalidLight, vec2(0.0), 0.0);
   pdf = 0.0;
   if (light_count == 0u && p_env == 0.0) return false;
-  if (u0 < p_env || light_count == 0u) {
+  if (restir_strategy_environment(u0, p_env, light_count)) {
     vec3 l, le;
-    float u_row = clamp(u0 / max(p_env, 1e-30), 0.0, 0.99999994);
-    env_sample(env_header.env, vec4(u_row, u1, uv), l, le);
+    env_sample(env_header.env, vec4(u0, u1, uv), l, le);
     vec2 env_uv = restir_stored_uv(env_world_direction_to_uv(env_header.env, l));
     pdf = restir_env_strategy_pdf(env_uv_to_world_direction(env_header.env, env_uv), p_env);
     y = light_sample_make(kEnvironmentLight, env_uv, 0.0);
     return true;
   }
-  u0 = p_env > 0.0 ? clamp((u0 - p_env) / (1.0 - p_env), 0.0, 0.99999994) : u0;
   uint index = scene_light_sample(u0, u1);
   pdf = restir_light_strategy_pdf(index, p_env);
   y = light_sample_make(index, uv, 0.0);

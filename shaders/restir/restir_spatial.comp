@@ -1,10 +1,9 @@
 // restir.spatial (pass push.spatial_pass of N; per cell of the reservoir grid, restir_cell: a
-// pixel, or a block's representative with push.reservoir_stride > 1, radius in cells): merges each
-// pixel's reservoir with up to
-// push.neighbours neighbours drawn uniformly in a disk of push.radius pixels, skipping neighbours
-// whose surface is dissimilar (depth, normal, material, roughness). Pixels short of history
-// (M below push.short_history_m, e.g. just disoccluded) draw push.boost_neighbours more
-// neighbours. MIS weights per push.bias_correction (none O(k), pairwise O(k), balance O(k^2)
+// pixel, or a block's representative with push.reservoir_stride > 1, radius in cells): merges
+// each pixel's reservoir with up to push.neighbours neighbours drawn uniformly in a disk of
+// push.radius pixels, skipping neighbours whose surface is dissimilar (depth, normal, material,
+// roughness). Pixels short of history (M below push.short_history_m, e.g. just disoccluded) draw
+// push.boost_neighbours more neighbours. MIS weights per push.bias_correction (none O(k), pairwise O(k), balance O(k^2)
 // target evaluations).
 // Reads: restir_surfaces, reservoirs_in, frame constants, lights, environment (env_*).
 // Writes: reservoirs_out.
