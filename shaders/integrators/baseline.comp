@@ -104,9 +104,8 @@ vec3 shade_pixel(uvec2 pixel) {
           sample_environment(p_env, x, n, ng, v, mat, vec4(u_light, u1, rng_next_float(rng)), rng);
     } else if (frame_constants.frame.counts.x > 0u) {
       // Reuse u_select, rescaled to [0,1), for the alias slot.
-      float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
-      uint index = scene_light_sample(u0, u1);
-      float select_pdf = (1.0 - p_env) * scene_light_selection_pdf(index);
+      uint index = scene_light_sample(scene_light_draw_u0(u_select, p_env), u1);
+      float select_pdf = scene_light_strategy_pdf(index, p_env);
       result += sample_light(index, select_pdf, x, n, ng, v, mat, u_light, rng);
     }
   }

@@ -165,11 +165,11 @@ vec3 sample_light(Shading sh, inout uint rng) {
   }
   if (frame_constants.frame.counts.x == 0u) return vec3(0.0);
   // Reuse u_select, rescaled to [0,1), for the alias slot.
-  float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
+  float u0 = scene_light_draw_u0(u_select, p_env);
   float u1 = rng_next_float(rng);
   vec2 u_point = rng_next_vec2(rng);
   uint index = scene_light_sample(u0, u1);
-  float select = (1.0 - p_env) * scene_light_selection_pdf(index);
+  float select = scene_light_strategy_pdf(index, p_env);
   if (index >= analytic_walk_first()) return vec3(0.0);  // analytic_lights() counts it
   GpuLight light = scene_light(index);
   float pdf_point = select * light_eval_point_pdf(light);

@@ -73,6 +73,17 @@ float scene_light_selection_pdf(uint index) {
   return alias_group_pdf(scene_light_alias(index).pdf, index, frame_constants.frame.counts.z,
                          frame_constants.frame.scene.y);
 }
+// A light-strategy draw u_select in [0,1) goes to the environment below p_env (its share,
+// env_header.env.params.x: 0 without a map, 1 when no emitter has power) and to the lights above
+// it. For the lights it is rescaled to [0,1), scene_light_sample's u0, and light `index` is then
+// drawn with probability scene_light_strategy_pdf. One form for every integrator, so their
+// selections agree to the bit.
+float scene_light_draw_u0(float u_select, float p_env) {
+  return clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
+}
+float scene_light_strategy_pdf(uint index, float p_env) {
+  return (1.0 - p_env) * scene_light_selection_pdf(index);
+}
 layout(std430, binding = kSceneLightPreviousToCurrent) restrict readonly buffer RemapBuffer {
   uint index[];
 } light_previous_to_current;

@@ -71,10 +71,9 @@ bool medium_choose_light(inout uint rng, out MediumLight m) {
     return m.pdf > 0.0;
   }
   if (lights == 0u) return false;
-  float u0 = clamp((u_select - p_env) / max(1.0 - p_env, 1e-30), 0.0, 0.99999994);
-  m.index = scene_light_sample(u0, u1);
+  m.index = scene_light_sample(scene_light_draw_u0(u_select, p_env), u1);
   GpuLight light = scene_light(m.index);
-  m.pdf = (1.0 - p_env) * scene_light_selection_pdf(m.index) * light_eval_point_pdf(light);
+  m.pdf = scene_light_strategy_pdf(m.index, p_env) * light_eval_point_pdf(light);
   m.uv = u_light;
   m.positional = light_kind(light) != kLightDirectional;
   if (m.positional) m.y = light_eval_position(light, u_light, vec3(0.0), fc.scene.x);

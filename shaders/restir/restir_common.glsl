@@ -119,7 +119,7 @@ bool restir_strategy_environment(inout float u0, float p_env, uint light_count) 
     u0 = clamp(u0 / max(p_env, 1e-30), 0.0, 0.99999994);
     return true;
   }
-  u0 = p_env > 0.0 ? clamp((u0 - p_env) / (1.0 - p_env), 0.0, 0.99999994) : u0;
+  u0 = scene_light_draw_u0(u0, p_env);
   return false;
 }
 
@@ -127,7 +127,7 @@ bool restir_strategy_environment(inout float u0, float p_env, uint light_count) 
 // is over the emitters; the environment takes p_env of the selections first). Presampled
 // candidates have the same marginal density (restir.presample stores it).
 float restir_light_strategy_pdf(uint index, float p_env) {
-  return (1.0 - p_env) * scene_light_selection_pdf(index) * light_eval_point_pdf(scene_light(index));
+  return scene_light_strategy_pdf(index, p_env) * light_eval_point_pdf(scene_light(index));
 }
 
 // Light strategy density of environment direction l (solid angle).
