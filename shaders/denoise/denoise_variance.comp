@@ -1,8 +1,9 @@
 // denoise.variance: where the temporal history is short (< kDenoiseShortHistory frames: just
-// disoccluded, the first frame, after a cut) the temporal variance means nothing yet; estimate it
+// disoccluded, the first frame, after a cut) the temporal variance means little yet; estimate it
 // from the luminance of similar neighbours in a 5x5 window instead (depth-plane and normal edge
 // stops as in denoise.atrous, neighbours of the pixel's kind only: denoise_record), so the first
-// à-trous iterations still know how noisy the pixel is.
+// à-trous iterations still know how noisy the pixel is. From kDenoiseOwnSpreadHistory frames on
+// the pixel's own samples' spread bounds that estimate.
 // Also the 3x3 mean luminance of similar neighbours (tent-weighted, kDenoiseKernel), which the
 // first à-trous iteration's luminance edge stop compares.
 // Reads: accum_in (rgb illumination, a variance), moments_in (z history length), guide.
@@ -88,5 +89,8 @@ void main() {
   // Fewer frames behind it: more uncertain (SVGF's boost of the spatial estimate).
   float boost = kDenoiseShortHistory / max(frames, 1.0);
   float variance = max(moments.y - moments.x * moments.x, 0.0) * boost;
+  if (frames >= kDenoiseOwnSpreadHistory) {
+    variance = min(variance, denoise_record_variance(centre) * boost);
+  }
   accum_out.p[index] = denoise_record(centre.rgb, variance, emitter);
 }

@@ -1,7 +1,7 @@
 // The denoiser's history: rejected across a camera cut, a disocclusion and a mostly hidden
 // footprint (exact images), recovered within four frames; the clamps (a light after darkness, a
 // lone sample without history, a dimmed light, a lit pixel among dark ones) and what they took
-// given back (repay), the stabilisation,
+// given back (repay), a dark pixel among lit ones in a short history, the stabilisation,
 // and each frame weighed by the integrator's confidence.
 #include "tests/denoise/denoise_gpu_fixture.h"
 
@@ -461,6 +461,45 @@ TEST_F(DenoiseGpuTest, LitPixelAmongDarkOnesIsNotHeldBlack) {
   EXPECT_GT(shown[1], 0.05f * c) << "the history kept no trace of the first lit frame";
   for (int f = 2; f < 40; ++f) EXPECT_GE(shown[f], shown[f - 1]) << "frame " << f + 1;
   EXPECT_NEAR(shown[39] / c, 1.0, 0.05);
+}
+
+// A pixel in shadow beside a lit surface of the same normal and material, whose samples agree,
+// is not filtered into its neighbours' light once it has kDenoiseOwnSpreadHistory frames of
+// history (still view; one interior surface pixel black among pixels of c): in the first frame
+// only the neighbours' spread is known and the à-trous steps draw light into it, from the second
+// on its own samples' spread (none) bounds the short history's variance and it stays black. Its
+// lit neighbours keep c.
+TEST_F(DenoiseGpuTest, DarkPixelWhoseSamplesAgreeStaysDarkInAShortHistory) {
+  std::vector<std::uint8_t> mask;
+  {
+    Run probe = make_run();
+    (void)black_frames(probe, 1, mask);
+  }
+  const std::size_t dark = interior_surface_pixel(mask);
+  ASSERT_NE(dark, 0u);
+  const float c = 0.4f;
+  ImageRGBA32F input = constant(c);
+  for (int k = 0; k < 3; ++k) input.pixels[4 * dark + k] = 0.0f;
+  Run run = make_run();
+  FrameSnapshot s = test::first_snapshot(level, kW, kH);
+  std::vector<float> shown;
+  float darkest_beside = c;
+  for (int f = 0; f < 3; ++f) {
+    if (f > 0) s = frozen(s);
+    const ImageRGBA32F out = render(run, input, s);
+    shown.push_back(out.pixels[4 * dark]);
+    for (std::size_t q : {dark - 1, dark + 1, dark - kW, dark + kW}) {
+      if (f > 0) darkest_beside = std::min(darkest_beside, out.pixels[4 * q]);
+    }
+  }
+  std::printf("[denoise dark among lit] frames 1, 2, 3: %.5f %.5f %.5f; beside it at least %.5f "
+              "(c = %.2f)\n",
+              shown[0], shown[1], shown[2], darkest_beside, c);
+  static_assert(gpu::kDenoiseOwnSpreadHistory == 2.0f && gpu::kDenoiseShortHistory == 4.0f);
+  EXPECT_GT(shown[0], 0.05f * c) << "control: one frame has only the neighbours' spread";
+  EXPECT_LE(shown[1], 1e-3f * c) << "two agreeing samples: the neighbours' light came in";
+  EXPECT_LE(shown[2], 1e-3f * c) << "three agreeing samples: the neighbours' light came in";
+  EXPECT_NEAR(darkest_beside / c, 1.0, 0.01) << "the lit pixels beside it lost light";
 }
 
 // The integrator's confidence weighs each frame (static camera, constant images, so every pixel
