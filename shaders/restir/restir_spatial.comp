@@ -3,8 +3,8 @@
 // each pixel's reservoir with up to push.neighbours neighbours drawn uniformly in a disk of
 // push.radius pixels, skipping neighbours whose surface is dissimilar (depth, normal, material,
 // roughness). Pixels short of history (M below push.short_history_m, e.g. just disoccluded) draw
-// push.boost_neighbours more neighbours. MIS weights per push.bias_correction (none O(k), pairwise O(k), balance O(k^2)
-// target evaluations).
+// push.boost_neighbours more neighbours. MIS weights per push.bias_correction (none O(k),
+// pairwise O(k), balance O(k^2) target evaluations).
 // Reads: restir_surfaces, reservoirs_in, frame constants, lights, environment (env_*).
 // Writes: reservoirs_out.
 // History: none (the last pass's output is the frame's final reservoirs, kept by the graph).
