@@ -104,6 +104,14 @@ std::uint32_t RestirIntegrator::local_candidates(const RestirSettings& s,
   return light_spread(s, inputs) >= kLocalListsMinSpread ? s.local_candidates : 0u;
 }
 
+std::uint32_t RestirIntegrator::grid_candidates(const RestirSettings& s,
+                                                const FrameInputs& inputs) {
+  // Where power draws and the local lists already find every light (few lights, or lights that
+  // light everything alike) a light beside the surface is no rarer than any other.
+  if (inputs.light_count < s.local_min_lights) return 0;
+  return light_spread(s, inputs) >= kLocalListsMinSpread ? s.grid_candidates : 0u;
+}
+
 std::uint32_t RestirIntegrator::bsdf_candidates(const RestirSettings& s,
                                                 const FrameInputs& inputs) {
   return inputs.max_gloss >= s.bsdf_min_gloss ? s.bsdf_candidates : 0u;
@@ -136,6 +144,7 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   }
   p.light_candidates = s.light_candidates;
   p.bsdf_candidates = bsdf_candidates(s, inputs);
+  p.grid_candidates = grid_candidates(s, inputs);
   p.bsdf_min_gloss = s.bsdf_min_gloss;
   p.bias_correction = s.bias_correction;
   p.debug_view = s.debug_view;
@@ -143,7 +152,7 @@ gpu::RestirPush RestirIntegrator::make_push(const RestirSettings& s, const Frame
   p.boost_neighbours = s.disocclusion_boost;
   p.temporal_neighbours = s.temporal_neighbours;
   // The candidates this frame draws (none from BSDFs where the level has no surface for them).
-  const std::uint32_t drawn = s.light_candidates + p.bsdf_candidates;
+  const std::uint32_t drawn = s.light_candidates + p.bsdf_candidates + p.grid_candidates;
   p.short_history_m = 2 * drawn;
   p.radius = s.radius;
   p.m_cap = s.m_cap(drawn);

@@ -73,6 +73,9 @@ class RestirIntegrator final : public Integrator {
   // has at least local_min_lights lights and a light spread of at least kLocalListsMinSpread,
   // else 0.
   static std::uint32_t local_candidates(const RestirSettings& settings, const FrameInputs& inputs);
+  // The light grid candidates drawn this frame: RestirSettings::grid_candidates where the local
+  // lists are on (the same rule: many lights, each lighting its surroundings), else 0.
+  static std::uint32_t grid_candidates(const RestirSettings& settings, const FrameInputs& inputs);
   // BSDF candidates a pixel at least bsdf_min_gloss glossy draws this frame: the setting, or 0
   // where no material of the level reaches bsdf_min_gloss (FrameInputs::max_gloss), so that a
   // level without such surfaces runs neither restir.initial_rays nor visibility.host_closest.

@@ -131,6 +131,7 @@ RestirSettings restir_preset(std::string_view name) {
   if (name == "fast") {
     s.light_candidates = 4;
     s.local_candidates = 4;
+    s.grid_candidates = 1;
     s.spatial_passes = 1;
     s.neighbours = 2;
     s.disocclusion_boost = 2;
@@ -142,6 +143,7 @@ RestirSettings restir_preset(std::string_view name) {
   if (name == "quality") {
     s.light_candidates = 16;
     s.local_candidates = 16;
+    s.grid_candidates = 4;
     s.bsdf_candidates = 1;
     s.spatial_passes = 2;
     s.neighbours = 5;
@@ -189,6 +191,8 @@ void apply_setting(RestirSettings& s, std::string_view key, std::string_view val
     s.presample_tiles = parse_uint(key, value, 0, gpu::kRestirMaxPresampleTiles);
   } else if (key == "local_candidates") {
     s.local_candidates = parse_uint(key, value, 0, gpu::kRestirMaxLocalCandidates);
+  } else if (key == "grid_candidates") {
+    s.grid_candidates = parse_uint(key, value, 0, gpu::kRestirMaxLightCandidates);
   } else if (key == "local_min_lights") {
     // Up to the most lights a packed reservoir can index (local_candidates = 0 is the off switch).
     s.local_min_lights = parse_uint(key, value, 1, gpu::kPackedMaxLights - 1);
@@ -262,6 +266,7 @@ std::vector<std::pair<std::string, std::string>> describe(const RestirSettings& 
       {"radius", format_float(s.radius)},
       {"presample_tiles", std::to_string(s.presample_tiles)},
       {"local_candidates", std::to_string(s.local_candidates)},
+      {"grid_candidates", std::to_string(s.grid_candidates)},
       {"local_min_lights", std::to_string(s.local_min_lights)},
       {"light_spread", s.light_spread < 0.0f ? std::string("auto") : format_float(s.light_spread)},
       {"visibility_reuse", std::to_string(s.visibility_reuse)},

@@ -123,6 +123,14 @@ struct RestirSettings {
   // least local_min_lights lights and a light spread of at least 16
   // (RestirIntegrator::local_candidates).
   std::uint32_t local_candidates = 8;
+  // Light candidates drawn near the pixel's own surface point from the light grid
+  // (shared/light_grid.h: one of the 27 cells around it, one of that cell's lights), besides
+  // light_candidates; combined with them and the BSDF candidates by the balance heuristic, so a
+  // light beside the surface (a lantern a few cm from a roof edge, which the power draws and the
+  // local lists find once in tens of frames and then weigh 100x) is drawn at its own density
+  // every frame. Used where the local lists are (RestirIntegrator::grid_candidates). 0 turns
+  // them off.
+  std::uint32_t grid_candidates = 2;
   // The light count from which the local lists are used: by default more than one presampling
   // tile. Below it RIS over the power distribution already finds every light (cornell_lights' 89
   // emitters: the lists changed its raw relMSE by 0.96-2.1x); lower it for a level of a few
@@ -187,8 +195,8 @@ std::vector<std::string> restir_preset_names();
 // Sets one knob by its key (the field names above: light_candidates, bsdf_candidates,
 // bsdf_min_gloss, temporal, m_cap (alias of m_cap_factor), m_cap_moving, reservoir_stride,
 // spatial_passes, neighbours, disocclusion_boost, temporal_neighbours, radius, presample_tiles,
-// local_candidates, local_min_lights, visibility_reuse, bias_correction (a name from
-// restir_bias_corrections()), initial_visibility, boiling_filter, depth_threshold,
+// local_candidates, grid_candidates, local_min_lights, visibility_reuse, bias_correction (a
+// name from restir_bias_corrections()), initial_visibility, boiling_filter, depth_threshold,
 // normal_threshold, debug_view (a name from restir_debug_views()), temporal_permutation (a name
 // from restir_temporal_permutations()); the media's volume_candidates, volume_temporal,
 // volume_m_cap, volume_neighbours, volume_radius).

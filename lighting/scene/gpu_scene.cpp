@@ -377,6 +377,13 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
   if (changed && !same_lights) {
     set_remap(std::vector<std::uint32_t>(data_.lights.previous_to_current()));
     remap_is_identity_ = false;
+    // Lights came or went, so indices moved: the grid is binned again (lights that only move
+    // keep the cells they were binned in, which the grid's densities agree with).
+    data_.light_grid = LightGrid(data_.lights.lights());
+    for (std::uint32_t slot : {gpu::kSceneLightGrid, gpu::kSceneLightCells}) {
+      ensure_capacity(slot);
+      mark_all_dirty(slot);
+    }
   } else if (!remap_is_identity_ || remap_.size() != data_.lights.lights().size()) {
     // Every light keeps its index (O(lights) once, not every frame).
     std::vector<std::uint32_t> identity(data_.lights.lights().size());

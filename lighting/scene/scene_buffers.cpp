@@ -80,6 +80,11 @@ constexpr std::array<SceneBufferRow, gpu::kSceneBufferCount> kSceneBuffers = {{
      [](const Sources& s) { return bytes_of(s.data->volume_cells); }, kBuffer},
     {gpu::kSceneVolumeValues, "scene.volume_values", "scene_volume_values", nullptr, true,
      [](const Sources& s) { return bytes_of(s.data->volume_values); }, kBuffer},
+    // Rewritten with the light list when lights come or go (GpuScene::update_lights).
+    {gpu::kSceneLightGrid, "scene.light_grid", "light_grid", nullptr, false,
+     [](const Sources& s) { return bytes_of(s.data->light_grid.gpu_words()); }, kBuffer},
+    {gpu::kSceneLightCells, "scene.light_cells", "light_cells", nullptr, false,
+     [](const Sources& s) { return bytes_of(s.data->light_grid.light_cells()); }, kBuffer},
     {gpu::kSceneTlas, "scene.tlas", "scene_tlas", nullptr, false, nullptr,
      SceneResourceKind::AccelerationStructure},
 }};

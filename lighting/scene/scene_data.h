@@ -8,6 +8,7 @@
 
 #include "engine/scene/level.h"
 #include "lighting/bvh/scene_bvh.h"
+#include "lighting/lights/light_grid.h"
 #include "lighting/lights/light_table.h"
 #include "lighting/scene/light_spread.h"
 #include "lighting/textures/texture_set.h"
@@ -29,6 +30,8 @@ struct SceneData {
   std::vector<gpu::GpuInstance> instances;  // one per Level instance, same order as the BVH's
   SceneBvh bvh;
   LightTable lights;
+  // The lights binned by place (light_grid.h), rebuilt when the light list's order changes.
+  LightGrid light_grid;
   std::uint32_t emissive_triangles = 0;
   // Material textures (empty without any) and the textured emissive triangles: per Level instance
   // the first GpuTexturedEmitter record of its triangles (kNoTexture: its emission is not

@@ -58,6 +58,23 @@ void describe_requirements(const Level& level, std::uint32_t width, std::uint32_
         {"spread", std::round(double{scene.light_spread.spread} * 100.0) / 100.0},
         {"bytes", bytes},
         {"memory", mib(bytes)}};
+    // The light grid (restir.initial's grid candidates; built for every level with a placed
+    // light, drawn from where ReSTIR's local lists are on).
+    const LightGrid& grid = scene.light_grid;
+    const std::uint64_t grid_bytes = array_bytes<std::uint32_t>(grid.gpu_words().size()) +
+                                     array_bytes<gpu::uvec2>(grid.light_cells().size());
+    const gpu::GpuLightGrid& h = grid.header();
+    summary.enabled["light_grid"] = {
+        {"structure", "uniform grid of world-space cells over the lights' places, a dense cell "
+                      "table and each light's cell record: O(1) draws near a point and densities"},
+        {"why", fmt::format("{} placed lights (ReSTIR draws grid_candidates from it where its "
+                            "local light lists are on)",
+                            h.dims.w)},
+        {"cell_edge", std::round(double{h.origin_cell.w} * 1000.0) / 1000.0},
+        {"cells", fmt::format("{}x{}x{}, {} occupied", h.dims.x, h.dims.y, h.dims.z,
+                              grid.occupied_cells())},
+        {"bytes", grid_bytes},
+        {"memory", mib(grid_bytes)}};
   }
 
   // Environment: tables only when the level names a map.

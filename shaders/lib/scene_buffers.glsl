@@ -13,7 +13,9 @@
 //   (lib/textures.glsl's texture_sample), scene_vertex_tangents.t[] and
 //   scene_vertex_texcoords1.uv[] (scene_vertex_texcoord picks a vertex's set), and the media
 //   (lib/volumes.glsl: scene_volumes, scene_volume_cells, scene_volume_values;
-//   scene_transmittance).
+//   scene_transmittance), and the light grid (shared/light_grid.h: light_grid.g and .words[],
+//   light_cells.c[]; scene_light_grid_draw and scene_light_grid_pdf draw and weigh a light near
+//   a point).
 // Then lib/visibility.glsl's vis_trace_closest / vis_visible and frame_rng are available. A pass
 // declares its own resources from kPassBindingBase on: layout(binding = PASS_BINDING(0)).
 #ifndef LANTERN_LIB_SCENE_BUFFERS_GLSL
@@ -22,6 +24,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/alias_table.h"
+#include "shared/light_grid.h"
 #include "shared/lights.h"
 #include "shared/rng.h"
 #include "shared/scene.h"
@@ -167,6 +170,35 @@ bool scene_alpha_accept(uint instance, uint primitive, float u, float v) {
   return alpha >= cutoff;
 }
 #define LANTERN_SCENE_ALPHA_TEST
+
+// The light grid (shared/light_grid.h): the header, then its cells and cell-ordered lights.
+layout(std430, binding = kSceneLightGrid) restrict readonly buffer LightGridBuffer {
+  GpuLightGrid g;
+  uint words[];
+} light_grid;
+layout(std430, binding = kSceneLightCells) restrict readonly buffer LightCellBuffer {
+  uvec2 c[];
+} light_cells;
+
+bool scene_light_grid_on() { return light_grid.g.origin_cell.w > 0.0; }
+uvec4 scene_light_grid_cell(vec3 x) { return light_grid_cell(light_grid.g, x); }
+
+// A light drawn near a point in `cell` (scene_light_grid_cell) from u_cell, u_light in [0,1): one
+// of the 27 cells around it, then one of its lights; kInvalidLight for an empty cell or one
+// outside the grid. Light l comes with probability scene_light_grid_pdf(l, cell).
+uint scene_light_grid_draw(uvec4 cell, float u_cell, float u_light) {
+  uvec4 neighbour;
+  if (!light_grid_neighbour(light_grid.g, cell, u_cell, neighbour)) return kInvalidLight;
+  uint w = 2u * light_grid_index(light_grid.g, neighbour);
+  uint count = light_grid.words[w + 1u];
+  if (count == 0u) return kInvalidLight;
+  return light_grid.words[light_grid_cell_words(light_grid.g) + light_grid.words[w] +
+                          light_grid_pick(count, u_light)];
+}
+
+float scene_light_grid_pdf(uint index, uvec4 cell) {
+  return light_grid_pdf(light_cells.c[index], cell);
+}
 
 #define VIS_BINDING_BASE kSceneBvhHeader
 #define VIS_TLAS_BINDING kSceneTlas

@@ -3,17 +3,20 @@
 // pixel_surfaces), packs the G-buffer into a RestirSurface and resamples
 // push.light_candidates light candidates (the environment map with its selection probability,
 // else a light by power, or through the local light list, x uniform point on the light) plus
-// push.bsdf_candidates BSDF candidates where the surface is at least push.bsdf_min_gloss glossy
-// (bsdf_candidates_at; a closest-hit ray each: an emissive triangle hit, or the
-// environment when the ray escapes, is a candidate), combined by the balance heuristic over the
-// two strategies, with target p̂ = luminance of the unshadowed contribution. Light candidates
-// come from this workgroup's tile of presampled lights when push.presample_tiles > 0
-// (restir.presample), and through the workgroup's local light list when push.local_candidates > 0
-// (shared/restir.h: every invocation first fills one slot, by RIS towards lights near its own
-// surface point). Optionally shadow-tests the pick (kRestirFlagInitialVisibility).
+// push.grid_candidates light grid candidates (a light near the pixel's surface point:
+// scene_light_grid_draw) and push.bsdf_candidates BSDF candidates where the surface is at least
+// push.bsdf_min_gloss glossy (bsdf_candidates_at; a closest-hit ray each: an emissive triangle
+// hit, or the environment when the ray escapes, is a candidate), combined by the balance
+// heuristic over the strategies, with target p̂ = luminance of the unshadowed contribution.
+// Light candidates come from this workgroup's tile of presampled lights when
+// push.presample_tiles > 0 (restir.presample), and through the workgroup's local light list when
+// push.local_candidates > 0 (shared/restir.h: every invocation first fills one slot, by RIS
+// towards lights near its own surface point). Optionally shadow-tests the pick
+// (kRestirFlagInitialVisibility).
 // Reads: gbuffer position/normal/albedo_roughness/emission_metallic/ids, scene materials,
-// instances, lights, alias table, environment (env_*), BVH (BSDF candidates, visibility),
-// presampled_lights (restir.presample's; a stand-in when presampling is off).
+// instances, lights, alias table, light grid and light_cells (grid candidates), environment
+// (env_*), BVH (BSDF candidates, visibility), presampled_lights (restir.presample's; a stand-in
+// when presampling is off).
 // Writes: restir_surfaces (history resource "restir.surfaces"), reservoirs_out, pixel_surfaces
 // (push.reservoir_stride > 1). History: none.
 // Dispatch: one workgroup per 8x8 tile on every device (its local light list is the tile's:
@@ -98,18 +101,21 @@ uint draw_strategy_entry(float u0, float u1, uint tile_base) {
   return scene_light_sample(u0, u1);
 }
 
-// A draw_strategy_entry result's light index, record and density (selection pdf x point density).
-uint strategy_entry_light(uint entry, out GpuLight light, out float pdf) {
+// A draw_strategy_entry result's light index, record and density (selection pdf x point density),
+// and with presampling its light grid record (else (kLightGridNoCell, 0): light_cells holds it).
+uint strategy_entry_light(uint entry, out GpuLight light, out float pdf, out uvec2 grid_cell) {
   if (push.presample_tiles > 0u) {
-    // PresampledLight through its texel view: the light record, then index and pdf.
+    // PresampledLight through its texel view: the light record, then index, pdf and grid record.
     uint base = kPresampledLightTexels * entry;
     light = gpu_light_fetch(presampled_lights, base);
-    uvec2 index_pdf = texelFetch(presampled_lights, int(base + kGpuLightTexels)).xy;
-    pdf = uintBitsToFloat(index_pdf.y);
-    return index_pdf.x;
+    uvec4 index_pdf_cell = texelFetch(presampled_lights, int(base + kGpuLightTexels));
+    pdf = uintBitsToFloat(index_pdf_cell.y);
+    grid_cell = index_pdf_cell.zw;
+    return index_pdf_cell.x;
   }
   light = scene_light(entry);
   pdf = scene_light_selection_pdf(entry) * light_eval_point_pdf(light);
+  grid_cell = uvec2(kLightGridNoCell, 0u);
   return entry;
 }
 
@@ -174,17 +180,19 @@ void fill_local_slot(uvec2 cell, bool has_point, vec3 x, uint tile_base) {
 // A light candidate from u0 (in [0,1), after the environment's share) and u1: from the local
 // light list when it is on, else one light-strategy draw. Returns the light's index and record,
 // the candidate's density pdf (1 / its contribution weight, before the (1 - p_env) factor) and
-// the light strategy's own density of that light (equal to pdf without the local list).
+// the light strategy's own density of that light (equal to pdf without the local list), and its
+// light grid record where presampling has it (strategy_entry_light).
 uint draw_light(float u0, float u1, uint tile_base, out GpuLight light, out float pdf,
-                out float strategy_pdf) {
+                out float strategy_pdf, out uvec2 grid_cell) {
   if (push.local_candidates > 0u) {
     uint slot = min(uint(u0 * float(kLocalSlots)), kLocalSlots - 1u);
     pdf = local_pdf[slot];
     strategy_pdf = local_strategy_pdf[slot];
     float entry_pdf;
-    return strategy_entry_light(local_entry[slot], light, entry_pdf);
+    return strategy_entry_light(local_entry[slot], light, entry_pdf, grid_cell);
   }
-  uint index = strategy_entry_light(draw_strategy_entry(u0, u1, tile_base), light, pdf);
+  uint index =
+      strategy_entry_light(draw_strategy_entry(u0, u1, tile_base), light, pdf, grid_cell);
   strategy_pdf = pdf;
   return index;
 }
@@ -216,18 +224,28 @@ float env_candidate(ShadingPoint p, vec3 l, float p_env, float m_light, float m_
   return safe_ratio(target, denominator);
 }
 
-// The two strategies: how many candidates each draws, the lights and the environment's share of
-// the light strategy.
+// The strategies: how many candidates each draws (light, BSDF, light grid), the lights and the
+// environment's share of the light strategy, and the light grid's cell of the point.
 struct Strategies {
   uint light_count;
   float p_env;
   float m_light;
   float m_bsdf;
+  float m_grid;
+  uvec4 grid_cell;
 };
 
 Strategies restir_strategies(ShadingPoint p) {
+  bool grid = push.grid_candidates > 0u && restir_light_count() > 0u && scene_light_grid_on();
   return Strategies(restir_light_count(), restir_env_probability(), float(push.light_candidates),
-                    float(bsdf_candidates_at(p)));
+                    float(bsdf_candidates_at(p)), grid ? float(push.grid_candidates) : 0.0,
+                    grid ? scene_light_grid_cell(p.x) : uvec4(0u));
+}
+
+// The light grid strategy's density of a point on `light` (index `index`) whose point density
+// is point_pdf (light_eval_point_pdf), area measure.
+float grid_area_pdf(Strategies s, uint index, float point_pdf) {
+  return scene_light_grid_pdf(index, s.grid_cell) * point_pdf;
 }
 
 // Whether there is nothing to sample (no light, no environment): no candidate is drawn.
@@ -254,19 +272,58 @@ void resample_lights(ShadingPoint p, Strategies s, uint tile_base, inout uint rn
     GpuLight light;
     float pdf;
     float strategy_pdf;
-    uint index = draw_light(u0, u1, tile_base, light, pdf, strategy_pdf);
+    uvec2 grid_cell;
+    uint index = draw_light(u0, u1, tile_base, light, pdf, strategy_pdf, grid_cell);
     float target = light_eval_target(restir_light_contribution(p, light, uv));
     float weight = safe_ratio(target, s.m_light * (1.0 - s.p_env) * pdf);
-    if (s.m_bsdf > 0.0 && target > 0.0) {
-      // Balance heuristic over the light strategy's density q (with the environment's share)
-      // and the BSDF's, times the candidate's contribution weight 1 / pdf:
-      // target q / (pdf (m_light q + m_bsdf p_bsdf)). Without the local list pdf = q: the plain
-      // balance heuristic.
-      vec3 y = light_eval_position(light, uv, p.x, restir_scene_radius());
+    if ((s.m_bsdf > 0.0 || s.m_grid > 0.0) && target > 0.0) {
+      // Balance heuristic over the light strategy's density q (with the environment's share),
+      // the BSDF's and the light grid's, times the candidate's contribution weight 1 / pdf:
+      // target q / (pdf (m_light q + m_bsdf p_bsdf + m_grid p_grid)). Without the local list
+      // pdf = q: the plain balance heuristic.
       float light_term = s.m_light * (1.0 - s.p_env) * strategy_pdf;
+      float other_terms = 0.0;
+      if (s.m_bsdf > 0.0) {
+        vec3 y = light_eval_position(light, uv, p.x, restir_scene_radius());
+        other_terms += s.m_bsdf * bsdf_area_pdf(p, light, y);
+      }
+      if (s.m_grid > 0.0) {
+        if (push.presample_tiles == 0u) grid_cell = light_cells.c[index];
+        other_terms +=
+            s.m_grid * light_grid_pdf(grid_cell, s.grid_cell) * light_eval_point_pdf(light);
+      }
       float contribution_ratio = push.local_candidates > 0u ? safe_ratio(strategy_pdf, pdf) : 1.0;
-      weight = safe_ratio(target * contribution_ratio,
-                          light_term + s.m_bsdf * bsdf_area_pdf(p, light, y));
+      weight = safe_ratio(target * contribution_ratio, light_term + other_terms);
+    }
+    reservoir_update(r, light_sample_make(index, uv, target), weight, u_pick);
+  }
+}
+
+// The pixel's light grid candidates (s.m_grid, from their own random stream): a light near the
+// point (scene_light_grid_draw: nothing from an empty cell, which still counts in M), weighed by
+// the balance heuristic over the three strategies' densities.
+void resample_grid(ShadingPoint p, Strategies s, inout uint rng, inout Reservoir r) {
+  for (uint j = 0u; j < uint(s.m_grid); ++j) {
+    float u_cell = rng_next_float(rng);
+    float u_light = rng_next_float(rng);
+    vec2 uv = restir_stored_uv(rng_next_vec2(rng));
+    float u_pick = rng_next_float(rng);
+    uint index = scene_light_grid_draw(s.grid_cell, u_cell, u_light);
+    float target = 0.0;
+    float weight = 0.0;
+    if (index != kInvalidLight) {
+      GpuLight light = scene_light(index);
+      target = light_eval_target(restir_light_contribution(p, light, uv));
+      if (target > 0.0) {
+        float point_pdf = light_eval_point_pdf(light);
+        float denominator = s.m_light * scene_light_strategy_pdf(index, s.p_env) * point_pdf +
+                            s.m_grid * grid_area_pdf(s, index, point_pdf);
+        if (s.m_bsdf > 0.0) {
+          vec3 y = light_eval_position(light, uv, p.x, restir_scene_radius());
+          denominator += s.m_bsdf * bsdf_area_pdf(p, light, y);
+        }
+        weight = safe_ratio(target, denominator);
+      }
     }
     reservoir_update(r, light_sample_make(index, uv, target), weight, u_pick);
   }
@@ -318,6 +375,10 @@ void resample_bsdf(ShadingPoint p, Strategies s, inout uint rng, inout Reservoir
       vec3 y = light_eval_position(scene_light(index), uv, p.x, restir_scene_radius());
       float denominator = s.m_light * restir_light_strategy_pdf(index, s.p_env) +
                           s.m_bsdf * bsdf_area_pdf(p, scene_light(index), y);
+      if (s.m_grid > 0.0) {
+        denominator +=
+            s.m_grid * grid_area_pdf(s, index, light_eval_point_pdf(scene_light(index)));
+      }
       weight = safe_ratio(target, denominator);
     }
     reservoir_update(r, light_sample_make(index, uv, target), weight, u_pick);
@@ -328,11 +389,15 @@ Reservoir resample(ShadingPoint p, uvec2 cell, uint tile_base) {
   Reservoir r = reservoir_empty();
   Strategies s = restir_strategies(p);
   if (strategies_empty(s)) {
-    r.M = s.m_light + s.m_bsdf;
+    r.M = s.m_light + s.m_bsdf + s.m_grid;
     return r;
   }
   uint rng = frame_rng(cell, kRestirRngInitial);
   resample_lights(p, s, tile_base, rng, r);
+  if (s.m_grid > 0.0) {
+    uint grid_rng = frame_rng(cell, kRestirRngInitialGrid);
+    resample_grid(p, s, grid_rng, r);
+  }
   uint bsdf_rng = frame_rng(cell, kRestirRngInitialBsdf);
   resample_bsdf(p, s, bsdf_rng, r);
   reservoir_finalize(r);

@@ -1,7 +1,8 @@
 // restir.presample: light presampling (shared/restir.h). Entry e of tile t is a light drawn from
-// the power alias table with its own random numbers, stored with a copy of its record and its
-// density (selection pdf x point density), for restir.initial's light candidates.
-// Reads: frame constants, lights, alias table.
+// the power alias table with its own random numbers, stored with a copy of its record, its
+// density (selection pdf x point density) and its light grid record (light_cells: the balance
+// heuristic's grid density), for restir.initial's light candidates.
+// Reads: frame constants, lights, alias table, light_cells.
 // Writes: presampled_lights (push.presample_tiles x kRestirPresampleTileSize entries).
 // History: none.
 // Dispatch: one invocation per entry (64 per workgroup).
@@ -28,7 +29,6 @@ void main() {
   p.light = scene_light(index);
   p.index = index;
   p.pdf = scene_light_selection_pdf(index) * light_eval_point_pdf(p.light);
-  p.pad0 = 0u;
-  p.pad1 = 0u;
+  p.grid_cell = light_cells.c[index];
   presampled_lights.e[entry] = p;
 }

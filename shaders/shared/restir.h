@@ -51,6 +51,7 @@ LANTERN_CONST uint kRestirRngPresample = 0x524a0u;
 LANTERN_CONST uint kRestirRngPresampleTile = 0x524a1u;
 LANTERN_CONST uint kRestirRngLocalLights = 0x524a2u;
 LANTERN_CONST uint kRestirRngInitialBsdf = 0x524a3u;  // restir.initial's BSDF candidates
+LANTERN_CONST uint kRestirRngInitialGrid = 0x524a4u;  // restir.initial's light grid candidates
 LANTERN_CONST uint kRestirRngShadeMedia = 0x524b0u;  // restir.shade's transmittance estimate
 LANTERN_CONST uint kRestirRngShadeCanonical = 0x524b1u;  // restir.shade's own candidate
 LANTERN_CONST uint kRestirRngTemporalPermutation = 0x524c0u;  // one draw per frame, every pixel's
@@ -128,12 +129,11 @@ struct PresampledLight {
   GpuLight light;  // a copy of scene_light(index) (this frame's)
   uint index;      // the light's index in the list
   float pdf;       // alias selection pdf x point density (light_eval_point_pdf): area measure
-  uint pad0;
-  uint pad1;
+  uvec2 grid_cell;  // the light's light_cells record (shared/light_grid.h): cell key, count
 };
 LANTERN_STATIC_SIZE(PresampledLight, 80);
 // rgba32ui texels per PresampledLight through restir.initial's texel view: the light's
-// kGpuLightTexels, then (index, pdf, pad0, pad1).
+// kGpuLightTexels, then (index, pdf, grid_cell.x, grid_cell.y).
 LANTERN_CONST uint kPresampledLightTexels = 5u;
 
 // What the restir.* passes take from the settings (lighting/restir/restir_settings.h). The frame's
@@ -171,7 +171,7 @@ struct RestirPush {
   uint representative;       // this frame's offset of the pixel each reservoir resamples for,
                              // inside its stride x stride block: x | y << 16
                              // (restir_representative)
-  uint pad0;
+  uint grid_candidates;      // restir.initial's candidates from the light grid near the pixel
 };
 LANTERN_STATIC_SIZE(RestirPush, 112);
 

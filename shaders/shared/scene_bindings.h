@@ -37,8 +37,10 @@ LANTERN_CONST uint kSceneVertexTexcoords1 = 20u;     // vec2[] per GpuVertex (TE
 LANTERN_CONST uint kSceneVolumes = 21u;              // GpuVolume[] (shared/volume.h), this frame
 LANTERN_CONST uint kSceneVolumeCells = 22u;          // GpuVolumeCell[] (majorant cells, bricks)
 LANTERN_CONST uint kSceneVolumeValues = 23u;         // float[] brick voxels
-LANTERN_CONST uint kSceneTlas = 24u;  // accelerationStructureEXT (ray-query visibility only)
-LANTERN_CONST uint kSceneBufferCount = 25u;
+LANTERN_CONST uint kSceneLightGrid = 24u;            // GpuLightGrid, cells, lights (light_grid.h)
+LANTERN_CONST uint kSceneLightCells = 25u;           // uvec2[] per light: grid cell key, count
+LANTERN_CONST uint kSceneTlas = 26u;  // accelerationStructureEXT (ray-query visibility only)
+LANTERN_CONST uint kSceneBufferCount = 27u;
 
 // First binding of a pass's own resources (set 0).
 LANTERN_CONST uint kPassBindingBase = kSceneBufferCount;

@@ -13,6 +13,7 @@
 #include "shared/environment.h"
 #include "shared/host_visibility.h"
 #include "shared/lang.h"
+#include "shared/light_grid.h"
 #include "shared/lights.h"
 #include "shared/reservoir.h"
 #include "shared/reservoir_mis.h"
@@ -67,10 +68,14 @@ layout(std430, binding = 28) buffer VolumeRestirPushProbe { VolumeRestirPush vol
 layout(std430, binding = 29) buffer HostShadowRayProbe { HostShadowRay host_shadow_rays[]; };
 layout(std430, binding = 30) buffer RestirSimilarityKeyProbe { RestirSimilarityKey restir_similarity_keys[]; };
 layout(std430, binding = 31) buffer HostClosestRayProbe { HostClosestRay host_closest_rays[]; };
+layout(std430, binding = 32) buffer GpuLightGridProbe { GpuLightGrid gpu_light_grids[]; };
+layout(std430, binding = 33) buffer GpuLightGridCellProbe { GpuLightGridCell gpu_light_grid_cells[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
   alias_entries[0] = alias_entries[1];
+  gpu_light_grids[0] = gpu_light_grids[1];
+  gpu_light_grid_cells[0] = gpu_light_grid_cells[1];
   denoise_pushes[0] = denoise_pushes[1];
   restir_similarity_keys[0] = restir_similarity_keys[1];
   upscale_pushes[0] = upscale_pushes[1];

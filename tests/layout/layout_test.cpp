@@ -18,6 +18,7 @@
 #include "shared/denoise.h"
 #include "shared/environment.h"
 #include "shared/host_visibility.h"
+#include "shared/light_grid.h"
 #include "shared/lights.h"
 #include "shared/reservoir.h"
 #include "shared/reservoir_pack.h"
@@ -94,12 +95,17 @@ const std::vector<StructLayout>& cpp_layouts() {
         LANTERN_MEMBER(RestirPush, bsdf_min_gloss),
         LANTERN_MEMBER(RestirPush, temporal_neighbours),
         LANTERN_MEMBER(RestirPush, reservoir_stride), LANTERN_MEMBER(RestirPush, representative),
-        LANTERN_MEMBER(RestirPush, pad0)}},
+        LANTERN_MEMBER(RestirPush, grid_candidates)}},
+      {"GpuLightGrid",
+       sizeof(gpu::GpuLightGrid),
+       {LANTERN_MEMBER(GpuLightGrid, origin_cell), LANTERN_MEMBER(GpuLightGrid, dims)}},
+      {"GpuLightGridCell",
+       sizeof(gpu::GpuLightGridCell),
+       {LANTERN_MEMBER(GpuLightGridCell, first), LANTERN_MEMBER(GpuLightGridCell, count)}},
       {"PresampledLight",
        sizeof(gpu::PresampledLight),
        {LANTERN_MEMBER(PresampledLight, light), LANTERN_MEMBER(PresampledLight, index),
-        LANTERN_MEMBER(PresampledLight, pdf), LANTERN_MEMBER(PresampledLight, pad0),
-        LANTERN_MEMBER(PresampledLight, pad1)}},
+        LANTERN_MEMBER(PresampledLight, pdf), LANTERN_MEMBER(PresampledLight, grid_cell)}},
       {"DenoisePush",
        sizeof(gpu::DenoisePush),
        {LANTERN_MEMBER(DenoisePush, width), LANTERN_MEMBER(DenoisePush, height),

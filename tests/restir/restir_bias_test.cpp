@@ -163,10 +163,11 @@ const Mode kModes[] = {
     {"pairwise", {{"bias_correction", "pairwise"}}, true, true},
     {"none", {{"bias_correction", "none"}}, false, true},
     // One BSDF candidate MIS'd with the light candidates; then the same with the local light
-    // lists on whatever the light count and spread (local_min_lights 1, light_spread 1000:
-    // cornell_lights and the room draw their slots from the alias table, many_lights from
-    // presampled tiles), where the balance heuristic weighs the light strategy's own density
-    // while a candidate carries its slot's contribution weight.
+    // lists and the light grid candidates on whatever the light count and spread
+    // (local_min_lights 1, light_spread 1000: cornell_lights and the room draw their slots from
+    // the alias table, many_lights from presampled tiles), where the balance heuristic over the
+    // three strategies weighs the light strategy's own density while a candidate carries its
+    // slot's contribution weight.
     {"bsdf", {{"bsdf_candidates", "1"}}, true, true},
     {"local-bsdf", {{"bsdf_candidates", "1"}, {"local_min_lights", "1"}, {"light_spread", "1000"}},
      true, true},
@@ -203,6 +204,10 @@ const Mode kModes[] = {
     // slot, and off.
     {"local-32", {{"local_candidates", "32"}}, true, false},
     {"no-local", {{"local_candidates", "0"}}, true, false},
+    // Light grid candidates (on in every preset where the local lists are: many_lights here,
+    // and every scene in local-bsdf), and off.
+    {"grid-4", {{"grid_candidates", "4"}}, true, false},
+    {"no-grid", {{"grid_candidates", "0"}}, true, false},
 };
 
 // LANTERN_BIAS_MODES=balance,none,t-M1 selects modes (default: those marked ci).

@@ -142,6 +142,7 @@ void draw_panel(PanelState& s) {
     slider_f("BSDF min gloss", r.bsdf_min_gloss, 0.0f, 1.0f, "%.2f");
     slider_u("local candidates", r.local_candidates, 0,
              static_cast<int>(gpu::kRestirMaxLocalCandidates));
+    slider_u("grid candidates", r.grid_candidates, 0, 16);
     slider_u("presample tiles", r.presample_tiles, 0,
              static_cast<int>(gpu::kRestirMaxPresampleTiles));
     slider_u("visibility reuse", r.visibility_reuse, 0, 64);

@@ -1,0 +1,132 @@
+// The light grid's build (light_grid.h).
+#include "lighting/lights/light_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace lantern::lighting {
+namespace {
+
+// Occupied cells of `keys` (sorted in place).
+std::size_t count_cells(std::vector<std::uint32_t>& keys) {
+  std::sort(keys.begin(), keys.end());
+  return static_cast<std::size_t>(std::unique(keys.begin(), keys.end()) - keys.begin());
+}
+
+// Cells per axis for an extent at a cell edge (at least 1, at most kLightGridAxisCells).
+gpu::uvec4 grid_dims(const gpu::vec3& extent, float edge) {
+  auto axis = [&](float e) {
+    const float cells = std::floor(e / edge) + 1.0f;
+    return static_cast<std::uint32_t>(
+        std::clamp(cells, 1.0f, static_cast<float>(gpu::kLightGridAxisCells)));
+  };
+  return {axis(extent.x), axis(extent.y), axis(extent.z), 0u};
+}
+
+}  // namespace
+
+bool light_grid_place(const gpu::GpuLight& light, gpu::vec3& place) {
+  const std::uint32_t kind = gpu::light_kind(light);
+  if (kind == gpu::kLightDirectional) return false;
+  place = gpu::vec3(light.p0);
+  if (kind == gpu::kLightTriangle) place += (gpu::vec3(light.p1) + gpu::vec3(light.p2)) / 3.0f;
+  return std::isfinite(place.x) && std::isfinite(place.y) && std::isfinite(place.z);
+}
+
+LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
+  light_cells_.assign(lights.size(), gpu::uvec2(gpu::kLightGridNoCell, 0u));
+  std::vector<gpu::vec3> places(lights.size());
+  std::vector<std::uint32_t> placed;
+  gpu::vec3 lo(INFINITY), hi(-INFINITY);
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    if (!light_grid_place(lights[i], places[i])) continue;
+    placed.push_back(static_cast<std::uint32_t>(i));
+    lo = glm::min(lo, places[i]);
+    hi = glm::max(hi, places[i]);
+  }
+  if (placed.empty()) {
+    // No grid: the GPU still reads its header (origin_cell.w = 0: nothing is drawn).
+    words_.resize(sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t));
+    std::memcpy(words_.data(), &header_, sizeof(header_));
+    return;
+  }
+
+  // The smallest edge the axes and the cell budget allow (a flat or thin extent counts as one
+  // cell thick), then from the uniform guess by factors of 1.5 towards kTargetLightsPerCell.
+  const gpu::vec3 extent = hi - lo;
+  const float longest = std::max({extent.x, extent.y, extent.z, 1e-6f});
+  const float axis_edge = longest / static_cast<float>(gpu::kLightGridAxisCells - 1u) * 1.0001f;
+  const gpu::vec3 sides = glm::max(extent, gpu::vec3(axis_edge));
+  const double volume = double(sides.x) * double(sides.y) * double(sides.z);
+  float min_edge = axis_edge;
+  while (std::uint64_t(grid_dims(extent, min_edge).x) * grid_dims(extent, min_edge).y *
+             grid_dims(extent, min_edge).z >
+         gpu::kLightGridMaxCells) {
+    min_edge *= 1.25f;
+  }
+  float edge = std::max(min_edge, static_cast<float>(std::cbrt(volume * kTargetLightsPerCell /
+                                                               double(placed.size()))));
+  header_.origin_cell = gpu::vec4(lo, edge);
+  std::vector<std::uint32_t> keys(placed.size());
+  auto mean_per_cell = [&](float e) {
+    header_.origin_cell.w = e;
+    header_.dims = grid_dims(extent, e);
+    for (std::size_t k = 0; k < placed.size(); ++k) {
+      keys[k] = gpu::light_grid_key(gpu::light_grid_cell(header_, places[placed[k]]));
+    }
+    return double(placed.size()) / double(count_cells(keys));
+  };
+  double mean = mean_per_cell(edge);
+  for (int step = 0; step < 12 && mean > kTargetLightsPerCell * 1.5 && edge > min_edge; ++step) {
+    edge = std::max(min_edge, edge / 1.5f);
+    mean = mean_per_cell(edge);
+  }
+  for (int step = 0; step < 12 && mean < kTargetLightsPerCell / 1.5 && edge < longest; ++step) {
+    edge *= 1.5f;
+    mean = mean_per_cell(edge);
+  }
+  header_.origin_cell.w = edge;
+  header_.dims = grid_dims(extent, edge);
+  header_.dims.w = static_cast<std::uint32_t>(placed.size());
+
+  // Each light's cell, the lights sorted by cell, each cell's range in the dense table.
+  std::vector<std::uint32_t> light_index(lights.size(), 0u);
+  for (std::uint32_t i : placed) {
+    light_index[i] = gpu::light_grid_index(header_, gpu::light_grid_cell(header_, places[i]));
+  }
+  std::vector<std::uint32_t> ordered = placed;
+  std::stable_sort(ordered.begin(), ordered.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return light_index[a] < light_index[b];
+  });
+  cell_count_ = std::size_t{header_.dims.x} * header_.dims.y * header_.dims.z;
+  std::vector<gpu::GpuLightGridCell> cells(cell_count_, gpu::GpuLightGridCell{0u, 0u});
+  for (std::uint32_t k = 0; k < ordered.size(); ++k) {
+    gpu::GpuLightGridCell& c = cells[light_index[ordered[k]]];
+    if (c.count == 0u) {
+      c.first = k;
+      ++occupied_;
+    }
+    ++c.count;
+  }
+  for (std::uint32_t i : placed) {
+    const gpu::uvec4 cell = gpu::light_grid_cell(header_, places[i]);
+    light_cells_[i] = gpu::uvec2(gpu::light_grid_key(cell), cells[light_index[i]].count);
+  }
+  constexpr std::size_t kHeaderWords = sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t);
+  words_.resize(kHeaderWords + 2 * cell_count_ + ordered.size());
+  std::memcpy(words_.data(), &header_, sizeof(header_));
+  std::memcpy(words_.data() + kHeaderWords, cells.data(), cells.size() * sizeof(cells[0]));
+  std::copy(ordered.begin(), ordered.end(), words_.begin() + kHeaderWords + 2 * cell_count_);
+}
+
+gpu::GpuLightGridCell LightGrid::cell(std::size_t i) const {
+  const std::size_t w = sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t) + 2 * i;
+  return {words_[w], words_[w + 1]};
+}
+
+std::uint32_t LightGrid::cell_light(std::size_t k) const {
+  return words_[sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t) + 2 * cell_count_ + k];
+}
+
+}  // namespace lantern::lighting
