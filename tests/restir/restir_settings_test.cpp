@@ -232,6 +232,31 @@ TEST(RestirSettings, LocalListsFollowTheLightCount) {
   EXPECT_EQ(RestirIntegrator::local_candidates(few, inputs_of(320, 180, 63)), 0u);
 }
 
+// Light grid candidates: drawn where the local lists are (the same light count and spread rule),
+// more in the richer presets, counted among the candidates a frame draws (the M cap, the short
+// history); 0 turns them off.
+TEST(RestirSettings, GridCandidatesFollowTheLocalLists) {
+  const RestirSettings s = restir_preset("balanced");
+  ASSERT_GT(s.grid_candidates, 0u);
+  EXPECT_LT(restir_preset("fast").grid_candidates, s.grid_candidates);
+  EXPECT_LT(s.grid_candidates, restir_preset("quality").grid_candidates);
+  const FrameInputs many = inputs_of(320, 180, 123000);
+  const gpu::RestirPush on = RestirIntegrator::make_push(s, many);
+  EXPECT_EQ(on.grid_candidates, s.grid_candidates);
+  EXPECT_EQ(on.short_history_m, 2 * (s.light_candidates + s.grid_candidates));
+  EXPECT_EQ(RestirIntegrator::make_push(s, inputs_of(320, 180, 89)).grid_candidates, 0u);
+  FrameInputs alike = many;
+  alike.light_spread = 4.1f;
+  EXPECT_EQ(RestirIntegrator::grid_candidates(s, alike), 0u);
+  RestirSettings off = s;
+  apply_setting(off, "grid_candidates", "0");
+  const gpu::RestirPush none = RestirIntegrator::make_push(off, many);
+  EXPECT_EQ(none.grid_candidates, 0u);
+  EXPECT_EQ(none.short_history_m, 2 * s.light_candidates);
+  EXPECT_THROW(apply_setting(off, "grid_candidates", "257"), InputError);
+  EXPECT_THROW(apply_setting(off, "grid_candidates", "-1"), InputError);
+}
+
 // The light spread (SceneData::light_spread): a level whose lights reach its surfaces alike
 // (light_panels, 4.1) gets no local lists and as many presampling tiles as its spread rounded up;
 // one whose lights each light their surroundings (night_market, 60) gets both as before, and so
