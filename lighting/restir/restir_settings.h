@@ -126,7 +126,7 @@ struct RestirSettings {
   // Light candidates drawn near the pixel's own surface point from the light grid
   // (shared/light_grid.h: one of the 27 cells around it, one of that cell's lights), besides
   // light_candidates; combined with them and the BSDF candidates by the balance heuristic, so a
-  // light beside the surface (a lantern a few cm from a roof edge, which the power draws and the
+  // light beside the surface (a lantern beside a stall's roof, which the power draws and the
   // local lists find once in tens of frames and then weigh 100x) is drawn at its own density
   // every frame. Used where the local lists are (RestirIntegrator::grid_candidates). 0 turns
   // them off.
