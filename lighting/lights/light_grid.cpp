@@ -45,8 +45,10 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
     lo = glm::min(lo, places[i]);
     hi = glm::max(hi, places[i]);
   }
-  if (placed.empty()) {
-    // No grid: the GPU still reads its header (origin_cell.w = 0: nothing is drawn).
+  const gpu::vec3 extent = hi - lo;
+  if (placed.empty() || !std::isfinite(extent.x + extent.y + extent.z)) {
+    // No grid (no placed light, or places too far apart for a float box): the GPU still reads
+    // its header (origin_cell.w = 0: nothing is drawn); every light keeps kLightGridNoCell.
     words_.resize(sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t));
     std::memcpy(words_.data(), &header_, sizeof(header_));
     return;
@@ -54,15 +56,17 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
 
   // The smallest edge the axes and the cell budget allow (a flat or thin extent counts as one
   // cell thick), then from the uniform guess by factors of 1.5 towards kTargetLightsPerCell.
-  const gpu::vec3 extent = hi - lo;
   const float longest = std::max({extent.x, extent.y, extent.z, 1e-6f});
   const float axis_edge = longest / static_cast<float>(gpu::kLightGridAxisCells - 1u) * 1.0001f;
   const gpu::vec3 sides = glm::max(extent, gpu::vec3(axis_edge));
   const double volume = double(sides.x) * double(sides.y) * double(sides.z);
   float min_edge = axis_edge;
-  while (std::uint64_t(grid_dims(extent, min_edge).x) * grid_dims(extent, min_edge).y *
-             grid_dims(extent, min_edge).z >
-         gpu::kLightGridMaxCells) {
+  // Each step makes a cell 1.25^3 times larger: 11 take 1024^3 cells below kLightGridMaxCells.
+  for (int step = 0;
+       step < 64 && std::uint64_t(grid_dims(extent, min_edge).x) * grid_dims(extent, min_edge).y *
+                            grid_dims(extent, min_edge).z >
+                        gpu::kLightGridMaxCells;
+       ++step) {
     min_edge *= 1.25f;
   }
   float edge = std::max(min_edge, static_cast<float>(std::cbrt(volume * kTargetLightsPerCell /

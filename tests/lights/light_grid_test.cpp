@@ -172,6 +172,11 @@ TEST(LightGrid, CellEdgeFollowsTheLightsDensity) {
   const lighting::LightGrid far(two);
   EXPECT_LE(far.header().dims.x, gpu::kLightGridAxisCells);
   EXPECT_GE(far.header().origin_cell.w, 1e4f / float(gpu::kLightGridAxisCells));
+  // Places too far apart for a float box (the extent overflows): no grid, rather than a guess.
+  const std::vector<GpuLight> apart = {point_light({-3e38f, 0, 0}), point_light({3e38f, 0, 0})};
+  const lighting::LightGrid overflow(apart);
+  EXPECT_EQ(overflow.header().origin_cell.w, 0.0f);
+  EXPECT_EQ(overflow.light_cells()[1].x, gpu::kLightGridNoCell);
   // No placed light: no grid, nothing ever drawn.
   const std::vector<GpuLight> sun = {directional_light()};
   const lighting::LightGrid none(sun);
