@@ -181,7 +181,8 @@ struct RestirSettings {
   } volume;
 
   // Current M: candidates drawn per pixel per frame (at most: bsdf_min_gloss may leave a pixel,
-  // or a whole level, without its BSDF candidates).
+  // or a whole level, without its BSDF candidates), before the light grid candidates, which a
+  // frame adds where RestirIntegrator::grid_candidates draws them (make_push's cap counts them).
   std::uint32_t candidates() const { return light_candidates + bsdf_candidates; }
   float m_cap() const { return m_cap(candidates()); }
   // The cap for a frame that draws `drawn` candidates per pixel.
