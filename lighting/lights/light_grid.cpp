@@ -24,6 +24,9 @@ gpu::uvec4 grid_dims(const gpu::vec3& extent, float edge) {
   return {axis(extent.x), axis(extent.y), axis(extent.z), 0u};
 }
 
+// Words of GpuLightGrid at the front of gpu_words().
+constexpr std::size_t kHeaderWords = sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t);
+
 }  // namespace
 
 bool light_grid_place(const gpu::GpuLight& light, gpu::vec3& place) {
@@ -49,7 +52,7 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
   if (placed.empty() || !std::isfinite(extent.x + extent.y + extent.z)) {
     // No grid (no placed light, or places too far apart for a float box): the GPU still reads
     // its header (origin_cell.w = 0: nothing is drawn); every light keeps kLightGridNoCell.
-    words_.resize(sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t));
+    words_.resize(kHeaderWords);
     std::memcpy(words_.data(), &header_, sizeof(header_));
     return;
   }
@@ -60,13 +63,13 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
   const float axis_edge = longest / static_cast<float>(gpu::kLightGridAxisCells - 1u) * 1.0001f;
   const gpu::vec3 sides = glm::max(extent, gpu::vec3(axis_edge));
   const double volume = double(sides.x) * double(sides.y) * double(sides.z);
+  auto cells_at = [&](float e) {
+    const gpu::uvec4 d = grid_dims(extent, e);
+    return std::uint64_t{d.x} * d.y * d.z;
+  };
   float min_edge = axis_edge;
   // Each step makes a cell 1.25^3 times larger: 11 take 1024^3 cells below kLightGridMaxCells.
-  for (int step = 0;
-       step < 64 && std::uint64_t(grid_dims(extent, min_edge).x) * grid_dims(extent, min_edge).y *
-                            grid_dims(extent, min_edge).z >
-                        gpu::kLightGridMaxCells;
-       ++step) {
+  for (int step = 0; step < 64 && cells_at(min_edge) > gpu::kLightGridMaxCells; ++step) {
     min_edge *= 1.25f;
   }
   float edge = std::max(min_edge, static_cast<float>(std::cbrt(volume * kTargetLightsPerCell /
@@ -94,10 +97,13 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
   header_.dims = grid_dims(extent, edge);
   header_.dims.w = static_cast<std::uint32_t>(placed.size());
 
-  // Each light's cell, the lights sorted by cell, each cell's range in the dense table.
+  // Each light's cell (its key and its index in the dense table), the lights sorted by cell,
+  // each cell's range in the table.
   std::vector<std::uint32_t> light_index(lights.size(), 0u);
   for (std::uint32_t i : placed) {
-    light_index[i] = gpu::light_grid_index(header_, gpu::light_grid_cell(header_, places[i]));
+    const gpu::uvec4 cell = gpu::light_grid_cell(header_, places[i]);
+    light_index[i] = gpu::light_grid_index(header_, cell);
+    light_cells_[i].x = gpu::light_grid_key(cell);
   }
   std::vector<std::uint32_t> ordered = placed;
   std::stable_sort(ordered.begin(), ordered.end(), [&](std::uint32_t a, std::uint32_t b) {
@@ -113,11 +119,7 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
     }
     ++c.count;
   }
-  for (std::uint32_t i : placed) {
-    const gpu::uvec4 cell = gpu::light_grid_cell(header_, places[i]);
-    light_cells_[i] = gpu::uvec2(gpu::light_grid_key(cell), cells[light_index[i]].count);
-  }
-  constexpr std::size_t kHeaderWords = sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t);
+  for (std::uint32_t i : placed) light_cells_[i].y = cells[light_index[i]].count;
   words_.resize(kHeaderWords + 2 * cell_count_ + ordered.size());
   std::memcpy(words_.data(), &header_, sizeof(header_));
   std::memcpy(words_.data() + kHeaderWords, cells.data(), cells.size() * sizeof(cells[0]));
@@ -125,12 +127,12 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
 }
 
 gpu::GpuLightGridCell LightGrid::cell(std::size_t i) const {
-  const std::size_t w = sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t) + 2 * i;
+  const std::size_t w = kHeaderWords + 2 * i;
   return {words_[w], words_[w + 1]};
 }
 
 std::uint32_t LightGrid::cell_light(std::size_t k) const {
-  return words_[sizeof(gpu::GpuLightGrid) / sizeof(std::uint32_t) + 2 * cell_count_ + k];
+  return words_[kHeaderWords + 2 * cell_count_ + k];
 }
 
 }  // namespace lantern::lighting

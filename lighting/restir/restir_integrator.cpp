@@ -96,20 +96,23 @@ std::uint32_t RestirIntegrator::presample_tiles(const RestirSettings& s,
       std::clamp<std::uint64_t>(std::min(affordable, wanted), 1, s.presample_tiles));
 }
 
+bool RestirIntegrator::lights_local(const RestirSettings& s, const FrameInputs& inputs) {
+  return inputs.light_count >= s.local_min_lights &&
+         light_spread(s, inputs) >= kLocalListsMinSpread;
+}
+
 std::uint32_t RestirIntegrator::local_candidates(const RestirSettings& s,
                                                  const FrameInputs& inputs) {
   // Local lists pay off where lights are many (RestirSettings::local_min_lights) and each lights
   // only its surroundings (a spread of at least kLocalListsMinSpread).
-  if (inputs.light_count < s.local_min_lights) return 0;
-  return light_spread(s, inputs) >= kLocalListsMinSpread ? s.local_candidates : 0u;
+  return lights_local(s, inputs) ? s.local_candidates : 0u;
 }
 
 std::uint32_t RestirIntegrator::grid_candidates(const RestirSettings& s,
                                                 const FrameInputs& inputs) {
   // Where power draws and the local lists already find every light (few lights, or lights that
   // light everything alike) a light beside the surface is no rarer than any other.
-  if (inputs.light_count < s.local_min_lights) return 0;
-  return light_spread(s, inputs) >= kLocalListsMinSpread ? s.grid_candidates : 0u;
+  return lights_local(s, inputs) ? s.grid_candidates : 0u;
 }
 
 std::uint32_t RestirIntegrator::bsdf_candidates(const RestirSettings& s,

@@ -69,6 +69,10 @@ class RestirIntegrator final : public Integrator {
   // pay), million_lights 33, harbour_fog 38, night_market 60 (lamps and lanterns that each light
   // their surroundings).
   static constexpr float kLocalListsMinSpread = 16.0f;
+  // Whether the level's lights are many (at least local_min_lights) and each lights only its
+  // surroundings (a light spread of at least kLocalListsMinSpread): where the local lists and the
+  // light grid candidates are drawn.
+  static bool lights_local(const RestirSettings& settings, const FrameInputs& inputs);
   // Draws per slot of restir.initial's local light lists this frame: the setting where the level
   // has at least local_min_lights lights and a light spread of at least kLocalListsMinSpread,
   // else 0.

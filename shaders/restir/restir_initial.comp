@@ -288,7 +288,7 @@ void resample_lights(ShadingPoint p, Strategies s, uint tile_base, inout uint rn
         other_terms += s.m_bsdf * bsdf_area_pdf(p, light, y);
       }
       if (s.m_grid > 0.0) {
-        if (push.presample_tiles == 0u) grid_cell = light_cells.c[index];
+        if (grid_cell.x == kLightGridNoCell) grid_cell = light_cells.c[index];
         other_terms +=
             s.m_grid * light_grid_pdf(grid_cell, s.grid_cell) * light_eval_point_pdf(light);
       }
