@@ -1,9 +1,12 @@
 // The light grid's build (light_grid.h).
 #include "lighting/lights/light_grid.h"
 
+#include "lighting/lights/alias_table.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 namespace lantern::lighting {
 namespace {
@@ -37,7 +40,8 @@ bool light_grid_place(const gpu::GpuLight& light, gpu::vec3& place) {
   return std::isfinite(place.x) && std::isfinite(place.y) && std::isfinite(place.z);
 }
 
-LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
+LightGrid::LightGrid(std::span<const gpu::GpuLight> lights, std::span<const float> powers) {
+  if (powers.size() != lights.size()) throw std::invalid_argument("LightGrid: one power per light");
   light_cells_.assign(lights.size(), gpu::uvec2(gpu::kLightGridNoCell, 0u));
   std::vector<gpu::vec3> places(lights.size());
   std::vector<std::uint32_t> placed;
@@ -110,7 +114,13 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
     return light_index[a] < light_index[b];
   });
   cell_count_ = std::size_t{header_.dims.x} * header_.dims.y * header_.dims.z;
-  std::vector<gpu::GpuLightGridCell> cells(cell_count_, gpu::GpuLightGridCell{0u, 0u});
+  // A power that is not a finite non-negative number weighs nothing (the light strategy still
+  // reaches the light).
+  auto power_of = [&](std::uint32_t i) {
+    const float p = powers[i];
+    return std::isfinite(p) && p > 0.0f ? p : 0.0f;
+  };
+  std::vector<gpu::GpuLightGridCell> cells(cell_count_, gpu::GpuLightGridCell{0u, 0u, 0.0f});
   for (std::uint32_t k = 0; k < ordered.size(); ++k) {
     gpu::GpuLightGridCell& c = cells[light_index[ordered[k]]];
     if (c.count == 0u) {
@@ -118,21 +128,65 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights) {
       ++occupied_;
     }
     ++c.count;
+    c.power += power_of(ordered[k]);
   }
-  for (std::uint32_t i : placed) light_cells_[i].y = cells[light_index[i]].count;
-  words_.resize(kHeaderWords + 2 * cell_count_ + ordered.size());
+  // Each occupied cell's alias table over its lights' weights, and each light's share of them (a
+  // cell without power is never drawn: its slots keep their own light). A light's weight is half
+  // its power and half the cell's mean power: a defensive mixture of the power and uniform picks,
+  // so a dim light beside the point (a cell's lights lie at different distances from it) is
+  // drawn with at least half the uniform pick's probability. night_market, 6 seeds: raw relMSE
+  // as low as the pure power pick's, without its rare denoised outlier (README, "Light grid
+  // candidates").
+  std::vector<gpu::GpuLightGridEntry> entries(ordered.size());
+  std::vector<float> weights;
+  for (const gpu::GpuLightGridCell& c : cells) {
+    if (c.count == 0u) continue;
+    weights.resize(c.count);
+    double power = 0.0;
+    for (std::uint32_t j = 0; j < c.count; ++j) {
+      weights[j] = power_of(ordered[c.first + j]);
+      power += weights[j];
+    }
+    if (power > 0.0) {
+      const float mean = float(power / c.count);
+      power = 0.0;
+      for (std::uint32_t j = 0; j < c.count; ++j) {
+        weights[j] = 0.5f * (weights[j] + mean);
+        power += weights[j];
+      }
+    }
+    const AliasTable table = power > 0.0 ? AliasTable(weights) : AliasTable();
+    for (std::uint32_t j = 0; j < c.count; ++j) {
+      const std::uint32_t light = ordered[c.first + j];
+      gpu::GpuLightGridEntry& e = entries[c.first + j];
+      e = {light, 1.0f, light};
+      if (power > 0.0) {
+        e.threshold = table.entries()[j].threshold;
+        e.alias = ordered[c.first + table.entries()[j].alias];
+      }
+      light_cells_[light].y = gpu::floatBitsToUint(power > 0.0 ? float(weights[j] / power) : 0.0f);
+    }
+  }
+  const std::size_t cell_words = gpu::kLightGridCellWords * cell_count_;
+  words_.resize(kHeaderWords + cell_words + gpu::kLightGridEntryWords * entries.size());
   std::memcpy(words_.data(), &header_, sizeof(header_));
   std::memcpy(words_.data() + kHeaderWords, cells.data(), cells.size() * sizeof(cells[0]));
-  std::copy(ordered.begin(), ordered.end(), words_.begin() + kHeaderWords + 2 * cell_count_);
+  std::memcpy(words_.data() + kHeaderWords + cell_words, entries.data(),
+              entries.size() * sizeof(entries[0]));
 }
 
 gpu::GpuLightGridCell LightGrid::cell(std::size_t i) const {
-  const std::size_t w = kHeaderWords + 2 * i;
-  return {words_[w], words_[w + 1]};
+  gpu::GpuLightGridCell c;
+  std::memcpy(&c, words_.data() + kHeaderWords + gpu::kLightGridCellWords * i, sizeof(c));
+  return c;
 }
 
-std::uint32_t LightGrid::cell_light(std::size_t k) const {
-  return words_[kHeaderWords + 2 * cell_count_ + k];
+gpu::GpuLightGridEntry LightGrid::entry(std::size_t k) const {
+  gpu::GpuLightGridEntry e;
+  std::memcpy(&e, words_.data() + kHeaderWords + gpu::kLightGridCellWords * cell_count_ +
+                      gpu::kLightGridEntryWords * k,
+              sizeof(e));
+  return e;
 }
 
 }  // namespace lantern::lighting

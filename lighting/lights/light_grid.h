@@ -19,22 +19,25 @@ class LightGrid {
   static constexpr double kTargetLightsPerCell = 32.0;
 
   LightGrid() = default;
-  // Bins `lights` (indices into that list). A list without a placed light (none, or directional
+  // Bins `lights` (indices into that list), each cell weighed by the sum of its lights' `powers`
+  // (one per light: LightTable::powers()). A list without a placed light (none, or directional
   // only) gives an empty grid (origin_cell.w = 0: nothing is ever drawn from it). The cell edge
   // is the smallest the axes and kLightGridMaxCells allow, else about the one whose occupied
   // cells hold kTargetLightsPerCell lights each.
-  explicit LightGrid(std::span<const gpu::GpuLight> lights);
+  LightGrid(std::span<const gpu::GpuLight> lights, std::span<const float> powers);
 
   const gpu::GpuLightGrid& header() const { return header_; }
-  // The dense table (x fastest), each cell's range in the cell-ordered light list.
+  // The dense table (x fastest), each cell's range in the cell-ordered light list and its power.
   std::size_t cell_count() const { return cell_count_; }
   gpu::GpuLightGridCell cell(std::size_t i) const;
-  std::uint32_t cell_light(std::size_t k) const;  // k-th light index of the cell-ordered list
-  // Per light of the list: (its cell's key or kLightGridNoCell, that cell's light count).
+  // The k-th slot of the cell-ordered list: its light and its cell's alias table's slot.
+  gpu::GpuLightGridEntry entry(std::size_t k) const;
+  // Per light of the list: (its cell's key or kLightGridNoCell, the float bits of its share of
+  // its cell's alias weights: the probability that a draw from that cell gives it).
   const std::vector<gpu::uvec2>& light_cells() const { return light_cells_; }
   std::uint32_t occupied_cells() const { return occupied_; }
-  // The GPU's scene.light_grid: the header's 8 words, the cells' (first, count) words, then the
-  // cell-ordered light list (shared/light_grid.h: light_grid_cell_words).
+  // The GPU's scene.light_grid: the header's 8 words, the cells' (first, count, power) words, then
+  // the cell-ordered list's (light, threshold, alias) words (shared/light_grid.h).
   const std::vector<std::uint32_t>& gpu_words() const { return words_; }
 
  private:

@@ -46,6 +46,9 @@ class LightTable {
   bool update_ranges(std::span<const LightEmitter> emitters, std::span<const LightRange> changed);
 
   const std::vector<gpu::GpuLight>& lights() const { return lights_; }
+  // Each light's sampling power as its group's table has it (within power_moved's tolerance of
+  // the emitters' last powers).
+  const std::vector<float>& powers() const { return powers_; }
   const std::vector<std::uint64_t>& stable_ids() const { return ids_; }
   // previous index -> current index (kInvalidLight if the light is gone); sized to last frame.
   const std::vector<std::uint32_t>& previous_to_current() const { return prev_to_cur_; }

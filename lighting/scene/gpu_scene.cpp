@@ -379,7 +379,7 @@ void GpuScene::update_lights(const FrameSnapshot& snapshot) {
     remap_is_identity_ = false;
     // Lights came or went, so indices moved: the grid is binned again (lights that only move
     // keep the cells they were binned in, which the grid's densities agree with).
-    data_.light_grid = LightGrid(data_.lights.lights());
+    data_.light_grid = LightGrid(data_.lights.lights(), data_.lights.powers());
     for (std::uint32_t slot : {gpu::kSceneLightGrid, gpu::kSceneLightCells}) {
       ensure_capacity(slot);
       mark_all_dirty(slot);

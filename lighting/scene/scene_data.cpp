@@ -357,7 +357,7 @@ SceneData build_scene_data(const Level& level, const std::vector<runtime::Volume
     }
   }
   scene.lights.update(emitters, scene.emissive_triangles);
-  scene.light_grid = LightGrid(scene.lights.lights());
+  scene.light_grid = LightGrid(scene.lights.lights(), scene.lights.powers());
   scene.light_spread = measure_light_spread(scene);
   for (const gpu::GpuMaterial& m : scene.materials) {
     scene.max_gloss = std::max(scene.max_gloss, material_max_gloss(m));

@@ -14,8 +14,8 @@
 //   scene_vertex_texcoords1.uv[] (scene_vertex_texcoord picks a vertex's set), and the media
 //   (lib/volumes.glsl: scene_volumes, scene_volume_cells, scene_volume_values;
 //   scene_transmittance), and the light grid (shared/light_grid.h: light_grid.g and .words[],
-//   light_cells.c[]; scene_light_grid_draw and scene_light_grid_pdf draw and weigh a light near
-//   a point).
+//   light_cells.c[]; scene_light_grid_weights and scene_light_grid_draw weigh the cells near a
+//   point and draw a light from them).
 // Then lib/visibility.glsl's vis_trace_closest / vis_visible and frame_rng are available. A pass
 // declares its own resources from kPassBindingBase on: layout(binding = PASS_BINDING(0)).
 #ifndef LANTERN_LIB_SCENE_BUFFERS_GLSL
@@ -183,21 +183,52 @@ layout(std430, binding = kSceneLightCells) restrict readonly buffer LightCellBuf
 bool scene_light_grid_on() { return light_grid.g.origin_cell.w > 0.0; }
 uvec4 scene_light_grid_cell(vec3 x) { return light_grid_cell(light_grid.g, x); }
 
-// A light drawn near a point in `cell` (scene_light_grid_cell) from u_cell, u_light in [0,1): one
-// of the 27 cells around it, then one of its lights; kInvalidLight for an empty cell or one
-// outside the grid. Light l comes with probability scene_light_grid_pdf(l, cell).
-uint scene_light_grid_draw(uvec4 cell, float u_cell, float u_light) {
-  uvec4 neighbour;
-  if (!light_grid_neighbour(light_grid.g, cell, u_cell, neighbour)) return kInvalidLight;
-  uint w = 2u * light_grid_index(light_grid.g, neighbour);
-  uint count = light_grid.words[w + 1u];
-  if (count == 0u) return kInvalidLight;
-  return light_grid.words[light_grid_cell_words(light_grid.g) + light_grid.words[w] +
-                          light_grid_pick(count, u_light)];
+// The weights of the 27 cells around a point x (geometric normal n) in `cell`
+// (scene_light_grid_cell): shared/light_grid.h's light_grid_weight of each, 0 for an empty cell
+// or one outside the grid. Returns their sum.
+float scene_light_grid_weights(uvec4 cell, vec3 x, vec3 n,
+                               out float weights[kLightGridNeighbourCells]) {
+  float total = 0.0;
+  for (uint k = 0u; k < kLightGridNeighbourCells; ++k) {
+    weights[k] = 0.0;
+    uvec4 neighbour;
+    if (!light_grid_neighbour(light_grid.g, cell, k, neighbour)) continue;
+    // An empty cell's power is 0.
+    uint w = kLightGridCellWords * light_grid_index(light_grid.g, neighbour);
+    float power = uintBitsToFloat(light_grid.words[w + 2u]);
+    weights[k] = light_grid_weight(light_grid.g, neighbour, power, x, n);
+    total += weights[k];
+  }
+  return total;
 }
 
-float scene_light_grid_pdf(uint index, uvec4 cell) {
-  return light_grid_pdf(light_cells.c[index], cell);
+// A light drawn near a point in `cell` from u_cell, u_light in [0,1): one of the 27 cells in
+// proportion to `weights` (scene_light_grid_weights, summing to `total`), then one of its lights
+// by the cell's alias table; kInvalidLight when every weight is 0. Light l comes with probability
+// light_grid_pdf of its cell's weight (light_grid_near_index), `total` and its light_cells share.
+uint scene_light_grid_draw(uvec4 cell, float weights[kLightGridNeighbourCells], float total,
+                           float u_cell, float u_light) {
+  if (!(total > 0.0)) return kInvalidLight;
+  // The first cell whose running sum passes u_cell x total; rounding past the last sum takes the
+  // last cell with a weight.
+  float target = u_cell * total;
+  float sum = 0.0;
+  uint k = kLightGridNeighbourCells;
+  for (uint j = 0u; j < kLightGridNeighbourCells; ++j) {
+    if (!(weights[j] > 0.0)) continue;
+    k = j;
+    sum += weights[j];
+    if (target < sum) break;
+  }
+  uvec4 neighbour;
+  light_grid_neighbour(light_grid.g, cell, k, neighbour);
+  uint w = kLightGridCellWords * light_grid_index(light_grid.g, neighbour);
+  float slot_u;
+  uint slot = light_grid_slot(light_grid.words[w + 1u], u_light, slot_u);
+  uint e = light_grid_cell_words(light_grid.g) + kLightGridEntryWords * (light_grid.words[w] + slot);
+  GpuLightGridEntry entry = GpuLightGridEntry(
+      light_grid.words[e], uintBitsToFloat(light_grid.words[e + 1u]), light_grid.words[e + 2u]);
+  return light_grid_pick(entry, slot_u);
 }
 
 #define VIS_BINDING_BASE kSceneBvhHeader

@@ -225,7 +225,8 @@ float env_candidate(ShadingPoint p, vec3 l, float p_env, float m_light, float m_
 }
 
 // The strategies: how many candidates each draws (light, BSDF, light grid), the lights and the
-// environment's share of the light strategy, and the light grid's cell of the point.
+// environment's share of the light strategy, and the light grid's cell of the point with the
+// weights of the 27 cells around it and their sum (scene_light_grid_weights).
 struct Strategies {
   uint light_count;
   float p_env;
@@ -233,19 +234,35 @@ struct Strategies {
   float m_bsdf;
   float m_grid;
   uvec4 grid_cell;
+  float grid_weights[kLightGridNeighbourCells];
+  float grid_total;
 };
 
 Strategies restir_strategies(ShadingPoint p) {
-  bool grid = push.grid_candidates > 0u && restir_light_count() > 0u && scene_light_grid_on();
-  return Strategies(restir_light_count(), restir_env_probability(), float(push.light_candidates),
-                    float(bsdf_candidates_at(p)), grid ? float(push.grid_candidates) : 0.0,
-                    grid ? scene_light_grid_cell(p.x) : uvec4(0u));
+  Strategies s;
+  s.light_count = restir_light_count();
+  s.p_env = restir_env_probability();
+  s.m_light = float(push.light_candidates);
+  s.m_bsdf = float(bsdf_candidates_at(p));
+  bool grid = push.grid_candidates > 0u && s.light_count > 0u && scene_light_grid_on();
+  s.m_grid = grid ? float(push.grid_candidates) : 0.0;
+  s.grid_cell = grid ? scene_light_grid_cell(p.x) : uvec4(0u);
+  s.grid_total = grid ? scene_light_grid_weights(s.grid_cell, p.x, p.ng, s.grid_weights) : 0.0;
+  return s;
+}
+
+// The light grid strategy's density of drawing a light whose grid record is `light_cell` (its
+// cell's key and its share of that cell's pick: light_cells), selection only.
+float grid_selection_pdf(Strategies s, uvec2 light_cell) {
+  uint k = light_grid_near_index(light_cell.x, s.grid_cell);
+  if (k >= kLightGridNeighbourCells) return 0.0;
+  return light_grid_pdf(s.grid_weights[k], s.grid_total, uintBitsToFloat(light_cell.y));
 }
 
 // The light grid strategy's density of a point on `light` (index `index`) whose point density
 // is point_pdf (light_eval_point_pdf), area measure.
 float grid_area_pdf(Strategies s, uint index, float point_pdf) {
-  return scene_light_grid_pdf(index, s.grid_cell) * point_pdf;
+  return grid_selection_pdf(s, light_cells.c[index]) * point_pdf;
 }
 
 // Whether there is nothing to sample (no light, no environment): no candidate is drawn.
@@ -290,7 +307,7 @@ void resample_lights(ShadingPoint p, Strategies s, uint tile_base, inout uint rn
       if (s.m_grid > 0.0) {
         if (grid_cell.x == kLightGridNoCell) grid_cell = light_cells.c[index];
         other_terms +=
-            s.m_grid * light_grid_pdf(grid_cell, s.grid_cell) * light_eval_point_pdf(light);
+            s.m_grid * grid_selection_pdf(s, grid_cell) * light_eval_point_pdf(light);
       }
       float contribution_ratio = push.local_candidates > 0u ? safe_ratio(strategy_pdf, pdf) : 1.0;
       weight = safe_ratio(target * contribution_ratio, light_term + other_terms);
@@ -300,15 +317,15 @@ void resample_lights(ShadingPoint p, Strategies s, uint tile_base, inout uint rn
 }
 
 // The pixel's light grid candidates (s.m_grid, from their own random stream): a light near the
-// point (scene_light_grid_draw: nothing from an empty cell, which still counts in M), weighed by
-// the balance heuristic over the three strategies' densities.
+// point (scene_light_grid_draw: nothing where no cell near it has a weight, which still counts in
+// M), weighed by the balance heuristic over the three strategies' densities.
 void resample_grid(ShadingPoint p, Strategies s, inout uint rng, inout Reservoir r) {
   for (uint j = 0u; j < uint(s.m_grid); ++j) {
     float u_cell = rng_next_float(rng);
     float u_light = rng_next_float(rng);
     vec2 uv = restir_stored_uv(rng_next_vec2(rng));
     float u_pick = rng_next_float(rng);
-    uint index = scene_light_grid_draw(s.grid_cell, u_cell, u_light);
+    uint index = scene_light_grid_draw(s.grid_cell, s.grid_weights, s.grid_total, u_cell, u_light);
     float target = 0.0;
     float weight = 0.0;
     if (index != kInvalidLight) {

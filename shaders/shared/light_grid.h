@@ -1,12 +1,20 @@
 // The light grid: the lights binned by where they are, in a uniform grid of world-space cells
 // over the lights' bounds (built on the CPU by lighting/lights/light_grid.cpp, read by
 // restir.initial's grid candidates: a light drawn near the shading point, whose density any
-// light's own cell record gives back in O(1)).
+// light's own cell record gives back in O(1) once the 27 cells around the point are weighed).
 // A light's place: a triangle's centroid, a point or spot light's position; a directional light
 // has none (it is in no cell, and the grid never draws it).
-// Drawing near x: one of the 3x3x3 cells around x's cell, uniformly, then one light of that cell
-// uniformly (nothing when the cell is empty or outside the grid); light l is drawn with
-// probability [l's cell is one of the 27] / (27 x its cell's light count): light_grid_pdf.
+// Drawing near a surface point x with normal n: one of the 3x3x3 cells around x's cell in
+// proportion to light_grid_weight (the cell's power over its squared distance from x; none for an
+// empty cell, one outside the grid or one wholly behind the surface), then one light of that cell
+// by the cell's alias table (light_grid_pick) over half its power plus half the cell's mean power
+// (lighting/lights/light_grid.cpp). Light l is drawn with probability w(l's cell) / W x q(l), W
+// the 27 weights' sum and q(l) l's share of its cell's alias weights (its light_cells record),
+// where l's cell is one of the 27 (light_grid_pdf), else 0: a light that only the other
+// strategies reach, which stays unbiased while they cover it (restir.initial's light candidates
+// cover every light). The cells' powers are those of the build (a flickering light
+// keeps its cell's power until the grid is built again): the density the draw uses is the one
+// every candidate is weighed with, whatever the light does now.
 #ifndef LANTERN_SHARED_LIGHT_GRID_H
 #define LANTERN_SHARED_LIGHT_GRID_H
 
@@ -28,17 +36,30 @@ struct GpuLightGrid {
 LANTERN_STATIC_SIZE(GpuLightGrid, 32);
 
 // scene.light_grid holds the header, then as 32-bit words the dense table of cells (x fastest,
-// then y, then z; two words each: GpuLightGridCell) and the light indices, cell by cell.
-// One cell of the dense table: its lights' range in the grid's list.
+// then y, then z; kLightGridCellWords words each: GpuLightGridCell) and the cell-ordered light
+// list (kLightGridEntryWords words each: GpuLightGridEntry). scene.light_cells holds per light
+// (its cell's key or kLightGridNoCell, the bits of its share q of its cell's alias weights).
+// One cell of the dense table: its lights' range in the grid's list and their power.
 struct GpuLightGridCell {
-  uint first;  // first of its lights in the grid's light list
-  uint count;  // its lights (0: an empty cell)
+  uint first;   // first of its lights in the grid's light list
+  uint count;   // its lights (0: an empty cell)
+  float power;  // their sampling power summed (LightTable's, at the build)
 };
-LANTERN_STATIC_SIZE(GpuLightGridCell, 8);
+LANTERN_STATIC_SIZE(GpuLightGridCell, 12);
+LANTERN_CONST uint kLightGridCellWords = 3u;
+
+// One slot of a cell's alias table over its lights (by power), in the cell-ordered light list.
+struct GpuLightGridEntry {
+  uint light;       // the slot's own light index
+  float threshold;  // keep `light` when the slot's u < threshold, else take `alias`
+  uint alias;       // the light index that shares the slot
+};
+LANTERN_STATIC_SIZE(GpuLightGridEntry, 12);
+LANTERN_CONST uint kLightGridEntryWords = 3u;
 
 // Words of the dense table after the header: where the cell-ordered light list starts.
 LANTERN_FUNC uint light_grid_cell_words(GpuLightGrid grid) {
-  return 2u * grid.dims.x * grid.dims.y * grid.dims.z;
+  return kLightGridCellWords * grid.dims.x * grid.dims.y * grid.dims.z;
 }
 
 // Integer cell of world point p, clamped into the grid (every light's and every point's).
@@ -60,33 +81,59 @@ LANTERN_FUNC uint light_grid_index(GpuLightGrid grid, uvec4 cell) {
   return cell.x + grid.dims.x * (cell.y + grid.dims.y * cell.z);
 }
 
-// A draw's cell: the neighbour of `cell` (one of 27, x fastest) that u_cell in [0,1) picks;
-// false when it lies outside the grid (the draw then gives nothing).
-LANTERN_FUNC bool light_grid_neighbour(GpuLightGrid grid, uvec4 cell, float u_cell,
+// Neighbour k (0..26, x fastest) of `cell`: cell + (k % 3, k / 3 % 3, k / 9) - 1 per axis; false
+// when it lies outside the grid.
+LANTERN_FUNC bool light_grid_neighbour(GpuLightGrid grid, uvec4 cell, uint k,
                                        LANTERN_OUT(uvec4) neighbour) {
-  uint k = min(uint(u_cell * float(kLightGridNeighbourCells)), kLightGridNeighbourCells - 1u);
-  // cell + offset - 1 per axis, in unsigned arithmetic: -1 wraps to a value above any dims.
+  // In unsigned arithmetic -1 wraps to a value above any dims.
   neighbour = uvec4(cell.x + k % 3u - 1u, cell.y + (k / 3u) % 3u - 1u, cell.z + k / 9u - 1u, 0u);
   return neighbour.x < grid.dims.x && neighbour.y < grid.dims.y && neighbour.z < grid.dims.z;
 }
 
-// The light a draw takes from a cell of `count` lights (> 0): its position in the cell's range.
-LANTERN_FUNC uint light_grid_pick(uint count, float u_light) {
-  return min(uint(u_light * float(count)), count - 1u);
+// The weight a draw near x (geometric normal n) gives a neighbour cell whose lights carry `power`:
+// power over the squared distance from x to the cell's centre, that distance at least half an
+// edge (x's own cell and its neighbours are then alike within ~4x); 0 where the whole cell lies
+// behind the plane of x (its centre more than half a diagonal below it).
+LANTERN_FUNC float light_grid_weight(GpuLightGrid grid, uvec4 neighbour, float power, vec3 x,
+                                     vec3 n) {
+  float edge = grid.origin_cell.w;
+  vec3 centre = vec3(grid.origin_cell) +
+                (vec3(float(neighbour.x), float(neighbour.y), float(neighbour.z)) + 0.5f) * edge;
+  vec3 d = centre - x;
+  if (dot(d, n) < -0.8660254f * edge) return 0.0f;
+  return power / max(dot(d, d), 0.25f * edge * edge);
 }
 
-// Whether a light whose cell key is `light_key` lies in one of the 27 cells around `cell`.
-LANTERN_FUNC bool light_grid_near(uint light_key, uvec4 cell) {
-  if (light_key == kLightGridNoCell) return false;
+// The light a draw takes from a cell of `count` lights (> 0) by u_light in [0,1): the slot it
+// lands in (its position in the cell's range), then that slot's own light or its alias by where
+// in the slot u_light lies.
+LANTERN_FUNC uint light_grid_pick(GpuLightGridEntry slot_entry, float slot_u) {
+  return slot_u < slot_entry.threshold ? slot_entry.light : slot_entry.alias;
+}
+LANTERN_FUNC uint light_grid_slot(uint count, float u_light, LANTERN_OUT(float) slot_u) {
+  float scaled = u_light * float(count);
+  uint slot = min(uint(scaled), count - 1u);
+  slot_u = clamp(scaled - float(slot), 0.0f, 1.0f);
+  return slot;
+}
+
+// Which of the 27 cells around `cell` holds a light whose cell key is `light_key`
+// (light_grid_neighbour's k), kLightGridNeighbourCells where none does.
+LANTERN_FUNC uint light_grid_near_index(uint light_key, uvec4 cell) {
+  if (light_key == kLightGridNoCell) return kLightGridNeighbourCells;
   uvec4 c = light_grid_unkey(light_key);
-  return max(c.x, cell.x) - min(c.x, cell.x) <= 1u && max(c.y, cell.y) - min(c.y, cell.y) <= 1u &&
-         max(c.z, cell.z) - min(c.z, cell.z) <= 1u;
+  // c - cell + 1 per axis, in unsigned arithmetic: a cell further than 1 away reads above 2.
+  uvec4 o = uvec4(c.x + 1u - cell.x, c.y + 1u - cell.y, c.z + 1u - cell.z, 0u);
+  if (o.x > 2u || o.y > 2u || o.z > 2u) return kLightGridNeighbourCells;
+  return o.x + 3u * o.y + 9u * o.z;
 }
 
-// Probability that a draw near a point in `cell` gives a light whose cell record is (key, count).
-LANTERN_FUNC float light_grid_pdf(uvec2 light_cell, uvec4 cell) {
-  if (!light_grid_near(light_cell.x, cell) || light_cell.y == 0u) return 0.0f;
-  return 1.0f / (float(kLightGridNeighbourCells) * float(light_cell.y));
+// Probability that a draw gives a light whose share of its cell's alias weights is `share` (its
+// light_cells record's second word), the cell weighing `cell_weight` among weights summing to
+// `total` (0 where any of them is 0).
+LANTERN_FUNC float light_grid_pdf(float cell_weight, float total, float share) {
+  if (!(cell_weight > 0.0f) || !(total > 0.0f) || !(share > 0.0f)) return 0.0f;
+  return cell_weight / total * share;
 }
 
 LANTERN_END_SHARED

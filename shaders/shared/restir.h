@@ -129,7 +129,7 @@ struct PresampledLight {
   GpuLight light;  // a copy of scene_light(index) (this frame's)
   uint index;      // the light's index in the list
   float pdf;       // alias selection pdf x point density (light_eval_point_pdf): area measure
-  uvec2 grid_cell;  // the light's light_cells record (shared/light_grid.h): cell key, count
+  uvec2 grid_cell;  // the light's light_cells record (shared/light_grid.h): cell key, share
 };
 LANTERN_STATIC_SIZE(PresampledLight, 80);
 // rgba32ui texels per PresampledLight through restir.initial's texel view: the light's

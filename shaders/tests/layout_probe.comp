@@ -70,12 +70,14 @@ layout(std430, binding = 30) buffer RestirSimilarityKeyProbe { RestirSimilarityK
 layout(std430, binding = 31) buffer HostClosestRayProbe { HostClosestRay host_closest_rays[]; };
 layout(std430, binding = 32) buffer GpuLightGridProbe { GpuLightGrid gpu_light_grids[]; };
 layout(std430, binding = 33) buffer GpuLightGridCellProbe { GpuLightGridCell gpu_light_grid_cells[]; };
+layout(std430, binding = 34) buffer GpuLightGridEntryProbe { GpuLightGridEntry gpu_light_grid_entries[]; };
 
 void main() {
   // Touch every buffer so no declaration is optimised away.
   alias_entries[0] = alias_entries[1];
   gpu_light_grids[0] = gpu_light_grids[1];
   gpu_light_grid_cells[0] = gpu_light_grid_cells[1];
+  gpu_light_grid_entries[0] = gpu_light_grid_entries[1];
   denoise_pushes[0] = denoise_pushes[1];
   restir_similarity_keys[0] = restir_similarity_keys[1];
   upscale_pushes[0] = upscale_pushes[1];
