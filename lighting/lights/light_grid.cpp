@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 namespace lantern::lighting {
@@ -128,7 +129,8 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights, std::span<const floa
       ++occupied_;
     }
     ++c.count;
-    c.power += power_of(ordered[k]);
+    // At most the largest float: a cell of absurd powers weighs kLightGridMaxWeight, not inf.
+    c.power = std::min(c.power + power_of(ordered[k]), std::numeric_limits<float>::max());
   }
   // Each occupied cell's alias table over its lights' weights, and each light's share of them (a
   // cell without power is never drawn: its slots keep their own light). A light's weight is half
@@ -148,10 +150,10 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights, std::span<const floa
       power += weights[j];
     }
     if (power > 0.0) {
-      const float mean = float(power / c.count);
+      const float cell_mean = float(power / c.count);
       power = 0.0;
       for (std::uint32_t j = 0; j < c.count; ++j) {
-        weights[j] = 0.5f * (weights[j] + mean);
+        weights[j] = 0.5f * (weights[j] + cell_mean);
         power += weights[j];
       }
     }

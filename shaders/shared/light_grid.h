@@ -90,10 +90,15 @@ LANTERN_FUNC bool light_grid_neighbour(GpuLightGrid grid, uvec4 cell, uint k,
   return neighbour.x < grid.dims.x && neighbour.y < grid.dims.y && neighbour.z < grid.dims.z;
 }
 
+// The largest cell weight: 27 of them still sum to a finite number, whatever the powers and the
+// cell edge (a weight that overflowed would make every density NaN).
+LANTERN_CONST float kLightGridMaxWeight = 1e36f;
+
 // The weight a draw near x (geometric normal n) gives a neighbour cell whose lights carry `power`:
 // power over the squared distance from x to the cell's centre, that distance at least half an
-// edge (x's own cell and its neighbours are then alike within ~4x); 0 where the whole cell lies
-// behind the plane of x (its centre more than half a diagonal below it).
+// edge (x's own cell and its neighbours are then alike within ~4x), at most kLightGridMaxWeight;
+// 0 where the whole cell lies behind the plane of x (its centre more than half a diagonal below
+// it).
 LANTERN_FUNC float light_grid_weight(GpuLightGrid grid, uvec4 neighbour, float power, vec3 x,
                                      vec3 n) {
   float edge = grid.origin_cell.w;
@@ -101,7 +106,7 @@ LANTERN_FUNC float light_grid_weight(GpuLightGrid grid, uvec4 neighbour, float p
                 (vec3(float(neighbour.x), float(neighbour.y), float(neighbour.z)) + 0.5f) * edge;
   vec3 d = centre - x;
   if (dot(d, n) < -0.8660254f * edge) return 0.0f;
-  return power / max(dot(d, d), 0.25f * edge * edge);
+  return min(power / max(dot(d, d), 0.25f * edge * edge), kLightGridMaxWeight);
 }
 
 // The light a draw takes from a cell of `count` lights (> 0) by u_light in [0,1): the slot it

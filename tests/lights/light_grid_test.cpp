@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <map>
 #include <random>
 #include <stdexcept>
@@ -104,7 +105,9 @@ TEST(LightGrid, EveryPlacedLightIsInItsPlacesCellOnce) {
           << "light " << light;
     }
     EXPECT_NEAR(cell.power, power, 1e-5 * power) << "cell " << c;
-    if (cell.count > 0) EXPECT_NEAR(shares, 1.0, 1e-5) << "cell " << c;
+    if (cell.count > 0) {
+      EXPECT_NEAR(shares, 1.0, 1e-5) << "cell " << c;
+    }
   }
   EXPECT_EQ(total, h.dims.w);
   EXPECT_EQ(occupied, grid.occupied_cells());
@@ -270,6 +273,12 @@ TEST(LightGrid, CellWeightsFollowPowerDistanceAndSide) {
             gpu::kLightGridNeighbourCells);
   EXPECT_EQ(gpu::light_grid_near_index(gpu::light_grid_key(gpu::uvec4(4u, 4u, 2u, 0u)), c),
             gpu::kLightGridNeighbourCells);
+  // Absurd powers and a tiny cell: a finite weight, 27 of which still sum to a finite total.
+  gpu::GpuLightGrid tiny = h;
+  tiny.origin_cell.w = 1e-6f;
+  const float huge = gpu::light_grid_weight(tiny, gpu::uvec4(0u), 3e38f, gpu::vec3(0.0f), up);
+  EXPECT_EQ(huge, gpu::kLightGridMaxWeight);
+  EXPECT_TRUE(std::isfinite(27.0f * huge));
   // At the grid's corner, neighbours outside it are refused.
   gpu::uvec4 outside;
   EXPECT_FALSE(gpu::light_grid_neighbour(h, gpu::uvec4(0u), 0u, outside));
