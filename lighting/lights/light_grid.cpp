@@ -149,15 +149,12 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights, std::span<const floa
       weights[j] = power_of(ordered[c.first + j]);
       power += weights[j];
     }
+    AliasTable table;
     if (power > 0.0) {
       const float cell_mean = float(power / c.count);
-      power = 0.0;
-      for (std::uint32_t j = 0; j < c.count; ++j) {
-        weights[j] = 0.5f * (weights[j] + cell_mean);
-        power += weights[j];
-      }
+      for (float& w : weights) w = 0.5f * (w + cell_mean);
+      table = AliasTable(weights);
     }
-    const AliasTable table = power > 0.0 ? AliasTable(weights) : AliasTable();
     for (std::uint32_t j = 0; j < c.count; ++j) {
       const std::uint32_t light = ordered[c.first + j];
       gpu::GpuLightGridEntry& e = entries[c.first + j];
@@ -166,7 +163,8 @@ LightGrid::LightGrid(std::span<const gpu::GpuLight> lights, std::span<const floa
         e.threshold = table.entries()[j].threshold;
         e.alias = ordered[c.first + table.entries()[j].alias];
       }
-      light_cells_[light].y = gpu::floatBitsToUint(power > 0.0 ? float(weights[j] / power) : 0.0f);
+      // The table's own pdf: the light's share of the mixed weights.
+      light_cells_[light].y = gpu::floatBitsToUint(power > 0.0 ? table.pdf(j) : 0.0f);
     }
   }
   const std::size_t cell_words = gpu::kLightGridCellWords * cell_count_;
