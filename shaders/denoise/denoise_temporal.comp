@@ -4,8 +4,9 @@
 // surface-similarity test, restir_surfaces_similar: a camera cut or a disocclusion leaves no
 // history; so does a footprint less than kDenoiseMinHistoryFootprint of which passes), clamps a
 // firefly against the history's mean + firefly x sigma (where the history cannot judge, against
-// push.neighbour_clamp x the brightest of its 8 neighbours; a long history that has seen only
-// black takes the sample unclamped into its luminance moments), holds the colour history near its
+// push.neighbour_clamp x the brightest of its 8 neighbours on its own surface, or of all 8 where
+// none is; a long history that has seen only black takes the sample unclamped into its luminance
+// moments), holds the colour history near its
 // short luminance mean (push.antilag: a light that changes is followed), and blends (alpha =
 // max(c / (c + (length - 1) x the history's mean confidence), push.color_alpha): 1 / history
 // length when every frame is worth the same, else each weighs by the integrator's M; the
@@ -68,33 +69,50 @@ layout(std430, binding = PASS_BINDING(16)) writeonly buffer StableReprojectedOut
 layout(binding = PASS_BINDING(17)) uniform utextureBuffer owed_history;
 layout(std430, binding = PASS_BINDING(18)) writeonly buffer OwedOut { vec4 p[]; } owed_out;
 
-// This frame's demodulated luminance at pixel q, for the neighbour clamp of a pixel that is an
-// emitter or not (`emitter`); -1 where a neighbour does not count (outside the image, passed
-// through, of the other kind: denoise_record).
-float filtered_luminance(ivec2 q, bool emitter) {
+// Neighbour q's demodulated luminance in this frame, for the neighbour clamp of a pixel at x
+// (shading normal n, `distance` from the camera) that is an emitter or not (`emitter`): -1 where
+// it does not count (outside the image, passed through, of the other kind: denoise_record).
+// `same_surface`: q shows the pixel's own surface, within two of the à-trous depth stops
+// (push.phi_depth x distance) of its tangent plane and its normal within ReSTIR's normal
+// threshold (push.similarity.y) of n.
+float neighbour_luminance(ivec2 q, bool emitter, vec3 x, vec3 n, float distance,
+                          out bool same_surface) {
+  same_surface = false;
   if (!denoise_inside(q)) return -1.0;
-  float view_depth = imageLoad(gbuffer_position, q).w;
+  vec4 position = imageLoad(gbuffer_position, q);
   vec3 emission = imageLoad(gbuffer_emission_metallic, q).rgb;
-  if (denoise_passthrough(view_depth, emission)) return -1.0;
-  if (denoise_is_emitter(view_depth, emission) != emitter) return -1.0;
-  return luminance(denoise_demodulate(view_depth, emission,
+  if (denoise_passthrough(position.w, emission)) return -1.0;
+  if (denoise_is_emitter(position.w, emission) != emitter) return -1.0;
+  vec3 nq = oct_decode(imageLoad(gbuffer_normal, q).xy);
+  same_surface = abs(dot(n, position.xyz - x)) <= 2.0 * push.phi_depth * distance &&
+                 dot(n, nq) >= push.similarity.y;
+  return luminance(denoise_demodulate(position.w, emission,
                                       imageLoad(gbuffer_albedo_roughness, q).rgb,
                                       hdr_in.p[denoise_index(q)].rgb));
 }
 
-// The brightest of the 8 neighbours' luminance (the 4 beside the pixel first, then the corners),
-// or the first one found that admits the sample `l` (push.neighbour_clamp x it >= l: the sample
-// is not clamped, whichever neighbour admits it); negative when none counts. Read only where
-// the history cannot judge (a disocclusion, the first frames after a cut, a history that has
-// seen only black: night_market's shadows) and the sample is lit (a black one is never clamped).
-float brightest_neighbour(ivec2 pixel, bool emitter, float l) {
+// The brightest luminance among the 8 neighbours on the pixel's own surface (at x, normal n,
+// `distance` from the camera: neighbour_luminance), or among all 8 where none is; negative when
+// none counts. A pole or a ledge one pixel wide is judged by the pole's or the ledge's pixels,
+// not by the lit wall beside it, whose light let the pole's heavy samples through (night_market's
+// silhouettes: README "The neighbours on the pixel's own surface"). The 4 beside the pixel come
+// first, then the corners, and the reads stop once a neighbour on the surface admits the sample
+// `l` (push.neighbour_clamp x it >= l: the sample is not clamped, whichever admits it). Read only
+// where the history cannot judge (a disocclusion, the first frames after a cut, a history that
+// has seen only black: night_market's shadows) and the sample is lit (a black one is never
+// clamped).
+float brightest_neighbour(ivec2 pixel, bool emitter, float l, vec3 x, vec3 n, float distance) {
   const ivec2 kOrder[8] = ivec2[8](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1),
                                    ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
-  float m = -1.0;
-  for (int t = 0; t < 8 && push.neighbour_clamp * m < l; ++t) {
-    m = max(m, filtered_luminance(pixel + kOrder[t], emitter));
+  float on_surface = -1.0;
+  float any = -1.0;
+  for (int t = 0; t < 8 && push.neighbour_clamp * on_surface < l; ++t) {
+    bool same_surface;
+    float lq = neighbour_luminance(pixel + kOrder[t], emitter, x, n, distance, same_surface);
+    any = max(any, lq);
+    if (same_surface) on_surface = max(on_surface, lq);
   }
-  return m;
+  return on_surface >= 0.0 ? on_surface : any;
 }
 
 // A sample's luminance moments (l, l^2), finite for every finite l (kDenoiseMaxMomentLuminance).
@@ -229,7 +247,9 @@ void main() {
     float sigma = sqrt(max(history_moments.y - history_moments.x * history_moments.x, 0.0));
     limit = history_moments.x + push.firefly * sigma;
   } else if (!history_judges && push.neighbour_clamp > 0.0 && l > 0.0) {
-    float neighbour = brightest_neighbour(pixel, emitter, l);
+    float neighbour = brightest_neighbour(
+        pixel, emitter, l, position.xyz, n,
+        length(position.xyz - frame_constants.frame.camera_position.xyz));
     if (neighbour >= 0.0) limit = push.neighbour_clamp * neighbour;
   }
   // What the luminance moments take: the clamped sample, except on a long history that has seen

@@ -285,6 +285,61 @@ TEST_F(DenoiseGpuTest, LoneSampleWithoutHistoryIsClampedToItsNeighbours) {
   }
 }
 
+// The neighbour clamp judges a sample by the neighbours on the pixel's own surface (first frame,
+// temporal only). The box stands at c / 10 before a wall and floor at c; a pixel of its left
+// silhouette (the wall beside it) gets 1.5 c. Its neighbours on the box's face set the limit,
+// 2 x c / 10; all 8 would let the sample through, since the wall's c admits it (what the clamp did
+// before: a pole one pixel wide kept the heavy samples of the lit wall beside it); with the clamp
+// off it keeps 1.5 c. The wall keeps c. (A pixel none of whose neighbours is on its surface is
+// judged by all 8, as before; this scene has no such pixel, so that branch is not tested here.)
+TEST_F(DenoiseGpuTest, LoneSampleIsJudgedByTheNeighboursOnItsOwnSurface) {
+  const float c = 0.3f;
+  const std::uint32_t box = static_cast<std::uint32_t>(instance_index(*level, "box"));
+  lighting::GBufferTexels g;
+  {
+    Run probe = make_run();
+    (void)render(probe, constant(0.0f), test::first_snapshot(level, kW, kH), &g);
+  }
+  auto id = [&](std::uint32_t x, std::uint32_t y) { return g.ids[std::size_t{y} * kW + x].x; };
+  // The box pixels whose left neighbour is a surface other than the box and whose other 7
+  // neighbours are the box: its left silhouette; the middle one of them is the spike.
+  std::vector<std::size_t> silhouette;
+  for (std::uint32_t y = 1; y + 1 < kH; ++y) {
+    for (std::uint32_t x = 1; x + 1 < kW; ++x) {
+      bool box_right = true;
+      for (int dy = -1; dy <= 1; ++dy) {
+        box_right = box_right && id(x, y + dy) == box && id(x + 1, y + dy) == box;
+      }
+      const std::uint32_t left = id(x - 1, y);
+      if (box_right && left != box && left != gpu::kNoInstance) {
+        silhouette.push_back(std::size_t{y} * kW + x);
+      }
+    }
+  }
+  ASSERT_GE(silhouette.size(), 5u) << "the box must show a left silhouette against the wall";
+  const std::size_t spike = silhouette[silhouette.size() / 2];
+  const std::size_t wall = spike - 1;
+  ImageRGBA32F input = constant(c);
+  for (std::size_t p = 0; p < g.ids.size(); ++p) {
+    for (int k = 0; k < 3; ++k) {
+      if (g.ids[p].x == box) input.pixels[4 * p + k] = 0.1f * c;
+      if (p == spike) input.pixels[4 * p + k] = 1.5f * c;
+    }
+  }
+  struct Case {
+    const char* clamp;
+    float expected;
+  };
+  for (const Case& k : {Case{"2", 0.2f * c}, Case{"0", 1.5f * c}}) {
+    Run run = make_run({{"atrous", "0"}, {"neighbour_clamp", k.clamp}});
+    const ImageRGBA32F out = render(run, input, test::first_snapshot(level, kW, kH));
+    std::printf("[denoise own surface] clamp %s: silhouette pixel %.5f (expected %.5f), wall %.5f\n",
+                k.clamp, out.pixels[4 * spike], k.expected, out.pixels[4 * wall]);
+    EXPECT_NEAR(out.pixels[4 * spike], k.expected, 1e-4f * k.expected) << "clamp " << k.clamp;
+    EXPECT_NEAR(out.pixels[4 * wall], c, 1e-5f) << "clamp " << k.clamp;
+  }
+}
+
 // What a clamp takes is repaid with denoise.repay (static camera, temporal only, every frame
 // weighed alike: color_alpha 0.01, max_history 64, antilag off). Frame 0 holds a lone 100c spike
 // on a surface of c, which the neighbour clamp cuts to 2c (98c taken), then 12 frames of c; the
