@@ -6,16 +6,16 @@
 // firefly against the history's mean + firefly x sigma (where the history cannot judge, against
 // push.neighbour_clamp x the brightest of its 8 neighbours on its own surface, or of all 8 where
 // none is; a long history that has seen only black takes the sample unclamped into its luminance
-// moments), holds the colour history near its
-// short luminance mean (push.antilag: a light that changes is followed), and blends (alpha =
-// max(c / (c + (length - 1) x the history's mean confidence), push.color_alpha): 1 / history
-// length when every frame is worth the same, else each weighs by the integrator's M; the
-// luminance moments keep 1 / length). With push.repay > 0 the light a clamp takes is owed to the
-// pixel, not dropped: each frame pays back push.repay of what is owed, as far as the clamp's
-// limit leaves room (a still pixel's mean keeps the clamped light; a new sample never exceeds
-// the limit). An emitter is filtered for the light it reflects and only
-// among emitters (its neighbour clamp compares emitters; without kDenoiseFlagFilterEmitters it
-// passes through: denoise_passthrough); the sky passes through unless push.sky_distance > 0
+// moments), holds the colour history near its short luminance mean (push.antilag: a light that
+// changes is followed), and blends (alpha = max(c / (c + (length - 1) x the history's mean
+// confidence), push.color_alpha): 1 / history length when every frame is worth the same, else
+// each weighs by the integrator's M; the luminance moments keep 1 / length). With push.repay > 0
+// the light a clamp takes is owed to the pixel, not dropped: each frame pays back push.repay of
+// what is owed, as far as the clamp's limit leaves room (a still pixel's mean keeps the clamped
+// light; a new sample never exceeds the limit). An emitter is filtered for the light it reflects
+// and only among emitters (its neighbour clamp compares emitters; without
+// kDenoiseFlagFilterEmitters it passes through: denoise_passthrough); the sky passes through
+// unless push.sky_distance > 0
 // (levels with volumes): then a sky pixel is a surface that far along its view ray, facing the
 // camera, albedo 1, reprojected as that point.
 // Reads: hdr_in, gbuffer position/normal/albedo_roughness/emission_metallic/ids/motion,
