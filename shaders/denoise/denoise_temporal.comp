@@ -173,8 +173,8 @@ void main() {
                                               0.0, material);
   RestirSimilarityKey key = restir_similarity_key(surface);
   surface_keys_out.k[index] = key;
-  guide_out.p[index] =
-      denoise_guide(position.xyz - frame_constants.frame.camera_position.xyz, n);
+  const vec4 guide = denoise_guide(position.xyz - frame_constants.frame.camera_position.xyz, n);
+  guide_out.p[index] = guide;
   float l = luminance(illumination);
 
   // Last frame's history at the reprojected position: bilinear weights of the similar taps.
@@ -247,9 +247,8 @@ void main() {
     float sigma = sqrt(max(history_moments.y - history_moments.x * history_moments.x, 0.0));
     limit = history_moments.x + push.firefly * sigma;
   } else if (!history_judges && push.neighbour_clamp > 0.0 && l > 0.0) {
-    float neighbour = brightest_neighbour(
-        pixel, emitter, l, position.xyz, n,
-        length(position.xyz - frame_constants.frame.camera_position.xyz));
+    float neighbour =
+        brightest_neighbour(pixel, emitter, l, position.xyz, n, denoise_guide_distance(guide));
     if (neighbour >= 0.0) limit = push.neighbour_clamp * neighbour;
   }
   // What the luminance moments take: the clamped sample, except on a long history that has seen
