@@ -3,7 +3,8 @@
 // from the luminance of similar neighbours in a 5x5 window instead (depth-plane and normal edge
 // stops as in denoise.atrous, neighbours of the pixel's kind only: denoise_record), so the first
 // à-trous iterations still know how noisy the pixel is. From kDenoiseOwnSpreadHistory frames on
-// the pixel's own samples' spread bounds that estimate.
+// the pixel's own samples' spread bounds that estimate, never below kDenoiseOwnSpreadFloor of the
+// smaller of it and the similar neighbours' own spread.
 // Also the 3x3 mean luminance of similar neighbours (tent-weighted, kDenoiseKernel), which the
 // first à-trous iteration's luminance edge stop compares.
 // Reads: accum_in (rgb illumination, a variance), moments_in (z history length), guide.
@@ -45,11 +46,13 @@ void main() {
   // (cornell_lights: a steady 0.2-0.3 on pixels that are black; trade's denoised relMSE 6-16%
   // lower with the tent).
   // The 3x3 taps also start the short-history moments below (geometry weights only), so the
-  // 5x5 window reads just its outer ring of 16 on top.
+  // 5x5 window reads just its outer ring of 16 on top; with them the mean of the neighbours' own
+  // spread (their temporal variance), which floors the own-spread bound.
   float smooth_sum = 0.0;
   float smooth_w = 0.0;
   float sum_w = 0.0;
   vec2 moments = vec2(0.0);
+  float neighbours_spread = 0.0;
   [[unroll]] for (int t = 0; t < 9; ++t) {
     ivec2 q = pixel + ivec2(t % 3 - 1, t / 3 - 1);
     if (!denoise_inside(q)) continue;
@@ -63,6 +66,7 @@ void main() {
     smooth_sum += w * l;
     smooth_w += w;
     moments += wg * vec2(l, l * l);
+    neighbours_spread += wg * denoise_record_variance(rq);
     sum_w += wg;
   }
   luminance_out.l[index] = smooth_sum / max(smooth_w, 1e-6);
@@ -82,15 +86,18 @@ void main() {
       float w = denoise_geometry_weight(g, n, depth, gq, 1.0, 0.0);
       float l = luminance(rq.rgb);
       moments += w * vec2(l, l * l);
+      neighbours_spread += w * denoise_record_variance(rq);
       sum_w += w;
     }
   }
   moments /= max(sum_w, 1e-6);
+  neighbours_spread /= max(sum_w, 1e-6);
   // Fewer frames behind it: more uncertain (SVGF's boost of the spatial estimate).
   float boost = kDenoiseShortHistory / max(frames, 1.0);
   float variance = max(moments.y - moments.x * moments.x, 0.0) * boost;
   if (frames >= kDenoiseOwnSpreadHistory) {
-    variance = min(variance, denoise_record_variance(centre) * boost);
+    float floor_variance = kDenoiseOwnSpreadFloor * min(variance, neighbours_spread * boost);
+    variance = max(min(variance, denoise_record_variance(centre) * boost), floor_variance);
   }
   accum_out.p[index] = denoise_record(centre.rgb, variance, emitter);
 }

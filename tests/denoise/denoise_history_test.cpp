@@ -1,8 +1,9 @@
 // The denoiser's history: rejected across a camera cut, a disocclusion and a mostly hidden
 // footprint (exact images), recovered within four frames; the clamps (a light after darkness, a
 // lone sample without history, a dimmed light, a lit pixel among dark ones) and what they took
-// given back (repay), a dark pixel among lit ones in a short history, the stabilisation,
-// and each frame weighed by the integrator's confidence.
+// given back (repay), a dark pixel among lit ones in a short history and one whose samples agree
+// by chance among noisy ones, the stabilisation, and each frame weighed by the integrator's
+// confidence.
 #include "tests/denoise/denoise_gpu_fixture.h"
 
 namespace lantern::denoise_test {
@@ -522,8 +523,9 @@ TEST_F(DenoiseGpuTest, LitPixelAmongDarkOnesIsNotHeldBlack) {
 // is not filtered into its neighbours' light once it has kDenoiseOwnSpreadHistory frames of
 // history (still view; one interior surface pixel black among pixels of c): in the first frame
 // only the neighbours' spread is known and the à-trous steps draw light into it, from the second
-// on its own samples' spread (none) bounds the short history's variance and it stays black. Its
-// lit neighbours keep c.
+// on its own samples' spread (none) bounds the short history's variance and it stays black: the
+// neighbours' samples agree too (none spread), so the bound's floor is 0. Its lit neighbours
+// keep c.
 TEST_F(DenoiseGpuTest, DarkPixelWhoseSamplesAgreeStaysDarkInAShortHistory) {
   std::vector<std::uint8_t> mask;
   {
@@ -555,6 +557,38 @@ TEST_F(DenoiseGpuTest, DarkPixelWhoseSamplesAgreeStaysDarkInAShortHistory) {
   EXPECT_LE(shown[1], 1e-3f * c) << "two agreeing samples: the neighbours' light came in";
   EXPECT_LE(shown[2], 1e-3f * c) << "three agreeing samples: the neighbours' light came in";
   EXPECT_NEAR(darkest_beside / c, 1.0, 0.01) << "the lit pixels beside it lost light";
+}
+
+// The bound has a floor (kDenoiseOwnSpreadFloor of the smaller of the spatial estimate and the
+// neighbours' own spread): samples that agree by chance among neighbours whose samples spread do
+// not make a pixel noiseless. One interior surface pixel black in every frame among pixels of new
+// noise each frame (mean c): without the floor its short history's variance is 0 from the second
+// frame on, the à-trous steps stop at every tap and it stays exactly black; with it the
+// neighbours' light comes in as in the first frame, where only their spread is known.
+TEST_F(DenoiseGpuTest, SamplesThatAgreeByChanceAmongNoisyNeighboursAreFiltered) {
+  std::vector<std::uint8_t> mask;
+  {
+    Run probe = make_run();
+    (void)black_frames(probe, 1, mask);
+  }
+  const std::size_t dark = interior_surface_pixel(mask);
+  ASSERT_NE(dark, 0u);
+  const float c = 0.4f;
+  Run run = make_run();
+  FrameSnapshot s = test::first_snapshot(level, kW, kH);
+  std::vector<float> shown;
+  for (int f = 0; f < 3; ++f) {
+    if (f > 0) s = frozen(s);
+    ImageRGBA32F input = noisy(c, static_cast<std::uint32_t>(f));
+    for (int k = 0; k < 3; ++k) input.pixels[4 * dark + k] = 0.0f;
+    shown.push_back(render(run, input, s).pixels[4 * dark]);
+  }
+  std::printf("[denoise chance agreement] frames 1, 2, 3: %.5f %.5f %.5f (c = %.2f)\n", shown[0],
+              shown[1], shown[2], c);
+  static_assert(gpu::kDenoiseOwnSpreadFloor == 0.05f && gpu::kDenoiseOwnSpreadHistory == 2.0f);
+  EXPECT_GT(shown[0], 0.25f * c) << "control: one frame has only the neighbours' spread";
+  EXPECT_GT(shown[1], 0.1f * c) << "two agreeing samples among noisy neighbours held black";
+  EXPECT_GT(shown[2], 0.1f * c) << "three agreeing samples among noisy neighbours held black";
 }
 
 // The integrator's confidence weighs each frame (static camera, constant images, so every pixel
