@@ -208,6 +208,9 @@ class DenoiseGpuTest : public runtime::test::GpuTest {
     mask = surfaces(g);
     return s;
   }
+  // An interior surface pixel of the still scene (interior_surface_pixel of a probe run's first
+  // frame; 0 when there is none) and, in `mask`, its surface pixels.
+  std::size_t interior_pixel(std::vector<std::uint8_t>& mask);
   // An image of c with a lone spike of factor x c at an interior surface pixel of the still
   // scene (`spike`; `mask`: the surface pixels).
   ImageRGBA32F lone_spike(float c, float factor, std::size_t& spike,
@@ -229,13 +232,15 @@ inline std::size_t interior_surface_pixel(const std::vector<std::uint8_t>& mask)
   return 0;
 }
 
+inline std::size_t DenoiseGpuTest::interior_pixel(std::vector<std::uint8_t>& mask) {
+  Run probe = make_run();
+  (void)black_frames(probe, 1, mask);
+  return interior_surface_pixel(mask);
+}
+
 inline ImageRGBA32F DenoiseGpuTest::lone_spike(float c, float factor, std::size_t& spike,
                                                std::vector<std::uint8_t>& mask) {
-  {
-    Run probe = make_run();
-    (void)black_frames(probe, 1, mask);
-  }
-  spike = interior_surface_pixel(mask);
+  spike = interior_pixel(mask);
   ImageRGBA32F input = constant(c);
   for (int k = 0; k < 3; ++k) input.pixels[4 * spike + k] = factor * c;
   return input;
