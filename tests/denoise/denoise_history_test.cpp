@@ -560,7 +560,8 @@ TEST_F(DenoiseGpuTest, DarkPixelWhoseSamplesAgreeStaysDarkInAShortHistory) {
 // not make a pixel noiseless. One interior surface pixel black in every frame among pixels of new
 // noise each frame (mean c): without the floor its short history's variance is 0 from the second
 // frame on, the à-trous steps stop at every tap and it stays exactly black; with it the
-// neighbours' light comes in as in the first frame, where only their spread is known.
+// neighbours' light still comes in, if less than in the first frame, where only their spread is
+// known.
 TEST_F(DenoiseGpuTest, SamplesThatAgreeByChanceAmongNoisyNeighboursAreFiltered) {
   std::vector<std::uint8_t> mask;
   const std::size_t dark = interior_pixel(mask);
