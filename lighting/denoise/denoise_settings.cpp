@@ -55,9 +55,9 @@ const Row kRows[] = {
       0, 100, false},
      DENOISE_FIELD(firefly), 4, 4, 4},
     {{"neighbour_clamp", "where a pixel has no history to judge a new sample by (new, "
-                         "disoccluded, short or all black), clamp the sample to k x the brightest "
-                         "of its 8 neighbours (0 off): lower removes more lone fireflies, and "
-                         "some energy",
+                         "disoccluded, short or all black), clamp the sample to k x the second "
+                         "brightest of its 8 neighbours on its surface (0 off): lower removes "
+                         "more lone fireflies, and some energy",
       0, 100, false},
      DENOISE_FIELD(neighbour_clamp), 2, 2, 2},
     {{"repay", "give back this share of the light the firefly and neighbour clamps took from a "

@@ -90,8 +90,8 @@ struct DenoisePush {
                          // camera, albedo 1; 0: the sky passes through unfiltered
   vec4 similarity;       // restir_surfaces_similar's thresholds (shared/restir.h) for reprojection
   float neighbour_clamp;  // where the history cannot judge a new sample (none, shorter than
-                          // kDenoiseShortHistory or all black): clamp it to this x the brightest
-                          // of its 8 neighbours in this frame (0: off)
+                          // kDenoiseShortHistory or all black): clamp it to this x the second
+                          // brightest of its 8 neighbours on its surface in this frame (0: off)
   float antilag;  // denoise.temporal: the colour history is held within this many standard
                   // errors of the luminance moments' short mean (~2 / moments_alpha frames;
                   // 0: off)

@@ -208,6 +208,13 @@ class DenoiseGpuTest : public runtime::test::GpuTest {
     mask = surfaces(g);
     return s;
   }
+  // The G-buffer of the still scene's first frame (a probe run).
+  lighting::GBufferTexels first_frame_gbuffer() {
+    Run probe = make_run();
+    lighting::GBufferTexels g;
+    (void)render(probe, constant(0.0f), test::first_snapshot(level, kW, kH), &g);
+    return g;
+  }
   // An interior surface pixel of the still scene (interior_surface_pixel of a probe run's first
   // frame; 0 when there is none) and, in `mask`, its surface pixels.
   std::size_t interior_pixel(std::vector<std::uint8_t>& mask);
@@ -227,6 +234,28 @@ inline std::size_t interior_surface_pixel(const std::vector<std::uint8_t>& mask)
         for (int dx = -1; dx <= 1; ++dx) all = all && mask[(y + dy) * kW + (x + dx)];
       }
       if (all) return std::size_t{y} * kW + x;
+    }
+  }
+  return 0;
+}
+
+// The first pixel, row by row from the image's middle row down and then from the top, whose block
+// of `left` / `right` columns and `up` / `down` rows around it shows only instance `instance` (0
+// when there is none).
+inline std::size_t first_block_of(const lighting::GBufferTexels& g, std::uint32_t instance,
+                                  std::uint32_t left, std::uint32_t right, std::uint32_t up,
+                                  std::uint32_t down) {
+  for (std::uint32_t row = 0; row < g.height; ++row) {
+    const std::uint32_t y = (g.height / 2 + row) % g.height;
+    if (y < up || y + down >= g.height) continue;
+    for (std::uint32_t x = left; x + right < g.width; ++x) {
+      bool inside = true;
+      for (std::uint32_t by = y - up; by <= y + down && inside; ++by) {
+        for (std::uint32_t bx = x - left; bx <= x + right && inside; ++bx) {
+          inside = g.ids[g.index(bx, by)].x == instance;
+        }
+      }
+      if (inside) return g.index(x, y);
     }
   }
   return 0;

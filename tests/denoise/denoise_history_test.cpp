@@ -296,11 +296,7 @@ TEST_F(DenoiseGpuTest, LoneSampleWithoutHistoryIsClampedToItsNeighbours) {
 TEST_F(DenoiseGpuTest, LoneSampleIsJudgedByTheNeighboursOnItsOwnSurface) {
   const float c = 0.3f;
   const std::uint32_t box = static_cast<std::uint32_t>(instance_index(*level, "box"));
-  lighting::GBufferTexels g;
-  {
-    Run probe = make_run();
-    (void)render(probe, constant(0.0f), test::first_snapshot(level, kW, kH), &g);
-  }
+  const lighting::GBufferTexels g = first_frame_gbuffer();
   auto id = [&](std::uint32_t x, std::uint32_t y) { return g.ids[std::size_t{y} * kW + x].x; };
   // The box pixels whose left neighbour is a surface other than the box and whose other 7
   // neighbours are the box: its left silhouette; the middle one of them is the spike.
@@ -338,6 +334,45 @@ TEST_F(DenoiseGpuTest, LoneSampleIsJudgedByTheNeighboursOnItsOwnSurface) {
                 k.clamp, out.pixels[4 * spike], k.expected, out.pixels[4 * wall]);
     EXPECT_NEAR(out.pixels[4 * spike], k.expected, 1e-4f * k.expected) << "clamp " << k.clamp;
     EXPECT_NEAR(out.pixels[4 * wall], c, 1e-5f) << "clamp " << k.clamp;
+  }
+}
+
+// Two heavy samples side by side without history (the first frame, temporal only), on the wall:
+// each is judged by the second brightest of its neighbours on its surface, so neither vouches for
+// the other and both come out at exactly 2 c (neighbour_clamp 2 x the wall's c); with the clamp
+// off both keep 100 c. By the brightest neighbour (the clamp before) each admitted the other and
+// both kept 100 c: ReSTIR's heavy samples come in such clusters where spatial reuse spread one
+// over a few pixels. The rest of the wall keeps c.
+TEST_F(DenoiseGpuTest, HeavySamplesSideBySideDoNotVouchForEachOther) {
+  const float c = 0.3f;
+  const std::uint32_t wall = static_cast<std::uint32_t>(instance_index(*level, "wall"));
+  const lighting::GBufferTexels g = first_frame_gbuffer();
+  // The pair's 4x3 block shows only the wall.
+  const std::size_t first = first_block_of(g, wall, 1, 2, 1, 1);
+  ASSERT_NE(first, 0u) << "the wall must show a 4x3 block";
+  const std::size_t pair[2] = {first, first + 1};
+  ImageRGBA32F input = constant(c);
+  std::vector<std::uint8_t> others(g.ids.size(), 0);
+  for (std::size_t p = 0; p < g.ids.size(); ++p) others[p] = g.ids[p].x == wall;
+  for (const std::size_t p : pair) {
+    for (int k = 0; k < 3; ++k) input.pixels[4 * p + k] = 100.0f * c;
+    others[p] = 0;
+  }
+  struct Case {
+    const char* clamp;
+    float expected;
+  };
+  for (const Case& k : {Case{"2", 2.0f * c}, Case{"0", 100.0f * c}}) {
+    Run run = make_run({{"atrous", "0"}, {"neighbour_clamp", k.clamp}});
+    const ImageRGBA32F out = render(run, input, test::first_snapshot(level, kW, kH));
+    const Range r = masked_range(out, others);
+    std::printf("[denoise vouching] clamp %s: pair %.5f %.5f (expected %.5f), wall %.5f..%.5f\n",
+                k.clamp, out.pixels[4 * pair[0]], out.pixels[4 * pair[1]], k.expected, r.lo, r.hi);
+    for (const std::size_t p : pair) {
+      EXPECT_NEAR(out.pixels[4 * p], k.expected, 1e-4f * k.expected) << "clamp " << k.clamp;
+    }
+    EXPECT_NEAR(r.lo, c, 1e-5f) << "clamp " << k.clamp;
+    EXPECT_NEAR(r.hi, c, 1e-5f) << "clamp " << k.clamp;
   }
 }
 
