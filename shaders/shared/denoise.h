@@ -15,10 +15,10 @@ LANTERN_CONST uint kDenoiseMaxAtrousIterations = 6u;
 // History length below which denoise.variance estimates variance spatially (SVGF's 4 frames).
 LANTERN_CONST float kDenoiseShortHistory = 4.0f;
 // From this history length on, a short history's variance is the smaller of the spatial estimate
-// and the pixel's own samples' spread (both boosted alike): a pixel whose samples agree, in shadow
-// beside a lit surface of the same normal and material, is no longer taken for noise and
-// filtered into its neighbours' light (night_market: the silhouettes of a moving view keep
-// pixels at 1-3 frames of history, which held 51-72% of the denoised error; denoised relMSE
+// and the pixel's own samples' spread (boosted by kDenoiseShortHistory / frames): a pixel whose
+// samples agree, in shadow beside a lit surface of the same normal and material, is no longer taken
+// for noise and filtered into its neighbours' light (night_market: the silhouettes of a moving view
+// keep pixels at 1-3 frames of history, which held 51-72% of the denoised error; denoised relMSE
 // -5/-6/-2% on seeds 1-3 with the means unchanged, README "Where the denoised error sits").
 LANTERN_CONST float kDenoiseOwnSpreadHistory = 2.0f;
 // The own-spread bound goes no lower than this share of the smaller of the spatial estimate and

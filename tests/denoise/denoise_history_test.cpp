@@ -376,6 +376,29 @@ TEST_F(DenoiseGpuTest, HeavySamplesSideBySideDoNotVouchForEachOther) {
   }
 }
 
+// A dark pixel without history (the first frame: as just disoccluded) on a lit wall of c, with one
+// à-trous step at a tight luminance stop (phi_luminance 0.1): denoise.variance estimates its
+// variance from the 5x5 wall around it, and the step weighs the lit neighbours by that spread
+// as it is. SVGF's boost (x4 at one frame) doubled the stop's scale, and the dark pixel took in
+// 0.083 c of its neighbours' light; unboosted it reads 0.0035 c (asked: under 0.02 c), the wall
+// out of its reach c.
+TEST_F(DenoiseGpuTest, DarkPixelWithoutHistoryIsJudgedByItsNeighboursSpread) {
+  const float c = 0.3f;
+  const std::uint32_t wall = static_cast<std::uint32_t>(instance_index(*level, "wall"));
+  const lighting::GBufferTexels g = first_frame_gbuffer();
+  const std::size_t dark = first_block_of(g, wall, 4, 4, 4, 4);
+  ASSERT_NE(dark, 0u) << "the wall must show a 9x9 block";
+  ImageRGBA32F input = constant(c);
+  for (int k = 0; k < 3; ++k) input.pixels[4 * dark + k] = 0.0f;
+  Run run = make_run({{"atrous", "1"}, {"phi_luminance", "0.1"}});
+  const ImageRGBA32F out = render(run, input, test::first_snapshot(level, kW, kH));
+  const float far = out.pixels[4 * (dark + 3 * kW)];  // three rows below: no dark pixel in reach
+  std::printf("[denoise unboosted] dark pixel %.5f (c %.5f), wall three rows below %.5f\n",
+              out.pixels[4 * dark], c, far);
+  EXPECT_LT(out.pixels[4 * dark], 0.02f * c) << "the dark pixel took in its neighbours' light";
+  EXPECT_NEAR(far, c, 1e-5f);
+}
+
 // What a clamp takes is repaid with denoise.repay (static camera, temporal only, every frame
 // weighed alike: color_alpha 0.01, max_history 64, antilag off). Frame 0 holds a lone 100c spike
 // on a surface of c, which the neighbour clamp cuts to 2c (98c taken), then 12 frames of c; the
