@@ -64,7 +64,7 @@ const Row kRows[] = {
                "pixel each frame, never above the clamp's limit (0 off: dropped): higher keeps "
                "more of the image's energy, and leaves more noise",
       0, 1, false},
-     DENOISE_FIELD(repay), 0, 0, 0},
+     DENOISE_FIELD(repay), 0.25f, 0.25f, 0.25f},
     {{"antilag", "hold the long colour history within k standard errors of the short luminance "
                  "history (0 off): lower follows changing light sooner, and adds some of the "
                  "short history's noise to a still view",

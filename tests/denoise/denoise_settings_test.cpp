@@ -22,8 +22,8 @@ TEST(DenoiseSettings, ParsesEveryKindOfKey) {
   EXPECT_FALSE(s.enabled);
   EXPECT_EQ(s.neighbour_clamp, 0.0f);
   EXPECT_EQ(make_denoise_settings("balanced", {}).neighbour_clamp, 2.0f);
-  EXPECT_EQ(make_denoise_settings("balanced", {}).repay, 0.0f);
-  EXPECT_FLOAT_EQ(make_denoise_settings("fast", {{"repay", "0.25"}}).repay, 0.25f);
+  EXPECT_FLOAT_EQ(make_denoise_settings("balanced", {}).repay, 0.25f);
+  EXPECT_EQ(make_denoise_settings("fast", {{"repay", "0"}}).repay, 0.0f);
   EXPECT_EQ(s.atrous_iterations, 2u);
   EXPECT_FLOAT_EQ(s.phi_luminance, 2.5f);
 }
