@@ -218,6 +218,11 @@ class DenoiseGpuTest : public runtime::test::GpuTest {
   // An interior surface pixel of the still scene (interior_surface_pixel of a probe run's first
   // frame; 0 when there is none) and, in `mask`, its surface pixels.
   std::size_t interior_pixel(std::vector<std::uint8_t>& mask);
+  // A pixel of the still scene's wall whose block of `left` / `right` columns and `up` / `down`
+  // rows shows only the wall (first_block_of; 0 when there is none), and in `g` the first frame's
+  // G-buffer.
+  std::size_t wall_block(std::uint32_t left, std::uint32_t right, std::uint32_t up,
+                         std::uint32_t down, lighting::GBufferTexels& g);
   // An image of c with a lone spike of factor x c at an interior surface pixel of the still
   // scene (`spike`; `mask`: the surface pixels).
   ImageRGBA32F lone_spike(float c, float factor, std::size_t& spike,
@@ -265,6 +270,14 @@ inline std::size_t DenoiseGpuTest::interior_pixel(std::vector<std::uint8_t>& mas
   Run probe = make_run();
   (void)black_frames(probe, 1, mask);
   return interior_surface_pixel(mask);
+}
+
+inline std::size_t DenoiseGpuTest::wall_block(std::uint32_t left, std::uint32_t right,
+                                              std::uint32_t up, std::uint32_t down,
+                                              lighting::GBufferTexels& g) {
+  g = first_frame_gbuffer();
+  const auto wall = static_cast<std::uint32_t>(instance_index(*level, "wall"));
+  return first_block_of(g, wall, left, right, up, down);
 }
 
 inline ImageRGBA32F DenoiseGpuTest::lone_spike(float c, float factor, std::size_t& spike,

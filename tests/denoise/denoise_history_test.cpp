@@ -345,15 +345,13 @@ TEST_F(DenoiseGpuTest, LoneSampleIsJudgedByTheNeighboursOnItsOwnSurface) {
 // over a few pixels. The rest of the wall keeps c.
 TEST_F(DenoiseGpuTest, HeavySamplesSideBySideDoNotVouchForEachOther) {
   const float c = 0.3f;
-  const std::uint32_t wall = static_cast<std::uint32_t>(instance_index(*level, "wall"));
-  const lighting::GBufferTexels g = first_frame_gbuffer();
-  // The pair's 4x3 block shows only the wall.
-  const std::size_t first = first_block_of(g, wall, 1, 2, 1, 1);
+  lighting::GBufferTexels g;
+  const std::size_t first = wall_block(1, 2, 1, 1, g);  // the pair's 4x3 block is wall
   ASSERT_NE(first, 0u) << "the wall must show a 4x3 block";
   const std::size_t pair[2] = {first, first + 1};
   ImageRGBA32F input = constant(c);
   std::vector<std::uint8_t> others(g.ids.size(), 0);
-  for (std::size_t p = 0; p < g.ids.size(); ++p) others[p] = g.ids[p].x == wall;
+  for (std::size_t p = 0; p < g.ids.size(); ++p) others[p] = g.ids[p].x == g.ids[first].x;
   for (const std::size_t p : pair) {
     for (int k = 0; k < 3; ++k) input.pixels[4 * p + k] = 100.0f * c;
     others[p] = 0;
@@ -384,9 +382,8 @@ TEST_F(DenoiseGpuTest, HeavySamplesSideBySideDoNotVouchForEachOther) {
 // out of its reach c.
 TEST_F(DenoiseGpuTest, DarkPixelWithoutHistoryIsJudgedByItsNeighboursSpread) {
   const float c = 0.3f;
-  const std::uint32_t wall = static_cast<std::uint32_t>(instance_index(*level, "wall"));
-  const lighting::GBufferTexels g = first_frame_gbuffer();
-  const std::size_t dark = first_block_of(g, wall, 4, 4, 4, 4);
+  lighting::GBufferTexels g;
+  const std::size_t dark = wall_block(4, 4, 4, 4, g);
   ASSERT_NE(dark, 0u) << "the wall must show a 9x9 block";
   ImageRGBA32F input = constant(c);
   for (int k = 0; k < 3; ++k) input.pixels[4 * dark + k] = 0.0f;
