@@ -30,7 +30,7 @@ struct DenoiseSettings {
   float stabilize = 0.7f;       // weight of last frame's output in this frame's (0: off)
   float stabilize_band = 1.0f;  // how far that output may differ, in standard deviations
   float max_history = 32.0f;
-  float repay = 0.0f;  // share of the light the clamps took given back each frame (0: dropped)
+  float repay = 0.25f;  // share of the light the clamps took given back each frame (0: dropped)
   bool confidence = true;  // weigh each frame by the integrator's confidence (ReSTIR's M)
 };
 
