@@ -61,8 +61,9 @@ const Row kRows[] = {
       0, 100, false},
      DENOISE_FIELD(neighbour_clamp), 2, 2, 2},
     {{"repay", "give back this share of the light the firefly and neighbour clamps took from a "
-               "pixel each frame, never above the clamp's limit (0 off: dropped): higher keeps "
-               "more of the image's energy, and leaves more noise",
+               "pixel each frame, never above the clamp's limit (a black sample the history "
+               "cannot judge has none; 0 off: dropped): higher keeps more of the image's energy, "
+               "and leaves more noise",
       0, 1, false},
      DENOISE_FIELD(repay), 0.25f, 0.25f, 0.25f},
     {{"antilag", "hold the long colour history within k standard errors of the short luminance "
