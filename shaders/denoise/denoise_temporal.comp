@@ -274,13 +274,13 @@ void main() {
     l = limit;
   }
   // Repay: push.repay of what is owed, at most up to the limit, joins this frame's sample (its
-  // moments too, so the history judges the next sample by what the pixel shows; a black sample
-  // the history cannot judge has no limit, and holding it to the neighbours' traded the mean for
-  // error on night_market: README "Two neighbours vouch for a sample"); what a clamp
-  // took now is owed from the next frame on. The temporal accumulation averages the frames'
-  // samples, so light given back a few frames later counts in the pixel's mean (as much as the
-  // sample it came from where every frame weighs alike). Owed luminance is capped at
-  // kDenoiseMaxMomentLuminance, so an absurd sample cannot make it infinite.
+  // moments too, so the history judges the next sample by what the pixel shows; a black sample the
+  // history cannot judge has no limit, and holding it to the neighbours' traded the mean for error
+  // on night_market: README "Two neighbours vouch for a sample"); what a clamp took now is owed
+  // from the next frame on. The temporal accumulation averages the frames' samples, so light given
+  // back a few frames later counts in the pixel's mean (as much as the sample it came from where
+  // every frame weighs alike). Owed luminance is capped at kDenoiseMaxMomentLuminance, so an absurd
+  // sample cannot make it infinite.
   if (push.repay > 0.0) {
     float owed_luminance = luminance(owed);
     float repaid = min(owed_luminance * push.repay, max(limit - l, 0.0));
